@@ -1,0 +1,40 @@
+// Point neighbourhoods (paper 2.1): k nearest neighbours with PCL's kd-tree, stored flat.
+// This header is PCL-free; PCL stays inside neighborhoods.cpp.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/types.h"
+
+namespace qf {
+
+// Neighbour lists of n points, flat: the neighbours of point i are indices[offsets[i] ..
+// offsets[i+1]), sorted by increasing distance (ties by increasing index), the point itself
+// excluded. distances holds the Euclidean distances (world units) alongside.
+struct Neighborhoods {
+  std::vector<std::uint32_t> offsets;  // n + 1 entries
+  std::vector<std::uint32_t> indices;
+  std::vector<float> distances;
+
+  std::size_t size() const { return offsets.empty() ? 0 : offsets.size() - 1; }
+  std::size_t count(std::size_t i) const { return offsets[i + 1] - offsets[i]; }
+};
+
+// The min(k, n-1) nearest neighbours of every point. Uses every core; the result does not
+// depend on the thread count. Coincident points are neighbours at distance 0.
+Neighborhoods k_nearest(const std::vector<Vec3f>& positions, int k);
+
+struct RadiusEstimateOptions {
+  int k = 6;  // neighbours averaged: about the first ring of a surface sampling
+};
+
+// Splat radius from local spacing (method.md stage 0): the mean distance to the k nearest
+// neighbours at non-zero distance, i.e. about the sample spacing h (a disc of radius h covers
+// the gaps of a sampling with spacing h). Points whose neighbours all coincide with them get the
+// median of the other estimates; a set with no spacing at all (one point, or all coincident)
+// gets 1% of its bounding-box diagonal, or 1 if that is 0. Fills `points.radii` where it is
+// empty; where it is present, only entries equal to 0 are replaced. Returns how many were set.
+std::size_t estimate_radii(PointSet& points, const RadiusEstimateOptions& options = {});
+
+}  // namespace qf

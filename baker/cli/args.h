@@ -1,0 +1,51 @@
+// Command-line parsing for qf-bake's subcommands: options declared once, with their defaults and
+// help text, so --help always lists every option and its default.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace qf::cli {
+
+struct OptionSpec {
+  std::string name;          // long name without dashes, e.g. "output"
+  char short_name = 0;       // e.g. 'o', or 0
+  std::string metavar;       // empty for a flag (takes no value)
+  std::string default_text;  // shown in --help; empty = no default (required or off)
+  std::string help;
+};
+
+struct CommandSpec {
+  std::string name;
+  std::string usage;    // after "qf-bake NAME ", e.g. "IN OUT [options]"
+  std::string summary;  // one line
+  std::string details;  // paragraph(s) after the usage line
+  std::vector<OptionSpec> options;
+  std::size_t min_positional = 0, max_positional = 0;
+};
+
+class ParsedArgs {
+ public:
+  std::vector<std::string> positional;
+  bool has(const std::string& name) const { return values_.count(name) != 0; }
+  bool flag(const std::string& name) const { return has(name); }
+  std::string get(const std::string& name, const std::string& fallback = "") const;
+  // Number options; throw UsageError naming the option when the value is not a number in range.
+  long long get_int(const std::string& name, long long fallback, long long min, long long max) const;
+  double get_double(const std::string& name, double fallback, double min, double max) const;
+
+ private:
+  friend ParsedArgs parse_args(const CommandSpec&, const std::vector<std::string>&);
+  std::map<std::string, std::string> values_;
+};
+
+// Parses arguments (after the subcommand name). "--name value", "--name=value", "-o value" and
+// "--" (end of options) are understood. Throws UsageError on unknown options, missing values or
+// a wrong number of positional arguments. "--help" is handled by the caller before parsing.
+ParsedArgs parse_args(const CommandSpec& spec, const std::vector<std::string>& args);
+
+// The --help text of a command.
+std::string help_text(const CommandSpec& spec);
+
+}  // namespace qf::cli

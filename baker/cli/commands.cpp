@@ -1,0 +1,106 @@
+// The command table, and the convert and generate commands.
+#include "cli/commands.h"
+
+#include <iostream>
+
+#include "analysis/neighborhoods.h"
+#include "core/error.h"
+#include "core/file_io.h"
+#include "io/model_io.h"
+#include "shapes/shapes.h"
+
+namespace qf::cli {
+
+OptionSpec drop_nonfinite_option() {
+  return {"drop-nonfinite", 0, "", "",
+          "drop points (or mesh vertices and their triangles) with NaN/Inf coordinates and report how many, "
+          "instead of rejecting the file"};
+}
+
+static std::string shape_list() {
+  std::string s;
+  for (const ShapeInfo& i : shape_catalog()) {
+    std::string n = "  " + std::string(i.name);
+    n.resize(14, ' ');
+    s += n + i.description + "\n";
+  }
+  return s;
+}
+
+const std::vector<Command>& commands() {
+  static const std::vector<Command> table{
+      {{"info", "FILE [options]", "describe a point set or mesh: format, counts, attributes, bounds, memory",
+        "FILE is any supported input: .ply (points or mesh), .qs, .xyz, .pwn, .off, .obj.",
+        {{"json", 0, "", "", "print a JSON object instead of text (schema: schemas/info.schema.json)"},
+         drop_nonfinite_option()},
+        1, 1},
+       run_info},
+      {{"convert", "IN OUT [options]", "convert a point set between .ply, .qs, .xyz and .pwn (by extension)",
+        "Missing splat radii are estimated from local spacing when OUT stores radii (.ply, .qs):\n"
+        "the mean distance to the --radius-k nearest neighbours. .qs and .pwn need normals.\n"
+        "OUT is written to a temporary name and renamed, so it is never left half-written.",
+        {{"radius-k", 0, "K", "6", "neighbours averaged when estimating missing radii"},
+         drop_nonfinite_option(),
+         {"quiet", 'q', "", "", "print nothing on success"}},
+        2, 2},
+       run_convert},
+      {{"generate", "SHAPE -o OUT [options]", "write an analytic sample shape as a point set",
+        "SHAPE is one of:\n" + shape_list() +
+            "Points are spread uniformly by area with a seeded generator (identical output for\n"
+            "identical settings), with outward normals, colours, and radii from local spacing.",
+        {{"output", 'o', "OUT", "", "output file (.ply, .qs, .xyz or .pwn); required"},
+         {"points", 'n', "N", "16000", "number of points"},
+         {"seed", 0, "S", "1", "random seed"},
+         {"quiet", 'q', "", "", "print nothing on success"}},
+        1, 1},
+       run_generate},
+  };
+  return table;
+}
+
+int run_convert(const ParsedArgs& args) {
+  const std::string& in = args.positional[0];
+  const std::string& out = args.positional[1];
+  const std::string out_ext = file_extension(out);
+  bool known = false;
+  for (const std::string& e : point_set_extensions()) known = known || e == out_ext;
+  if (!known) throw UsageError("cannot write point sets as '." + out_ext + "' (" + out + "); supported: .ply .qs .xyz .pwn");
+  RadiusEstimateOptions radius;
+  radius.k = static_cast<int>(args.get_int("radius-k", radius.k, 1, 1000));
+  ReadOptions ro;
+  ro.drop_nonfinite = args.flag("drop-nonfinite");
+
+  ReadReport report;
+  Model model = read_model(in, ro, &report);
+  if (model.is_mesh)
+    throw InputError("convert.mesh_input", in, "",
+                     "is a triangle mesh (" + std::to_string(model.mesh.triangles.size()) +
+                         " triangles); convert takes point sets: .ply without faces, .qs, .xyz, .pwn");
+  PointSet& points = model.points;
+  std::size_t estimated = 0;
+  if (out_ext == "ply" || out_ext == "qs") estimated = estimate_radii(points, radius);
+  write_point_set(out, points);
+  if (!args.flag("quiet")) {
+    std::cerr << "qf-bake convert: " << in << " (" << report.format << ") -> " << out << ": " << points.size()
+              << " points";
+    if (estimated) std::cerr << ", radii estimated for " << estimated << " (mean distance to " << radius.k << " neighbours)";
+    if (report.dropped_nonfinite) std::cerr << ", " << report.dropped_nonfinite << " non-finite points dropped";
+    std::cerr << "\n";
+  }
+  return 0;
+}
+
+int run_generate(const ParsedArgs& args) {
+  if (!args.has("output")) throw UsageError("generate needs -o OUT (see qf-bake generate --help)");
+  ShapeOptions o;
+  o.points = static_cast<std::size_t>(args.get_int("points", static_cast<long long>(o.points), 1, 100000000));
+  o.seed = static_cast<std::uint64_t>(args.get_int("seed", static_cast<long long>(o.seed), 0, (1ll << 62)));
+  const std::string out = args.get("output");
+  const PointSet points = generate_shape(args.positional[0], o);
+  write_point_set(out, points);
+  if (!args.flag("quiet"))
+    std::cerr << "qf-bake generate: " << args.positional[0] << " -> " << out << ": " << points.size() << " points\n";
+  return 0;
+}
+
+}  // namespace qf::cli

@@ -1,0 +1,80 @@
+// qf-bake entry point: subcommand dispatch and the mapping of errors to exit codes
+// (0 ok, 1 bad input, 2 bad usage, 3 internal error).
+#include <filesystem>
+#include <iostream>
+#include <new>
+
+#include "cli/commands.h"
+#include "core/error.h"
+
+#ifndef QF_VERSION
+#define QF_VERSION "0.0.0"
+#endif
+
+namespace {
+
+void print_overview(std::ostream& out) {
+  out << "qf-bake " QF_VERSION " - extreme simplification of point sets and meshes into textured quads\n\n"
+         "usage: qf-bake COMMAND [arguments] [options]\n"
+         "       qf-bake COMMAND --help      options of one command, with their defaults\n"
+         "       qf-bake --version\n\ncommands:\n";
+  for (const qf::cli::Command& c : qf::cli::commands()) {
+    std::string name = "  " + c.spec.name;
+    name.resize(14, ' ');
+    out << name << c.spec.summary << "\n";
+  }
+  out << "\nexit codes: 0 ok, 1 bad input (the message names the file, the line or byte, and what was\n"
+         "expected), 2 bad usage, 3 internal error.\n";
+}
+
+int dispatch(const std::vector<std::string>& argv) {
+  if (argv.empty() || argv[0] == "--help" || argv[0] == "-h" || argv[0] == "help") {
+    if (argv.size() >= 2 && argv[0] == "help") {
+      for (const auto& c : qf::cli::commands())
+        if (c.spec.name == argv[1]) return std::cout << qf::cli::help_text(c.spec), 0;
+      throw qf::UsageError("unknown command '" + argv[1] + "'");
+    }
+    print_overview(argv.empty() ? std::cerr : std::cout);
+    return argv.empty() ? 2 : 0;
+  }
+  if (argv[0] == "--version" || argv[0] == "-V") {
+    std::cout << "qf-bake " QF_VERSION "\n";
+    return 0;
+  }
+  for (const auto& c : qf::cli::commands()) {
+    if (c.spec.name != argv[0]) continue;
+    const std::vector<std::string> rest(argv.begin() + 1, argv.end());
+    for (const std::string& a : rest) {
+      if (a == "--") break;
+      if (a == "--help" || a == "-h") return std::cout << qf::cli::help_text(c.spec), 0;
+    }
+    return c.run(qf::cli::parse_args(c.spec, rest));
+  }
+  throw qf::UsageError("unknown command '" + argv[0] + "' (see qf-bake --help)");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::ios::sync_with_stdio(false);
+  const std::vector<std::string> args(argv + 1, argv + argc);
+  try {
+    return dispatch(args);
+  } catch (const qf::InputError& e) {
+    std::cerr << "qf-bake: error: " << e.what() << "\n";
+    return static_cast<int>(qf::ExitCode::kBadInput);
+  } catch (const qf::UsageError& e) {
+    std::cerr << "qf-bake: " << e.what() << "\n";
+    return static_cast<int>(qf::ExitCode::kUsage);
+  } catch (const std::filesystem::filesystem_error& e) {
+    // Output paths that cannot be written (missing folder, no permission) are a usage problem.
+    std::cerr << "qf-bake: cannot write output: " << e.what() << "\n";
+    return static_cast<int>(qf::ExitCode::kUsage);
+  } catch (const std::bad_alloc&) {
+    std::cerr << "qf-bake: internal error: out of memory\n";
+    return static_cast<int>(qf::ExitCode::kInternal);
+  } catch (const std::exception& e) {
+    std::cerr << "qf-bake: internal error: " << e.what() << "\n";
+    return static_cast<int>(qf::ExitCode::kInternal);
+  }
+}

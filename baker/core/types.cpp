@@ -1,0 +1,53 @@
+// Small helpers of the plain value types (bounds, memory accounting).
+#include "core/types.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cstdlib>
+
+namespace qf {
+
+Vec3f normalized(Vec3f a, Vec3f fallback) {
+  const float len = length(a);
+  if (!(len > 0.0f) || !std::isfinite(len)) return fallback;
+  return a * (1.0f / len);
+}
+
+double canonical_double(float v) {
+  if (v == 0.0f) return 0.0;
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf - 1, v);
+  *r.ptr = '\0';
+  return std::strtod(buf, nullptr);
+}
+
+void Bounds::add(Vec3f p) {
+  min = {std::min(min.x, p.x), std::min(min.y, p.y), std::min(min.z, p.z)};
+  max = {std::max(max.x, p.x), std::max(max.y, p.y), std::max(max.z, p.z)};
+}
+
+static Bounds bounds_of(const std::vector<Vec3f>& points) {
+  Bounds b;
+  for (const Vec3f& p : points) b.add(p);
+  return b;
+}
+
+Bounds PointSet::bounds() const { return bounds_of(positions); }
+Bounds TriangleMesh::bounds() const { return bounds_of(positions); }
+
+template <class T>
+static std::size_t bytes(const std::vector<T>& v) {
+  return v.size() * sizeof(T);
+}
+
+std::size_t PointSet::memory_bytes() const {
+  std::size_t total = bytes(positions) + bytes(normals) + bytes(radii) + bytes(colors);
+  for (const ScalarField& s : scalars) total += bytes(s.values);
+  return total;
+}
+
+std::size_t TriangleMesh::memory_bytes() const {
+  return bytes(positions) + bytes(triangles) + bytes(normals) + bytes(colors);
+}
+
+}  // namespace qf

@@ -1,0 +1,89 @@
+// Plain value types shared by every stage: points, meshes, bounds (architecture.md, "core/types.h").
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace qf {
+
+struct Vec3f {
+  float x = 0, y = 0, z = 0;
+  float& operator[](int i) { return (&x)[i]; }
+  float operator[](int i) const { return (&x)[i]; }
+};
+inline Vec3f operator+(Vec3f a, Vec3f b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+inline Vec3f operator-(Vec3f a, Vec3f b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline Vec3f operator*(Vec3f a, float s) { return {a.x * s, a.y * s, a.z * s}; }
+inline bool operator==(Vec3f a, Vec3f b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+inline float dot(Vec3f a, Vec3f b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline Vec3f cross(Vec3f a, Vec3f b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+inline float length(Vec3f a) { return std::sqrt(dot(a, a)); }
+inline bool is_finite(Vec3f a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
+// Unit vector in the direction of a; returns `fallback` for a zero (or non-finite) vector.
+Vec3f normalized(Vec3f a, Vec3f fallback = {0, 0, 1});
+
+// The float's shortest decimal form, as a double: JSON writers print it with the digits the float
+// needs and no more, so outputs are stable and diffable (gltf-notes.md, determinism). -0 becomes 0.
+double canonical_double(float v);
+
+struct Rgb8 {
+  std::uint8_t r = 0, g = 0, b = 0;
+};
+inline bool operator==(Rgb8 a, Rgb8 b) { return a.r == b.r && a.g == b.g && a.b == b.b; }
+
+// Axis-aligned box. An empty box has min > max (the default).
+struct Bounds {
+  Vec3f min{INFINITY, INFINITY, INFINITY};
+  Vec3f max{-INFINITY, -INFINITY, -INFINITY};
+  bool empty() const { return min.x > max.x; }
+  void add(Vec3f p);
+  Vec3f size() const { return empty() ? Vec3f{} : max - min; }
+  Vec3f center() const { return empty() ? Vec3f{} : (min + max) * 0.5f; }
+  float diagonal() const { return length(size()); }
+};
+
+// A named per-point scalar (e.g. the classifier); written as an extra float property in PLY.
+struct ScalarField {
+  std::string name;
+  std::vector<float> values;
+};
+
+// A point set. positions is always filled; every other per-point array is either empty (absent)
+// or has exactly positions.size() entries. Units are those of the input file.
+struct PointSet {
+  std::vector<Vec3f> positions;
+  std::vector<Vec3f> normals;   // unit length where present
+  std::vector<float> radii;     // splat radius, world units, > 0
+  std::vector<Rgb8> colors;     // 8-bit sRGB as stored in the file
+  std::vector<ScalarField> scalars;
+  std::vector<std::string> comments;  // free-text metadata (PLY comments, QSplat comment fragments)
+
+  std::size_t size() const { return positions.size(); }
+  bool has_normals() const { return !normals.empty(); }
+  bool has_radii() const { return !radii.empty(); }
+  bool has_colors() const { return !colors.empty(); }
+  Bounds bounds() const;
+  std::size_t memory_bytes() const;
+};
+
+using Triangle = std::array<std::uint32_t, 3>;
+
+// An indexed triangle mesh; per-vertex normals/colours are empty or one per position.
+struct TriangleMesh {
+  std::vector<Vec3f> positions;
+  std::vector<Triangle> triangles;
+  std::vector<Vec3f> normals;
+  std::vector<Rgb8> colors;
+  std::vector<std::string> comments;
+
+  Bounds bounds() const;
+  std::size_t memory_bytes() const;
+};
+
+}  // namespace qf

@@ -1,0 +1,53 @@
+// Format dispatch by file extension: read_model and write_point_set.
+#include <ostream>
+
+#include "core/error.h"
+#include "core/file_io.h"
+#include "io/model_io.h"
+
+namespace qf {
+
+void write_point_set(const std::string& path, const PointSet& points) {
+  const std::string ext = file_extension(path);
+  if (ext == "ply") return write_ply(path, points);
+  if (ext == "xyz") return write_xyz(path, points, false);
+  if (ext == "pwn") return write_xyz(path, points, true);
+  if (ext == "qs") {
+    if (!points.has_normals())
+      throw InputError("convert.needs_normals", path, "", "a .qs file needs normals and this point set has none");
+    if (!points.has_radii())
+      throw InputError("convert.needs_radii", path, "", "a .qs file needs splat radii and this point set has none");
+    if (points.size() == 0) throw InputError("convert.empty", path, "", "a .qs file needs at least one point");
+    const std::vector<std::uint8_t> bytes = encode_qsplat(points);
+    return write_file_atomically(path, [&](std::ostream& out) {
+      out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+    });
+  }
+  throw UsageError("cannot write point sets as '." + ext + "' (" + path + "); supported: .ply .qs .xyz .pwn");
+}
+
+Model read_model(const std::string& path, const ReadOptions& options, ReadReport* report) {
+  const std::string ext = file_extension(path);
+  Model m;
+  if (ext == "ply") return read_ply(path, options, report);
+  if (ext == "qs") m.points = read_qsplat(path, options, report);
+  else if (ext == "xyz") m.points = read_xyz(path, false, options, report);
+  else if (ext == "pwn") m.points = read_xyz(path, true, options, report);
+  else if (ext == "off") m.is_mesh = true, m.mesh = read_off(path, options, report);
+  else if (ext == "obj") m.is_mesh = true, m.mesh = read_obj(path, options, report);
+  else
+    throw UsageError("unknown input format '." + ext + "' (" + path +
+                     "); supported: .ply .qs .xyz .pwn (point sets), .ply .off .obj (meshes)");
+  return m;
+}
+
+const std::vector<std::string>& point_set_extensions() {
+  static const std::vector<std::string> e{"ply", "qs", "xyz", "pwn"};
+  return e;
+}
+const std::vector<std::string>& mesh_extensions() {
+  static const std::vector<std::string> e{"ply", "off", "obj"};
+  return e;
+}
+
+}  // namespace qf

@@ -1,0 +1,71 @@
+// Reading and writing every supported file format (architecture.md, "io/").
+//
+// Point sets: PLY (ascii / binary LE / binary BE), QSplat .qs, XYZ, PWN.
+// Triangle meshes: PLY with a face element, OFF (also COFF/NOFF/NCOFF), OBJ.
+// Every reader throws InputError with the file, the line or byte offset and what was expected;
+// it never returns partial data.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "core/types.h"
+
+namespace qf {
+
+struct ReadOptions {
+  // Non-finite (NaN/Inf) coordinates are an error by default; with this on, such points (or mesh
+  // vertices, with the triangles using them) are dropped and counted in ReadReport.
+  bool drop_nonfinite = false;
+};
+
+struct ReadReport {
+  std::string format;               // e.g. "ply (binary_little_endian)", "qsplat", "off"
+  std::size_t dropped_nonfinite = 0;  // points/vertices dropped under drop_nonfinite
+  std::size_t dropped_triangles = 0;  // triangles dropped with them
+  std::size_t polygons_triangulated = 0;  // faces with more than 3 corners, split into fans
+  std::size_t fragments = 0;        // QSplat: data fragments read
+};
+
+// A file's content: a point set or a triangle mesh.
+struct Model {
+  bool is_mesh = false;
+  PointSet points;    // when !is_mesh
+  TriangleMesh mesh;  // when is_mesh
+};
+
+// Reads any supported file, choosing the reader by extension (ply, qs, xyz, pwn, off, obj).
+// Throws UsageError for an unknown extension.
+Model read_model(const std::string& path, const ReadOptions& options = {}, ReadReport* report = nullptr);
+
+// Per-format readers, for callers that already know the format. `path` names the file in errors.
+Model read_ply(const std::string& path, const ReadOptions& options = {}, ReadReport* report = nullptr);
+PointSet read_qsplat(const std::string& path, const ReadOptions& options = {}, ReadReport* report = nullptr);
+PointSet read_xyz(const std::string& path, bool require_normals, const ReadOptions& options = {},
+                  ReadReport* report = nullptr);
+TriangleMesh read_off(const std::string& path, const ReadOptions& options = {}, ReadReport* report = nullptr);
+TriangleMesh read_obj(const std::string& path, const ReadOptions& options = {}, ReadReport* report = nullptr);
+
+// QSplat in memory: decode_qsplat names `path` in errors; encode_qsplat needs normals and radii
+// (and writes colours when the set has them, comments as a comment fragment).
+PointSet decode_qsplat(const std::vector<std::uint8_t>& bytes, const std::string& path, ReadReport* report = nullptr);
+std::vector<std::uint8_t> encode_qsplat(const PointSet& points);
+
+// Writers. All write atomically (temporary name, then rename).
+// PLY: binary little-endian with every attribute the set has (scalars as extra float properties).
+void write_ply(const std::string& path, const PointSet& points);
+void write_ply(const std::string& path, const TriangleMesh& mesh);
+// XYZ: "x y z" per line, plus "nx ny nz" when the set has normals (PWN requires them).
+void write_xyz(const std::string& path, const PointSet& points, bool require_normals);
+
+// Writes a point set in the format named by the extension of `path` (ply, qs, xyz, pwn).
+// Throws UsageError for other extensions, InputError("convert.needs_normals" / "convert.needs_radii")
+// when the set lacks what the format needs (normals for .qs and .pwn, radii for .qs).
+void write_point_set(const std::string& path, const PointSet& points);
+
+// The point-set and mesh extensions this build reads, for help texts.
+const std::vector<std::string>& point_set_extensions();
+const std::vector<std::string>& mesh_extensions();
+
+}  // namespace qf

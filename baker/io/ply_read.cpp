@@ -1,0 +1,563 @@
+// PLY reader: ascii, binary_little_endian and binary_big_endian; any property types; point sets
+// (vertex element only) and triangle meshes (vertex + face elements, polygons split into fans).
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <optional>
+
+#include "core/file_io.h"
+#include "io/model_io.h"
+#include "io/reader_util.h"
+
+namespace qf {
+namespace {
+
+using io::quote_token;
+
+enum class Type : std::uint8_t { kInt8, kUInt8, kInt16, kUInt16, kInt32, kUInt32, kFloat32, kFloat64 };
+enum class Format { kAscii, kBinaryLE, kBinaryBE };
+
+// Where a vertex property's value goes.
+enum class Dest : std::uint8_t { kSkip, kX, kY, kZ, kNX, kNY, kNZ, kRed, kGreen, kBlue, kRadius };
+
+struct Property {
+  std::string name;
+  bool is_list = false;
+  Type count_type = Type::kUInt8;  // lists only
+  Type type = Type::kFloat32;      // value type (element type for lists)
+  Dest dest = Dest::kSkip;
+  bool is_face_indices = false;
+};
+
+struct Element {
+  std::string name;
+  std::uint64_t count = 0;
+  std::vector<Property> props;
+  std::size_t header_line = 0;
+};
+
+struct Header {
+  Format format = Format::kAscii;
+  std::vector<Element> elements;
+  std::vector<std::string> comments;
+  std::size_t body_offset = 0;  // first byte after "end_header\n"
+  std::size_t body_line = 0;    // line number of the first body line (ascii)
+};
+
+std::size_t type_size(Type t) {
+  switch (t) {
+    case Type::kInt8: case Type::kUInt8: return 1;
+    case Type::kInt16: case Type::kUInt16: return 2;
+    case Type::kInt32: case Type::kUInt32: case Type::kFloat32: return 4;
+    case Type::kFloat64: return 8;
+  }
+  return 0;
+}
+
+bool is_integer_type(Type t) { return t != Type::kFloat32 && t != Type::kFloat64; }
+
+std::optional<Type> parse_type(std::string_view s) {
+  if (s == "char" || s == "int8") return Type::kInt8;
+  if (s == "uchar" || s == "uint8") return Type::kUInt8;
+  if (s == "short" || s == "int16") return Type::kInt16;
+  if (s == "ushort" || s == "uint16") return Type::kUInt16;
+  if (s == "int" || s == "int32") return Type::kInt32;
+  if (s == "uint" || s == "uint32") return Type::kUInt32;
+  if (s == "float" || s == "float32") return Type::kFloat32;
+  if (s == "double" || s == "float64") return Type::kFloat64;
+  return std::nullopt;
+}
+
+Dest vertex_dest(const std::string& n) {
+  if (n == "x") return Dest::kX;
+  if (n == "y") return Dest::kY;
+  if (n == "z") return Dest::kZ;
+  if (n == "nx" || n == "normal_x") return Dest::kNX;
+  if (n == "ny" || n == "normal_y") return Dest::kNY;
+  if (n == "nz" || n == "normal_z") return Dest::kNZ;
+  if (n == "red" || n == "diffuse_red" || n == "r") return Dest::kRed;
+  if (n == "green" || n == "diffuse_green" || n == "g") return Dest::kGreen;
+  if (n == "blue" || n == "diffuse_blue" || n == "b") return Dest::kBlue;
+  // "scale" is the splat radius in several point-splatting tools. "confidence" (Stanford scans) is
+  // a quality weight in [0,1], not a length, so it is not read as a radius.
+  if (n == "radius" || n == "scale") return Dest::kRadius;
+  return Dest::kSkip;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Header
+
+Header parse_header(const std::vector<std::uint8_t>& bytes, const std::string& path) {
+  Header h;
+  const char* begin = reinterpret_cast<const char*>(bytes.data());
+  const char* end = begin + bytes.size();
+  // 1. Magic: "ply" alone on the first line.
+  if (bytes.size() < 4 || std::memcmp(begin, "ply", 3) != 0 || (begin[3] != '\n' && begin[3] != '\r'))
+    throw InputError("ply.header.magic", path, at_byte(0), "expected the line 'ply' at the start of the file");
+  // 2. One keyword line at a time up to end_header.
+  const char* p = begin;
+  std::size_t line_no = 0;
+  bool have_format = false, done = false;
+  while (!done) {
+    if (p >= end)
+      throw InputError("ply.header.truncated", path, at_line(line_no),
+                       "file ends inside the header; expected 'end_header'");
+    const char* nl = static_cast<const char*>(std::memchr(p, '\n', static_cast<std::size_t>(end - p)));
+    if (!nl)
+      throw InputError("ply.header.truncated", path, at_line(line_no + 1),
+                       "file ends inside the header; expected 'end_header'");
+    ++line_no;
+    std::string_view line(p, static_cast<std::size_t>(nl - p));
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    p = nl + 1;
+    if (line_no > 100000)
+      throw InputError("ply.header.truncated", path, at_line(line_no), "header longer than 100000 lines");
+    io::Tokenizer tok(line.data(), line.data() + line.size(), line_no);
+    const std::string_view key = tok.next();
+    const std::string where = at_line(line_no);
+    if (line_no == 1) continue;  // "ply"
+    if (key == "comment" || key == "obj_info") {
+      if (key == "comment") {
+        std::string_view text = line.substr(std::min(line.size(), std::size_t{8}));
+        h.comments.emplace_back(text);
+      }
+    } else if (key == "format") {
+      const std::string_view f = tok.next(), version = tok.next();
+      if (f == "ascii") h.format = Format::kAscii;
+      else if (f == "binary_little_endian") h.format = Format::kBinaryLE;
+      else if (f == "binary_big_endian") h.format = Format::kBinaryBE;
+      else
+        throw InputError("ply.header.format", path, where,
+                         "unknown format " + quote_token(f) +
+                             ", expected ascii, binary_little_endian or binary_big_endian");
+      if (version != "1.0")
+        throw InputError("ply.header.format", path, where, "unsupported version " + quote_token(version) + ", expected 1.0");
+      have_format = true;
+    } else if (key == "element") {
+      Element e;
+      e.name = std::string(tok.next());
+      long long count = -1;
+      if (e.name.empty() || !io::parse_int64(tok.next(), count) || count < 0)
+        throw InputError("ply.header.syntax", path, where, "expected 'element NAME COUNT' with COUNT >= 0");
+      e.count = static_cast<std::uint64_t>(count);
+      e.header_line = line_no;
+      h.elements.push_back(std::move(e));
+    } else if (key == "property") {
+      if (h.elements.empty())
+        throw InputError("ply.header.syntax", path, where, "'property' before any 'element' line");
+      Property prop;
+      std::string_view t = tok.next();
+      if (t == "list") {
+        prop.is_list = true;
+        const std::string_view ct = tok.next();
+        const auto count_type = parse_type(ct);
+        if (!count_type)
+          throw InputError("ply.header.property_type", path, where, "unsupported list count type " + quote_token(ct));
+        if (!is_integer_type(*count_type))
+          throw InputError("ply.header.property_type", path, where, "list count type must be an integer type, not " + quote_token(ct));
+        prop.count_type = *count_type;
+        t = tok.next();
+      }
+      const auto type = parse_type(t);
+      if (!type)
+        throw InputError("ply.header.property_type", path, where,
+                         "unsupported property type " + quote_token(t) +
+                             ", expected one of char uchar short ushort int uint float double (or int8..float64)");
+      prop.type = *type;
+      prop.name = std::string(tok.next());
+      if (prop.name.empty()) throw InputError("ply.header.syntax", path, where, "property without a name");
+      h.elements.back().props.push_back(std::move(prop));
+    } else if (key == "end_header") {
+      done = true;
+    } else {
+      throw InputError("ply.header.syntax", path, where,
+                       "unknown header line " + quote_token(key) +
+                           ", expected format, element, property, comment, obj_info or end_header");
+    }
+  }
+  if (!have_format) throw InputError("ply.header.format", path, at_line(2), "missing 'format' line");
+  h.body_offset = static_cast<std::size_t>(p - begin);
+  h.body_line = line_no + 1;
+  return h;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Body: values land in a Sink, which knows the vertex layout and collects faces.
+
+struct Sink {
+  const std::string& path;
+  io::NonFiniteFilter& nonfinite;
+  // vertex attributes
+  std::vector<Vec3f> positions, normals;
+  std::vector<Rgb8> colors;
+  std::vector<float> radii;
+  bool want_normals = false, want_colors = false, want_radii = false;
+  // faces (flat fans), checked against the vertex count at the end
+  std::vector<Triangle> triangles;
+  std::size_t polygons_triangulated = 0;
+};
+
+// Converts a colour value of any PLY type to 8 bits (floats are taken as [0,1]).
+std::uint8_t to_color8(double v, Type t) {
+  double c = v;
+  if (t == Type::kFloat32 || t == Type::kFloat64) c = v * 255.0;
+  else if (t == Type::kUInt16) c = v / 257.0;
+  if (!(c > 0)) return 0;  // also NaN
+  if (c >= 255) return 255;
+  return static_cast<std::uint8_t>(std::lround(c));
+}
+
+// One vertex's values, gathered before being stored.
+struct VertexValues {
+  double v[11] = {};  // indexed by Dest
+};
+
+template <class Where>
+void store_vertex(Sink& s, const VertexValues& vv, const Type* dest_types, std::size_t index, Where&& where) {
+  const Vec3f p{static_cast<float>(vv.v[int(Dest::kX)]), static_cast<float>(vv.v[int(Dest::kY)]),
+                static_cast<float>(vv.v[int(Dest::kZ)])};
+  s.nonfinite.check(index, p, "ply.body.nonfinite", where);
+  s.positions.push_back(p);
+  if (s.want_normals) {
+    const Vec3f n{static_cast<float>(vv.v[int(Dest::kNX)]), static_cast<float>(vv.v[int(Dest::kNY)]),
+                  static_cast<float>(vv.v[int(Dest::kNZ)])};
+    s.normals.push_back(normalized(n));
+  }
+  if (s.want_colors)
+    s.colors.push_back({to_color8(vv.v[int(Dest::kRed)], dest_types[int(Dest::kRed)]),
+                        to_color8(vv.v[int(Dest::kGreen)], dest_types[int(Dest::kGreen)]),
+                        to_color8(vv.v[int(Dest::kBlue)], dest_types[int(Dest::kBlue)])});
+  if (s.want_radii) {
+    const double r = vv.v[int(Dest::kRadius)];
+    if (!(r >= 0) || !std::isfinite(r))
+      throw InputError("ply.body.bad_radius", s.path, where(),
+                       "radius of vertex " + std::to_string(index) + " is " + std::to_string(r) +
+                           ", expected a finite value >= 0");
+    s.radii.push_back(static_cast<float>(r));
+  }
+}
+
+constexpr long long kMaxListLength = 1 << 20;
+
+template <class Where>
+void add_face(Sink& s, const std::vector<long long>& idx, Where&& where) {
+  if (idx.size() < 3)
+    throw InputError("ply.body.list_length", s.path, where(),
+                     "face with " + std::to_string(idx.size()) + " vertex indices, expected at least 3");
+  for (long long i : idx)
+    if (i < 0 || i > 0xFFFFFFFFll)
+      throw InputError("ply.body.face_index", s.path, where(), "face vertex index " + std::to_string(i) + " is out of range");
+  if (idx.size() > 3) ++s.polygons_triangulated;
+  for (std::size_t k = 1; k + 1 < idx.size(); ++k)
+    s.triangles.push_back({static_cast<std::uint32_t>(idx[0]), static_cast<std::uint32_t>(idx[k]),
+                           static_cast<std::uint32_t>(idx[k + 1])});
+}
+
+// -- binary ------------------------------------------------------------------------------------
+
+template <class T>
+T load(const std::uint8_t* p, bool swap) {
+  T v;
+  std::memcpy(&v, p, sizeof v);
+  if (swap) {
+    std::uint8_t b[sizeof v];
+    std::memcpy(b, &v, sizeof v);
+    std::reverse(b, b + sizeof v);
+    std::memcpy(&v, b, sizeof v);
+  }
+  return v;
+}
+
+double load_value(const std::uint8_t* p, Type t, bool swap) {
+  switch (t) {
+    case Type::kInt8: return static_cast<std::int8_t>(*p);
+    case Type::kUInt8: return *p;
+    case Type::kInt16: return load<std::int16_t>(p, swap);
+    case Type::kUInt16: return load<std::uint16_t>(p, swap);
+    case Type::kInt32: return load<std::int32_t>(p, swap);
+    case Type::kUInt32: return load<std::uint32_t>(p, swap);
+    case Type::kFloat32: return load<float>(p, swap);
+    case Type::kFloat64: return load<double>(p, swap);
+  }
+  return 0;
+}
+
+class BinaryBody {
+ public:
+  BinaryBody(const std::vector<std::uint8_t>& bytes, std::size_t offset, bool swap, const std::string& path)
+      : data_(bytes.data()), pos_(offset), end_(bytes.size()), swap_(swap), path_(path) {}
+
+  void read_element(const Element& e, bool is_vertex, bool is_face, Sink& s, const Type* dest_types) {
+    const bool fixed = std::none_of(e.props.begin(), e.props.end(), [](const Property& p) { return p.is_list; });
+    std::size_t stride = 0;
+    for (const Property& p : e.props) stride += p.is_list ? 0 : type_size(p.type);
+    // Fixed-size records: check the whole element fits once, then decode without bounds checks.
+    if (fixed) {
+      const std::size_t available = end_ - pos_;
+      if (stride != 0 && e.count > available / stride)
+        throw InputError("ply.body.truncated", path_, at_byte(end_),
+                         "file ends inside element '" + e.name + "': " + std::to_string(e.count) + " records of " +
+                             std::to_string(stride) + " bytes need " + std::to_string(e.count * stride) +
+                             " bytes after byte " + std::to_string(pos_) + ", only " + std::to_string(available) +
+                             " remain");
+      if (!is_vertex) {
+        pos_ += static_cast<std::size_t>(e.count) * stride;
+        return;
+      }
+      for (std::uint64_t i = 0; i < e.count; ++i) {
+        const std::size_t record = pos_;
+        VertexValues vv;
+        for (const Property& p : e.props) {
+          if (p.dest != Dest::kSkip) vv.v[int(p.dest)] = load_value(data_ + pos_, p.type, swap_);
+          pos_ += type_size(p.type);
+        }
+        store_vertex(s, vv, dest_types, i, [&] { return at_byte(record); });
+      }
+      return;
+    }
+    // Records with lists: walk value by value.
+    std::vector<long long> indices;
+    for (std::uint64_t i = 0; i < e.count; ++i) {
+      const std::size_t record = pos_;
+      VertexValues vv;
+      for (const Property& p : e.props) {
+        if (!p.is_list) {
+          const double v = read_checked(p.type, e, i);
+          if (is_vertex && p.dest != Dest::kSkip) vv.v[int(p.dest)] = v;
+          continue;
+        }
+        const std::size_t count_at = pos_;
+        const double c = read_checked(p.count_type, e, i);
+        if (c < 0 || c > kMaxListLength)
+          throw InputError("ply.body.list_length", path_, at_byte(count_at),
+                           "list '" + p.name + "' of " + e.name + " " + std::to_string(i) + " has length " +
+                               std::to_string(static_cast<long long>(c)) + ", expected 0.." +
+                               std::to_string(kMaxListLength));
+        const auto n = static_cast<std::size_t>(c);
+        const std::size_t bytes = n * type_size(p.type);
+        if (bytes > end_ - pos_)
+          throw InputError("ply.body.truncated", path_, at_byte(count_at),
+                           "list '" + p.name + "' of " + e.name + " " + std::to_string(i) + " needs " +
+                               std::to_string(bytes) + " bytes, only " + std::to_string(end_ - pos_) + " remain");
+        if (is_face && p.is_face_indices) {
+          indices.resize(n);
+          for (std::size_t k = 0; k < n; ++k) {
+            const double v = load_value(data_ + pos_ + k * type_size(p.type), p.type, swap_);
+            if (v != std::floor(v))
+              throw InputError("ply.body.face_index", path_, at_byte(pos_), "face index " + std::to_string(v) + " is not an integer");
+            indices[k] = static_cast<long long>(v);
+          }
+        }
+        pos_ += bytes;
+      }
+      if (is_vertex) store_vertex(s, vv, dest_types, i, [&] { return at_byte(record); });
+      if (is_face) add_face(s, indices, [&] { return at_byte(record); });
+    }
+  }
+
+  std::size_t position() const { return pos_; }
+
+ private:
+  double read_checked(Type t, const Element& e, std::uint64_t i) {
+    if (type_size(t) > end_ - pos_)
+      throw InputError("ply.body.truncated", path_, at_byte(end_),
+                       "file ends inside " + e.name + " " + std::to_string(i) + " of " + std::to_string(e.count));
+    const double v = load_value(data_ + pos_, t, swap_);
+    pos_ += type_size(t);
+    return v;
+  }
+
+  const std::uint8_t* data_;
+  std::size_t pos_, end_;
+  bool swap_;
+  const std::string& path_;
+};
+
+// -- ascii -------------------------------------------------------------------------------------
+
+class AsciiBody {
+ public:
+  AsciiBody(const std::vector<std::uint8_t>& bytes, const Header& h, const std::string& path)
+      : tok_(reinterpret_cast<const char*>(bytes.data()) + h.body_offset,
+             reinterpret_cast<const char*>(bytes.data()) + bytes.size(), h.body_line),
+        path_(path) {}
+
+  void read_element(const Element& e, bool is_vertex, bool is_face, Sink& s, const Type* dest_types) {
+    std::vector<long long> indices;
+    for (std::uint64_t i = 0; i < e.count; ++i) {
+      VertexValues vv;
+      std::size_t line = 0;
+      for (const Property& p : e.props) {
+        const std::string_view t = next(e, i);
+        if (line == 0) line = tok_.line();
+        if (!p.is_list) {
+          const double v = number(t, p.type, e, p);
+          if (is_vertex && p.dest != Dest::kSkip) vv.v[int(p.dest)] = v;
+          continue;
+        }
+        const double c = number(t, p.count_type, e, p);
+        if (c < 0 || c > kMaxListLength)
+          throw InputError("ply.body.list_length", path_, at_line(tok_.line()),
+                           "list '" + p.name + "' has length " + std::string(t) + ", expected 0.." +
+                               std::to_string(kMaxListLength));
+        const auto n = static_cast<std::size_t>(c);
+        if (is_face && p.is_face_indices) indices.resize(n);
+        for (std::size_t k = 0; k < n; ++k) {
+          const double v = number(next(e, i), p.type, e, p);
+          if (is_face && p.is_face_indices) indices[k] = static_cast<long long>(v);
+        }
+      }
+      if (is_vertex) store_vertex(s, vv, dest_types, i, [&] { return at_line(line); });
+      if (is_face) add_face(s, indices, [&] { return at_line(line); });
+    }
+  }
+
+  void expect_end() {
+    if (!tok_.at_end())
+      throw InputError("ply.body.trailing", path_, at_line(tok_.line()),
+                       "unexpected data " + quote_token(tok_.next()) + " after the last element");
+  }
+
+ private:
+  std::string_view next(const Element& e, std::uint64_t i) {
+    const std::string_view t = tok_.next();
+    if (t.empty())
+      throw InputError("ply.body.truncated", path_, at_line(tok_.line()),
+                       "file ends inside " + e.name + " " + std::to_string(i) + " of " + std::to_string(e.count));
+    return t;
+  }
+  double number(std::string_view t, Type type, const Element& e, const Property& p) {
+    if (is_integer_type(type)) {
+      long long v;
+      if (!io::parse_int64(t, v))
+        throw InputError("ply.body.bad_number", path_, at_line(tok_.line()),
+                         "expected an integer for " + e.name + " property '" + p.name + "', found " + quote_token(t));
+      return static_cast<double>(v);
+    }
+    double v;
+    if (!io::parse_double(t, v)) {
+      // from_chars rejects "nan"/"inf" spellings with signs in some forms; accept the usual ones.
+      if (t == "nan" || t == "-nan" || t == "NaN" || t == "inf" || t == "-inf" || t == "Inf" || t == "-Inf")
+        return t[0] == '-' ? -INFINITY : (t.back() == 'n' || t.back() == 'N' ? NAN : INFINITY);
+      throw InputError("ply.body.bad_number", path_, at_line(tok_.line()),
+                       "expected a number for " + e.name + " property '" + p.name + "', found " + quote_token(t));
+    }
+    return v;
+  }
+
+  io::Tokenizer tok_;
+  const std::string& path_;
+};
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+
+Model read_ply(const std::string& path, const ReadOptions& options, ReadReport* report) {
+  const std::vector<std::uint8_t> bytes = read_file_bytes(path);
+  if (bytes.empty()) throw InputError("ply.header.magic", path, "", "file is empty, expected a PLY header");
+  Header h = parse_header(bytes, path);
+
+  // 1. Find the vertex and face elements and map their properties.
+  Element* vertex = nullptr;
+  Element* face = nullptr;
+  for (Element& e : h.elements) {
+    if (e.name == "vertex" && !vertex) vertex = &e;
+    if (e.name == "face" && !face) face = &e;
+  }
+  if (!vertex) throw InputError("ply.header.no_vertex", path, "", "no 'element vertex' in the header");
+  Type dest_types[11] = {};
+  bool seen[11] = {};
+  for (Property& p : vertex->props) {
+    p.dest = vertex_dest(p.name);
+    if (p.dest == Dest::kSkip) continue;
+    if (p.is_list)
+      throw InputError("ply.header.property_type", path, at_line(vertex->header_line),
+                       "vertex property '" + p.name + "' is a list, expected a scalar");
+    seen[int(p.dest)] = true;
+    dest_types[int(p.dest)] = p.type;
+  }
+  if (!seen[int(Dest::kX)] || !seen[int(Dest::kY)] || !seen[int(Dest::kZ)])
+    throw InputError("ply.header.no_xyz", path, at_line(vertex->header_line),
+                     "vertex element lacks one of the properties x, y, z");
+  if (face) {
+    for (Property& p : face->props)
+      if (p.is_list && (p.name == "vertex_indices" || p.name == "vertex_index")) {
+        if (!is_integer_type(p.type))
+          throw InputError("ply.header.property_type", path, at_line(face->header_line),
+                           "face list '" + p.name + "' has non-integer type, expected an integer type");
+        p.is_face_indices = true;
+        break;
+      }
+    if (std::none_of(face->props.begin(), face->props.end(), [](const Property& p) { return p.is_face_indices; }))
+      face = nullptr;  // a face element without indices carries nothing we use
+  }
+
+  io::NonFiniteFilter nonfinite(path, options);
+  Sink sink{path, nonfinite, {}, {}, {}, {}, false, false, false, {}, 0};
+  sink.want_normals = seen[int(Dest::kNX)] && seen[int(Dest::kNY)] && seen[int(Dest::kNZ)];
+  sink.want_colors = seen[int(Dest::kRed)] && seen[int(Dest::kGreen)] && seen[int(Dest::kBlue)];
+  sink.want_radii = seen[int(Dest::kRadius)];
+  const std::size_t reserve = static_cast<std::size_t>(std::min<std::uint64_t>(vertex->count, bytes.size()));
+  sink.positions.reserve(reserve);
+  if (sink.want_normals) sink.normals.reserve(reserve);
+  if (sink.want_colors) sink.colors.reserve(reserve);
+  if (sink.want_radii) sink.radii.reserve(reserve);
+
+  // 2. Read every element in file order (unknown ones are walked over).
+  if (h.format == Format::kAscii) {
+    AsciiBody body(bytes, h, path);
+    for (const Element& e : h.elements) body.read_element(e, &e == vertex, &e == face, sink, dest_types);
+    body.expect_end();
+  } else {
+    const bool little_host = [] {
+      const std::uint16_t one = 1;
+      std::uint8_t b;
+      std::memcpy(&b, &one, 1);
+      return b == 1;
+    }();
+    const bool swap = (h.format == Format::kBinaryLE) != little_host;
+    BinaryBody body(bytes, h.body_offset, swap, path);
+    for (const Element& e : h.elements) body.read_element(e, &e == vertex, &e == face, sink, dest_types);
+    if (body.position() != bytes.size())
+      throw InputError("ply.body.trailing", path, at_byte(body.position()),
+                       std::to_string(bytes.size() - body.position()) +
+                           " bytes after the last element; the header's counts do not match the body");
+  }
+
+  // 3. Faces must index existing vertices.
+  const std::size_t nv = sink.positions.size();
+  for (std::size_t t = 0; t < sink.triangles.size(); ++t)
+    for (std::uint32_t i : sink.triangles[t])
+      if (i >= nv)
+        throw InputError("ply.body.face_index", path, "",
+                         "face vertex index " + std::to_string(i) + " out of range: the file has " +
+                             std::to_string(nv) + " vertices (triangle " + std::to_string(t) + ")");
+
+  if (report) {
+    report->format = h.format == Format::kAscii       ? "ply (ascii)"
+                     : h.format == Format::kBinaryLE ? "ply (binary_little_endian)"
+                                                      : "ply (binary_big_endian)";
+    report->polygons_triangulated += sink.polygons_triangulated;
+  }
+  Model m;
+  if (face) {
+    m.is_mesh = true;
+    m.mesh.positions = std::move(sink.positions);
+    m.mesh.normals = std::move(sink.normals);
+    m.mesh.colors = std::move(sink.colors);
+    m.mesh.triangles = std::move(sink.triangles);
+    m.mesh.comments = std::move(h.comments);
+    nonfinite.apply(m.mesh, report);
+  } else {
+    m.points.positions = std::move(sink.positions);
+    m.points.normals = std::move(sink.normals);
+    m.points.colors = std::move(sink.colors);
+    m.points.radii = std::move(sink.radii);
+    m.points.comments = std::move(h.comments);
+    nonfinite.apply(m.points, report);
+  }
+  return m;
+}
+
+}  // namespace qf

@@ -1,0 +1,276 @@
+// Text formats: XYZ / PWN point sets ("x y z [nx ny nz]" per line, as in CGAL's data set),
+// OFF meshes (OFF, COFF, NOFF, NCOFF, CNOFF) and OBJ meshes (v, vn, f in every index form).
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "core/file_io.h"
+#include "io/model_io.h"
+#include "io/reader_util.h"
+
+namespace qf {
+namespace {
+
+using io::quote_token;
+
+// The file's text; a NUL byte means it is not a text file at all.
+std::vector<std::uint8_t> read_text(const std::string& path, const char* code) {
+  std::vector<std::uint8_t> bytes = read_file_bytes(path);
+  const void* nul = std::memchr(bytes.data(), 0, bytes.size());
+  if (nul)
+    throw InputError(code, path, at_byte(static_cast<std::size_t>(static_cast<const std::uint8_t*>(nul) - bytes.data())),
+                     "binary data (a NUL byte) in a text file");
+  return bytes;
+}
+
+const char* text_begin(const std::vector<std::uint8_t>& b) { return reinterpret_cast<const char*>(b.data()); }
+const char* text_end(const std::vector<std::uint8_t>& b) { return text_begin(b) + b.size(); }
+
+float number(std::string_view t, const std::string& path, std::size_t line, const char* code, const char* what) {
+  float v;
+  if (io::parse_float(t, v)) return v;
+  if (t == "nan" || t == "NaN" || t == "-nan") return NAN;
+  if (t == "inf" || t == "Inf") return INFINITY;
+  if (t == "-inf" || t == "-Inf") return -INFINITY;
+  throw InputError(code, path, at_line(line), std::string("expected a number for ") + what + ", found " +
+                                                  (t.empty() ? std::string("the end of the line") : quote_token(t)));
+}
+
+// Converts a colour component: integers 0..255 as they are, values in [0,1] with a decimal point as fractions.
+std::uint8_t color_component(std::string_view t, float v) {
+  const bool fraction = t.find('.') != std::string_view::npos && v <= 1.0f;
+  const float c = fraction ? v * 255.0f : v;
+  if (!(c > 0)) return 0;
+  return c >= 255 ? 255 : static_cast<std::uint8_t>(std::lround(c));
+}
+
+}  // namespace
+
+PointSet read_xyz(const std::string& path, bool require_normals, const ReadOptions& options, ReadReport* report) {
+  const std::vector<std::uint8_t> bytes = read_text(path, "xyz.binary");
+  io::Tokenizer tok(text_begin(bytes), text_end(bytes));
+  io::NonFiniteFilter nonfinite(path, options);
+  PointSet out;
+  int columns = 0;  // 3 or 6, fixed by the first data line
+  while (!tok.at_end()) {
+    const std::size_t line = tok.line();
+    std::string_view t = tok.next_on_line();
+    if (t[0] == '#') {
+      tok.skip_line();
+      continue;
+    }
+    float v[6];
+    int n = 0;
+    for (; !t.empty(); t = tok.next_on_line()) {
+      if (n == 6)
+        throw InputError("xyz.columns", path, at_line(line), "more than 6 values on a line, expected 'x y z [nx ny nz]'");
+      v[n++] = number(t, path, line, "xyz.bad_number", "a coordinate");
+    }
+    if (n != 3 && n != 6)
+      throw InputError("xyz.columns", path, at_line(line),
+                       std::to_string(n) + " values on a line, expected 3 (x y z) or 6 (x y z nx ny nz)");
+    if (columns == 0) columns = n;
+    if (n != columns)
+      throw InputError("xyz.columns", path, at_line(line),
+                       std::to_string(n) + " values, but earlier lines have " + std::to_string(columns));
+    if (require_normals && n != 6)
+      throw InputError("xyz.columns", path, at_line(line), "a .pwn line needs 6 values (x y z nx ny nz)");
+    const Vec3f p{v[0], v[1], v[2]};
+    nonfinite.check(out.positions.size(), p, "xyz.nonfinite", [&] { return at_line(line); });
+    out.positions.push_back(p);
+    if (n == 6) out.normals.push_back(normalized({v[3], v[4], v[5]}));
+  }
+  nonfinite.apply(out, report);
+  if (report) report->format = require_normals ? "pwn" : "xyz";
+  return out;
+}
+
+TriangleMesh read_off(const std::string& path, const ReadOptions& options, ReadReport* report) {
+  const std::vector<std::uint8_t> bytes = read_text(path, "off.binary");
+  io::Tokenizer tok(text_begin(bytes), text_end(bytes));
+  // Comments start with '#'; they may stand anywhere a token may.
+  auto next = [&]() {
+    std::string_view t = tok.next();
+    while (!t.empty() && t[0] == '#') {
+      tok.skip_line();
+      t = tok.next();
+    }
+    return t;
+  };
+  // 1. Header keyword: [C][N][4]OFF or OFF with the prefixes in either order (COFF, NOFF, NCOFF, CNOFF).
+  const std::string_view key = next();
+  const std::size_t off_at = key.rfind("OFF");
+  if (off_at == std::string_view::npos || off_at + 3 != key.size())
+    throw InputError("off.header", path, at_line(tok.line()), "expected 'OFF' (or COFF/NOFF/NCOFF) on the first line, found " + quote_token(key));
+  const std::string_view prefix = key.substr(0, off_at);
+  bool has_color = false, has_normal = false;
+  for (char c : prefix) {
+    if (c == 'C') has_color = true;
+    else if (c == 'N') has_normal = true;
+    else
+      throw InputError("off.header", path, at_line(tok.line()), "unsupported OFF variant " + quote_token(key) + ", expected OFF, COFF, NOFF or NCOFF");
+  }
+  // 2. Counts.
+  long long counts[3];
+  for (long long& c : counts) {
+    const std::string_view t = next();
+    if (!io::parse_int64(t, c) || c < 0)
+      throw InputError("off.counts", path, at_line(tok.line()),
+                       "expected the counts 'vertices faces edges' (integers >= 0), found " +
+                           (t.empty() ? std::string("the end of the file") : quote_token(t)));
+  }
+  const std::size_t nv = static_cast<std::size_t>(counts[0]), nf = static_cast<std::size_t>(counts[1]);
+  if (nv > bytes.size() || nf > bytes.size())
+    throw InputError("off.counts", path, at_line(tok.line()), "counts larger than the file could hold");
+  TriangleMesh mesh;
+  io::NonFiniteFilter nonfinite(path, options);
+  mesh.positions.reserve(nv);
+  auto need = [&](const char* what, std::size_t i, std::size_t n) {
+    const std::string_view t = next();
+    if (t.empty())
+      throw InputError("off.truncated", path, at_line(tok.line()),
+                       std::string("file ends inside ") + what + " " + std::to_string(i) + " of " + std::to_string(n));
+    return t;
+  };
+  // 3. Vertices: x y z [nx ny nz] [r g b [a]] — colour and alpha are read line-wise.
+  for (std::size_t i = 0; i < nv; ++i) {
+    float c[3];
+    std::string_view t0 = need("vertex", i, nv);
+    const std::size_t line = tok.line();
+    c[0] = number(t0, path, line, "off.bad_number", "a vertex coordinate");
+    for (int k = 1; k < 3; ++k) c[k] = number(tok.next_on_line(), path, line, "off.bad_number", "a vertex coordinate");
+    const Vec3f p{c[0], c[1], c[2]};
+    nonfinite.check(i, p, "off.nonfinite", [&] { return at_line(line); });
+    mesh.positions.push_back(p);
+    if (has_normal) {
+      float n[3];
+      for (float& x : n) x = number(tok.next_on_line(), path, line, "off.bad_number", "a vertex normal");
+      mesh.normals.push_back(normalized({n[0], n[1], n[2]}));
+    }
+    if (has_color) {
+      std::uint8_t rgb[3];
+      for (auto& x : rgb) {
+        const std::string_view t = tok.next_on_line();
+        x = color_component(t, number(t, path, line, "off.bad_number", "a vertex colour"));
+      }
+      mesh.colors.push_back({rgb[0], rgb[1], rgb[2]});
+    }
+    tok.skip_line();  // alpha and anything else on the line
+  }
+  // 4. Faces: n i0 .. i(n-1) [colour], polygons split into fans.
+  mesh.triangles.reserve(nf);
+  std::vector<long long> idx;
+  for (std::size_t f = 0; f < nf; ++f) {
+    const std::string_view t = need("face", f, nf);
+    const std::size_t line = tok.line();
+    long long n;
+    if (!io::parse_int64(t, n) || n < 3 || n > (1 << 20))
+      throw InputError("off.face", path, at_line(line), "face corner count " + quote_token(t) + ", expected an integer >= 3");
+    idx.resize(static_cast<std::size_t>(n));
+    for (long long& i : idx) {
+      const std::string_view ti = tok.next_on_line();
+      if (!io::parse_int64(ti, i))
+        throw InputError("off.face", path, at_line(line),
+                         "expected " + std::to_string(n) + " vertex indices, found " +
+                             (ti.empty() ? std::string("the end of the line") : quote_token(ti)));
+      if (i < 0 || static_cast<std::size_t>(i) >= nv)
+        throw InputError("off.face_index", path, at_line(line),
+                         "vertex index " + std::to_string(i) + " out of range, expected 0.." + std::to_string(nv - 1));
+    }
+    tok.skip_line();  // optional face colour
+    if (n > 3 && report) ++report->polygons_triangulated;
+    for (std::size_t k = 1; k + 1 < idx.size(); ++k)
+      mesh.triangles.push_back({static_cast<std::uint32_t>(idx[0]), static_cast<std::uint32_t>(idx[k]),
+                                static_cast<std::uint32_t>(idx[k + 1])});
+  }
+  nonfinite.apply(mesh, report);
+  if (report) report->format = "off" + (prefix.empty() ? std::string() : " (" + std::string(key) + ")");
+  return mesh;
+}
+
+TriangleMesh read_obj(const std::string& path, const ReadOptions& options, ReadReport* report) {
+  const std::vector<std::uint8_t> bytes = read_text(path, "obj.binary");
+  io::Tokenizer tok(text_begin(bytes), text_end(bytes));
+  io::NonFiniteFilter nonfinite(path, options);
+  TriangleMesh mesh;
+  std::vector<Vec3f> vn;                 // the file's normals, by vn index
+  std::vector<std::int64_t> normal_of;   // per vertex: index into vn of its first corner's normal, or -1
+  struct Corner { long long v, n; };
+  std::vector<Corner> face;
+  bool any_color = false;
+  // OBJ indices are 1-based; negative ones count back from the last element defined so far.
+  auto resolve = [&](std::string_view t, std::size_t count, std::size_t line, const char* what) -> long long {
+    long long i;
+    if (!io::parse_int64(t, i) || i == 0)
+      throw InputError("obj.face", path, at_line(line), std::string("expected a ") + what + " index, found " + quote_token(t));
+    const long long r = i > 0 ? i - 1 : static_cast<long long>(count) + i;
+    if (r < 0 || static_cast<std::size_t>(r) >= count)
+      throw InputError("obj.face_index", path, at_line(line),
+                       std::string(what) + " index " + std::to_string(i) + " out of range: " + std::to_string(count) +
+                           " defined so far");
+    return r;
+  };
+  while (!tok.at_end()) {
+    const std::size_t line = tok.line();
+    const std::string_view key = tok.next_on_line();
+    if (key == "v") {
+      float v[7];
+      int n = 0;
+      for (std::string_view t = tok.next_on_line(); !t.empty(); t = tok.next_on_line()) {
+        if (n == 7) throw InputError("obj.vertex", path, at_line(line), "more than 7 values after 'v'");
+        v[n++] = number(t, path, line, "obj.bad_number", "a vertex coordinate");
+      }
+      if (n < 3) throw InputError("obj.vertex", path, at_line(line), "expected 'v x y z [r g b]', found " + std::to_string(n) + " values");
+      const Vec3f p{v[0], v[1], v[2]};
+      nonfinite.check(mesh.positions.size(), p, "obj.nonfinite", [&] { return at_line(line); });
+      mesh.positions.push_back(p);
+      normal_of.push_back(-1);
+      // "v x y z r g b" (a common extension) carries a colour in [0,1]; "v x y z w" a weight.
+      Rgb8 c{255, 255, 255};
+      if (n >= 6) {
+        any_color = true;
+        auto q = [](float x) { return static_cast<std::uint8_t>(std::lround(std::clamp(x, 0.0f, 1.0f) * 255.0f)); };
+        c = {q(v[3]), q(v[4]), q(v[5])};
+      }
+      mesh.colors.push_back(c);
+    } else if (key == "vn") {
+      float n[3];
+      for (float& x : n) x = number(tok.next_on_line(), path, line, "obj.bad_number", "a normal component");
+      vn.push_back(normalized({n[0], n[1], n[2]}));
+    } else if (key == "f") {
+      face.clear();
+      for (std::string_view t = tok.next_on_line(); !t.empty(); t = tok.next_on_line()) {
+        // v, v/vt, v/vt/vn or v//vn
+        const std::size_t s1 = t.find('/');
+        const std::string_view tv = t.substr(0, s1);
+        long long n = -1;
+        if (s1 != std::string_view::npos) {
+          const std::size_t s2 = t.find('/', s1 + 1);
+          if (s2 != std::string_view::npos && s2 + 1 < t.size()) n = resolve(t.substr(s2 + 1), vn.size(), line, "normal");
+        }
+        face.push_back({resolve(tv, mesh.positions.size(), line, "vertex"), n});
+      }
+      if (face.size() < 3)
+        throw InputError("obj.face", path, at_line(line), "face with " + std::to_string(face.size()) + " corners, expected at least 3");
+      for (const Corner& c : face)
+        if (c.n >= 0 && normal_of[static_cast<std::size_t>(c.v)] < 0) normal_of[static_cast<std::size_t>(c.v)] = c.n;
+      if (face.size() > 3 && report) ++report->polygons_triangulated;
+      for (std::size_t k = 1; k + 1 < face.size(); ++k)
+        mesh.triangles.push_back({static_cast<std::uint32_t>(face[0].v), static_cast<std::uint32_t>(face[k].v),
+                                  static_cast<std::uint32_t>(face[k + 1].v)});
+    }
+    // Everything else (vt, o, g, s, usemtl, mtllib, l, p, comments) carries nothing we use.
+    tok.skip_line();
+  }
+  if (!any_color) mesh.colors.clear();
+  // Per-vertex normals: the normal of the first corner that names one. Used only if every vertex has one.
+  if (!vn.empty() && std::all_of(normal_of.begin(), normal_of.end(), [](std::int64_t n) { return n >= 0; })) {
+    mesh.normals.reserve(normal_of.size());
+    for (std::int64_t n : normal_of) mesh.normals.push_back(vn[static_cast<std::size_t>(n)]);
+  }
+  nonfinite.apply(mesh, report);
+  if (report) report->format = "obj";
+  return mesh;
+}
+
+}  // namespace qf

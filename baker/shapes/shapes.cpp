@@ -1,0 +1,155 @@
+// Analytic sample shapes: octahedron (paper fig. 1), cube with a checker pattern, sphere, torus,
+// and two planes meeting at a right-angled crease.
+#include "shapes/shapes.h"
+
+#include <cmath>
+
+#include "analysis/neighborhoods.h"
+#include "core/error.h"
+
+namespace qf {
+namespace {
+
+// splitmix64: tiny, fast, and the same sequence on every platform (unlike std:: distributions).
+class Random {
+ public:
+  explicit Random(std::uint64_t seed) : s_(seed) {}
+  double uniform() {  // [0, 1)
+    std::uint64_t z = (s_ += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    z ^= z >> 31;
+    return static_cast<double>(z >> 11) * (1.0 / 9007199254740992.0);
+  }
+
+ private:
+  std::uint64_t s_;
+};
+
+constexpr double kPi = 3.14159265358979323846;
+
+void add(PointSet& p, Vec3f pos, Vec3f normal, Rgb8 color) {
+  p.positions.push_back(pos);
+  p.normals.push_back(normalized(normal));
+  p.colors.push_back(color);
+}
+
+// Points spread over `parts` equal-area parts: part k gets its share of n (the first n % parts get one more).
+std::size_t share(std::size_t n, std::size_t parts, std::size_t k) { return n / parts + (k < n % parts ? 1 : 0); }
+
+Vec3f in_triangle(Random& r, Vec3f a, Vec3f b, Vec3f c) {
+  double u = r.uniform(), v = r.uniform();
+  if (u + v > 1) u = 1 - u, v = 1 - v;  // fold the unit square onto the triangle: uniform by area
+  return a + (b - a) * static_cast<float>(u) + (c - a) * static_cast<float>(v);
+}
+
+PointSet octahedron(const ShapeOptions& o) {
+  // One saturated colour per face, as in the paper's figure 1a.
+  static const Rgb8 kFace[8] = {{230, 25, 75}, {60, 180, 75}, {255, 225, 25}, {0, 130, 200},
+                                {245, 130, 48}, {145, 30, 180}, {70, 240, 240}, {240, 50, 230}};
+  Random r(o.seed);
+  PointSet p;
+  for (std::size_t f = 0; f < 8; ++f) {
+    const float sx = (f & 1) ? -1.f : 1.f, sy = (f & 2) ? -1.f : 1.f, sz = (f & 4) ? -1.f : 1.f;
+    const Vec3f a{sx, 0, 0}, b{0, sy, 0}, c{0, 0, sz};
+    for (std::size_t i = 0; i < share(o.points, 8, f); ++i) add(p, in_triangle(r, a, b, c), {sx, sy, sz}, kFace[f]);
+  }
+  return p;
+}
+
+PointSet cube(const ShapeOptions& o) {
+  // Each face of [-1,1]^3 is a 4x4 checkerboard of its own colour and white.
+  static const Rgb8 kFace[6] = {{200, 40, 40}, {40, 160, 60}, {40, 80, 200}, {220, 180, 30}, {150, 50, 170}, {30, 170, 170}};
+  Random r(o.seed);
+  PointSet p;
+  for (std::size_t f = 0; f < 6; ++f) {
+    const int axis = static_cast<int>(f / 2);
+    const float side = (f & 1) ? -1.f : 1.f;
+    for (std::size_t i = 0; i < share(o.points, 6, f); ++i) {
+      const float u = static_cast<float>(2 * r.uniform() - 1), v = static_cast<float>(2 * r.uniform() - 1);
+      Vec3f pos, n;
+      pos[axis] = side, pos[(axis + 1) % 3] = u, pos[(axis + 2) % 3] = v;
+      n[axis] = side;
+      const int cu = static_cast<int>(std::floor((u + 1) * 2)), cv = static_cast<int>(std::floor((v + 1) * 2));
+      add(p, pos, n, ((cu + cv) & 1) ? Rgb8{245, 245, 245} : kFace[f]);
+    }
+  }
+  return p;
+}
+
+PointSet sphere(const ShapeOptions& o) {
+  // Unit sphere; z uniform in [-1,1] and longitude uniform is uniform by area (Archimedes).
+  // Colour encodes the normal, so orientation is visible at a glance.
+  Random r(o.seed);
+  PointSet p;
+  for (std::size_t i = 0; i < o.points; ++i) {
+    const double z = 2 * r.uniform() - 1, phi = 2 * kPi * r.uniform(), s = std::sqrt(std::max(0.0, 1 - z * z));
+    const Vec3f n{static_cast<float>(s * std::cos(phi)), static_cast<float>(s * std::sin(phi)), static_cast<float>(z)};
+    auto c = [](float x) { return static_cast<std::uint8_t>(std::lround(127.5f * (x + 1))); };
+    add(p, n, n, {c(n.x), c(n.y), c(n.z)});
+  }
+  return p;
+}
+
+PointSet torus(const ShapeOptions& o) {
+  // Major radius 1, minor radius 0.35, axis z; 12 colour stripes around the ring.
+  constexpr double R = 1.0, t = 0.35;
+  Random r(o.seed);
+  PointSet p;
+  while (p.size() < o.points) {
+    const double u = 2 * kPi * r.uniform(), v = 2 * kPi * r.uniform();
+    // Area element is proportional to R + t cos v: accept with that probability (rejection sampling).
+    if (r.uniform() * (R + t) > R + t * std::cos(v)) continue;
+    const Vec3f n{static_cast<float>(std::cos(v) * std::cos(u)), static_cast<float>(std::cos(v) * std::sin(u)),
+                  static_cast<float>(std::sin(v))};
+    const Vec3f pos{static_cast<float>((R + t * std::cos(v)) * std::cos(u)),
+                    static_cast<float>((R + t * std::cos(v)) * std::sin(u)), static_cast<float>(t * std::sin(v))};
+    const bool stripe = static_cast<int>(std::floor(u / (2 * kPi) * 12)) % 2 == 0;
+    add(p, pos, n, stripe ? Rgb8{220, 120, 40} : Rgb8{40, 90, 200});
+  }
+  return p;
+}
+
+PointSet crease(const ShapeOptions& o) {
+  // Two unit squares meeting at a 90-degree crease along the z axis: the plane y = 0 (x in [0,1])
+  // and the plane x = 0 (y in [0,1]), normals pointing into the open side.
+  Random r(o.seed);
+  PointSet p;
+  for (std::size_t side = 0; side < 2; ++side)
+    for (std::size_t i = 0; i < share(o.points, 2, side); ++i) {
+      const float a = static_cast<float>(r.uniform()), z = static_cast<float>(r.uniform());
+      if (side == 0) add(p, {a, 0, z}, {0, 1, 0}, {210, 60, 50});
+      else add(p, {0, a, z}, {1, 0, 0}, {50, 110, 210});
+    }
+  return p;
+}
+
+}  // namespace
+
+const std::vector<ShapeInfo>& shape_catalog() {
+  static const std::vector<ShapeInfo> c{
+      {"octahedron", "|x|+|y|+|z| = 1, one colour per face (the paper's figure 1; the bundled sample)"},
+      {"cube", "[-1,1]^3, each face a 4x4 checkerboard of its colour and white"},
+      {"sphere", "unit sphere, colour = normal"},
+      {"torus", "ring radius 1, tube radius 0.35, 12 colour stripes"},
+      {"crease", "two unit squares meeting at a 90-degree crease along the z axis"},
+  };
+  return c;
+}
+
+PointSet generate_shape(const std::string& name, const ShapeOptions& options) {
+  if (options.points == 0) throw UsageError("--points must be at least 1");
+  PointSet p;
+  if (name == "octahedron") p = octahedron(options);
+  else if (name == "cube") p = cube(options);
+  else if (name == "sphere") p = sphere(options);
+  else if (name == "torus") p = torus(options);
+  else if (name == "crease") p = crease(options);
+  else throw UsageError("unknown shape '" + name + "'; choose one of octahedron, cube, sphere, torus, crease");
+  p.comments.push_back("quasiflat sample: " + name + ", " + std::to_string(options.points) + " points, seed " +
+                       std::to_string(options.seed));
+  estimate_radii(p);
+  return p;
+}
+
+}  // namespace qf

@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Installs every Debian package quasiflat needs to build, test and run. Idempotent and
+# non-interactive; when everything is present it only runs dpkg-query and exits (well under a second).
+set -euo pipefail
+
+packages=(
+  # toolchain
+  build-essential cmake pkg-config ninja-build
+  # the design card's libraries
+  libtinygltf-dev nlohmann-json3-dev libstb-dev   # glTF writer/loader (+ its JSON and image deps)
+  libdraco-dev                                    # Draco mesh/point compression
+  libopenimageio-dev openimageio-tools            # image I/O and image algorithms
+  libopenexr-dev                                  # EXR difference images
+  libeigen3-dev                                   # sparse matrices, eigen-solvers
+  libpcl-dev                                      # k-nearest neighbours (KdTree)
+  libcgal-dev                                     # 2D Delaunay triangulations
+  libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libglx-mesa0  # headless OpenGL on Mesa llvmpipe
+  # tests
+  libgtest-dev googletest libbenchmark-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  status=$(dpkg-query -W -f='${Status}' "$p" 2>/dev/null || true)
+  [[ "$status" == "install ok installed" ]] || missing+=("$p")
+done
+
+if [[ ${#missing[@]} -eq 0 ]]; then
+  exit 0
+fi
+
+echo "install-deps: installing ${#missing[@]} package(s): ${missing[*]}"
+SUDO=""
+if [[ $(id -u) -ne 0 ]]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
