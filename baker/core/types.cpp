@@ -21,6 +21,12 @@ double canonical_double(float v) {
   return std::strtod(buf, nullptr);
 }
 
+Vec3f as_unit(Vec3f a, Vec3f fallback) {
+  const float len2 = dot(a, a);
+  if (std::fabs(len2 - 1.0f) <= 4e-7f) return a;
+  return normalized(a, fallback);
+}
+
 void Bounds::add(Vec3f p) {
   min = {std::min(min.x, p.x), std::min(min.y, p.y), std::min(min.z, p.z)};
   max = {std::max(max.x, p.x), std::max(max.y, p.y), std::max(max.z, p.z)};

@@ -27,6 +27,9 @@ inline float length(Vec3f a) { return std::sqrt(dot(a, a)); }
 inline bool is_finite(Vec3f a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
 // Unit vector in the direction of a; returns `fallback` for a zero (or non-finite) vector.
 Vec3f normalized(Vec3f a, Vec3f fallback = {0, 0, 1});
+// Like normalized, but returns `a` bit for bit when it is already unit length (to float
+// precision), so that reading a file we wrote gives back the same normals.
+Vec3f as_unit(Vec3f a, Vec3f fallback = {0, 0, 1});
 
 // The float's shortest decimal form, as a double: JSON writers print it with the digits the float
 // needs and no more, so outputs are stable and diffable (gltf-notes.md, determinism). -0 becomes 0.

@@ -47,10 +47,12 @@ PointSet read_xyz(const std::string& path, bool require_normals, const ReadOptio
 TriangleMesh read_off(const std::string& path, const ReadOptions& options = {}, ReadReport* report = nullptr);
 TriangleMesh read_obj(const std::string& path, const ReadOptions& options = {}, ReadReport* report = nullptr);
 
-// QSplat in memory: decode_qsplat names `path` in errors; encode_qsplat needs normals and radii
-// (and writes colours when the set has them, comments as a comment fragment).
+// QSplat in memory. decode_qsplat names `path` in errors and returns the leaves in depth-first
+// tree order. encode_qsplat needs normals and radii (it writes colours when the set has them,
+// comments as a comment fragment); `leaf_order`, if given, receives the input index of each leaf
+// in the order decode_qsplat will return them (the writer reorders points spatially).
 PointSet decode_qsplat(const std::vector<std::uint8_t>& bytes, const std::string& path, ReadReport* report = nullptr);
-std::vector<std::uint8_t> encode_qsplat(const PointSet& points);
+std::vector<std::uint8_t> encode_qsplat(const PointSet& points, std::vector<std::uint32_t>* leaf_order = nullptr);
 
 // Writers. All write atomically (temporary name, then rename).
 // PLY: binary little-endian with every attribute the set has (scalars as extra float properties).

@@ -192,7 +192,8 @@ struct Sink {
   std::vector<Rgb8> colors;
   std::vector<float> radii;
   bool want_normals = false, want_colors = false, want_radii = false;
-  // faces (flat fans), checked against the vertex count at the end
+  // faces (flat fans), checked against the header's vertex count as they are read
+  std::uint64_t vertex_count = 0;
   std::vector<Triangle> triangles;
   std::size_t polygons_triangulated = 0;
 };
@@ -221,7 +222,7 @@ void store_vertex(Sink& s, const VertexValues& vv, const Type* dest_types, std::
   if (s.want_normals) {
     const Vec3f n{static_cast<float>(vv.v[int(Dest::kNX)]), static_cast<float>(vv.v[int(Dest::kNY)]),
                   static_cast<float>(vv.v[int(Dest::kNZ)])};
-    s.normals.push_back(normalized(n));
+    s.normals.push_back(as_unit(n));
   }
   if (s.want_colors)
     s.colors.push_back({to_color8(vv.v[int(Dest::kRed)], dest_types[int(Dest::kRed)]),
@@ -245,8 +246,11 @@ void add_face(Sink& s, const std::vector<long long>& idx, Where&& where) {
     throw InputError("ply.body.list_length", s.path, where(),
                      "face with " + std::to_string(idx.size()) + " vertex indices, expected at least 3");
   for (long long i : idx)
-    if (i < 0 || i > 0xFFFFFFFFll)
-      throw InputError("ply.body.face_index", s.path, where(), "face vertex index " + std::to_string(i) + " is out of range");
+    if (i < 0 || static_cast<std::uint64_t>(i) >= s.vertex_count)
+      throw InputError("ply.body.face_index", s.path, where(),
+                       "face vertex index " + std::to_string(i) + " out of range, expected 0.." +
+                           std::to_string(static_cast<long long>(s.vertex_count) - 1) + " (the header declares " +
+                           std::to_string(s.vertex_count) + " vertices)");
   if (idx.size() > 3) ++s.polygons_triangulated;
   for (std::size_t k = 1; k + 1 < idx.size(); ++k)
     s.triangles.push_back({static_cast<std::uint32_t>(idx[0]), static_cast<std::uint32_t>(idx[k]),
@@ -295,11 +299,11 @@ class BinaryBody {
     if (fixed) {
       const std::size_t available = end_ - pos_;
       if (stride != 0 && e.count > available / stride)
-        throw InputError("ply.body.truncated", path_, at_byte(end_),
+        throw InputError("ply.body.truncated", path_, at_byte(pos_),
                          "file ends inside element '" + e.name + "': " + std::to_string(e.count) + " records of " +
                              std::to_string(stride) + " bytes need " + std::to_string(e.count * stride) +
-                             " bytes after byte " + std::to_string(pos_) + ", only " + std::to_string(available) +
-                             " remain");
+                             " bytes, only " + std::to_string(available) + " remain (file size " +
+                             std::to_string(end_) + ")");
       if (!is_vertex) {
         pos_ += static_cast<std::size_t>(e.count) * stride;
         return;
@@ -494,7 +498,7 @@ Model read_ply(const std::string& path, const ReadOptions& options, ReadReport* 
   }
 
   io::NonFiniteFilter nonfinite(path, options);
-  Sink sink{path, nonfinite, {}, {}, {}, {}, false, false, false, {}, 0};
+  Sink sink{path, nonfinite, {}, {}, {}, {}, false, false, false, vertex->count, {}, 0};
   sink.want_normals = seen[int(Dest::kNX)] && seen[int(Dest::kNY)] && seen[int(Dest::kNZ)];
   sink.want_colors = seen[int(Dest::kRed)] && seen[int(Dest::kGreen)] && seen[int(Dest::kBlue)];
   sink.want_radii = seen[int(Dest::kRadius)];
@@ -524,15 +528,6 @@ Model read_ply(const std::string& path, const ReadOptions& options, ReadReport* 
                        std::to_string(bytes.size() - body.position()) +
                            " bytes after the last element; the header's counts do not match the body");
   }
-
-  // 3. Faces must index existing vertices.
-  const std::size_t nv = sink.positions.size();
-  for (std::size_t t = 0; t < sink.triangles.size(); ++t)
-    for (std::uint32_t i : sink.triangles[t])
-      if (i >= nv)
-        throw InputError("ply.body.face_index", path, "",
-                         "face vertex index " + std::to_string(i) + " out of range: the file has " +
-                             std::to_string(nv) + " vertices (triangle " + std::to_string(t) + ")");
 
   if (report) {
     report->format = h.format == Format::kAscii       ? "ply (ascii)"

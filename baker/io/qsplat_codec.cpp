@@ -78,17 +78,24 @@ const std::array<Vec3f, 16384>& normal_table() {
 int encode_sphere(const float c[3], float r, const float pc[3], float pr) {
   const SphereIndex& idx = sphere_index();
   int lo[3], hi[3];
+  float t[3];
   const float q = pr > 0 ? r / pr : 1.0f;
   int s = 1;
   for (int k = 0; k < 3; ++k) {
-    const float t = pr > 0 ? 0.5f * ((c[k] - pc[k]) / pr + 1.0f) : 0.5f;
-    lo[k] = std::clamp(static_cast<int>(std::floor((t - 0.5f * q) * kGrid)), 0, kGrid - 1);
-    hi[k] = std::clamp(static_cast<int>(std::ceil((t + 0.5f * q) * kGrid)), 1, kGrid);
+    t[k] = pr > 0 ? 0.5f * ((c[k] - pc[k]) / pr + 1.0f) : 0.5f;
+    const float tk = t[k];
+    lo[k] = std::clamp(static_cast<int>(std::floor((tk - 0.5f * q) * kGrid)), 0, kGrid - 1);
+    hi[k] = std::clamp(static_cast<int>(std::ceil((tk + 0.5f * q) * kGrid)), 1, kGrid);
     s = std::max(s, hi[k] - lo[k]);
   }
   for (; s <= kGrid; ++s) {
+    // Any x in [hi - s, lo] (within the grid) gives a cube [x, x+s] covering [lo, hi]; take the one
+    // whose centre is nearest the child's, which keeps the decoded centre close to the point.
     int x[3];
-    for (int k = 0; k < 3; ++k) x[k] = std::min(lo[k], kGrid - s);  // [x, x+s] covers [lo, hi]
+    for (int k = 0; k < 3; ++k) {
+      const int xmin = std::max(0, hi[k] - s), xmax = std::min(lo[k], kGrid - s);
+      x[k] = std::clamp(static_cast<int>(std::lround(t[k] * kGrid - 0.5f * float(s))), xmin, xmax);
+    }
     const int i = idx.lookup[((s * 13 + x[0]) * 13 + x[1]) * 13 + x[2]];
     if (i >= 0) return i;
   }

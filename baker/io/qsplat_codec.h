@@ -33,10 +33,11 @@ inline void decode_sphere(const SphereEntry& e, const float parent_center[3], fl
   radius = parent_radius * e.r;
 }
 
-// Chooses the table entry for child sphere (c, r) under decoded parent (pc, pr), §3.4 with one
-// change: the sub-cube is widened to the full size s in one step (the original's "XXX - FIXME" step
-// can leave it short and return an invalid index), and a cube cut from the table is replaced by
-// the next larger size. Always returns a valid index.
+// Chooses the table entry for child sphere (c, r) under decoded parent (pc, pr): §3.4's covering
+// cube of s cells, but placed (among the positions that still cover the child's extent) so its
+// centre is nearest the child's, instead of the original's one-cell widening ("XXX - FIXME"),
+// which can fall short and return an invalid index. A cube cut from the table is replaced by the
+// next larger size, so the result is always a valid index. The decoder does not care (§3.4).
 int encode_sphere(const float c[3], float r, const float pc[3], float pr);
 
 // Normal index for a unit vector (§4.3, without the random dither so output is deterministic).

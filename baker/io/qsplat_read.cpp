@@ -21,11 +21,15 @@ float be_float(const std::uint8_t* p) {
   return f;
 }
 
+// A sibling group being walked: its records are read one by one; an interior record's child group
+// is walked before the next sibling, so leaves come out in depth-first (tree) order, which is the
+// order the writer's spatial partition put them in.
 struct Group {
-  std::size_t at;    // file offset of the group (of its offset field when has_offset)
-  int count;         // records in the group
-  bool has_offset;   // the group starts with a child offset (parent has grandchildren)
-  float center[3];   // parent's decoded sphere
+  std::size_t rec;         // file offset of the next record to read
+  int left;                // records still to read
+  std::size_t next_child;  // file offset of the next child group (parents with grandchildren only)
+  bool has_offset;         // the group started with a child offset (parent has grandchildren)
+  float center[3];         // parent's decoded sphere
   float radius;
 };
 
@@ -56,68 +60,74 @@ class FragmentDecoder {
     }
     const std::size_t node_size = colored_ ? 6 : 4;
     // §2.4: the first group has an offset iff the fragment has more leaves than root children.
-    stack_.push_back({start_ + qsplat::kHeaderBytes, k0, header_leaves > k0, {root_center[0], root_center[1], root_center[2]}, root_radius});
+    open_group(start_ + qsplat::kHeaderBytes, k0, header_leaves > k0, root_center, root_radius, node_size);
     std::size_t leaves = 0, interior = 0;
     const auto& spheres = qsplat::sphere_table();
     const auto& normals = qsplat::normal_table();
     while (!stack_.empty()) {
-      const Group g = stack_.back();
-      stack_.pop_back();
-      std::size_t rec = g.at, next_child = 0;
-      if (g.has_offset) {
-        need(rec, 4, "child offset");
-        const std::int32_t off = static_cast<std::int32_t>(be32(d_ + rec));
-        // Groups are written breadth first, so a child group always lies after its parent's group.
-        const std::size_t min_target = rec + 4 + node_size * static_cast<std::size_t>(g.count);
-        if (off <= 0 || rec + static_cast<std::size_t>(off) < min_target || rec + static_cast<std::size_t>(off) >= end_)
-          fail("qsplat.child_offset", rec,
-               "child offset " + std::to_string(off) + " points outside the fragment or back into the tree (fragment ends at byte " +
-                   std::to_string(end_) + ")");
-        next_child = rec + static_cast<std::size_t>(off);
-        rec += 4;
+      Group& g = stack_.back();
+      if (g.left == 0) {
+        stack_.pop_back();
+        continue;
       }
-      need(rec, node_size * static_cast<std::size_t>(g.count), "node records");
-      for (int k = 0; k < g.count; ++k, rec += node_size) {
-        const std::uint8_t* p = d_ + rec;
-        const unsigned w0 = (unsigned(p[0]) << 8) | p[1];
-        const unsigned w1 = (unsigned(p[2]) << 8) | p[3];
-        const unsigned sphere = w0 >> 3, cc = w0 & 3, grand = (w0 >> 2) & 1;
-        if (sphere >= static_cast<unsigned>(qsplat::kSphereEntries))
-          fail("qsplat.sphere_index", rec, "sphere index " + std::to_string(sphere) + " is invalid, expected 0.." +
-                                               std::to_string(qsplat::kSphereEntries - 1));
-        float c[3], r;
-        qsplat::decode_sphere(spheres[sphere], g.center, g.radius, c, r);
-        if (cc == 0) {
-          if (grand) fail("qsplat.node", rec, "leaf record with the has-grandchildren flag set");
-          out_.positions.push_back({c[0], c[1], c[2]});
-          out_.radii.push_back(r);
-          out_.normals.push_back(normals[w1 >> 2]);
-          // Uncoloured fragments get white (QSplat's default); the caller drops colours if no fragment had any.
-          out_.colors.push_back(colored_ ? qsplat::decode_color(static_cast<std::uint16_t>((p[4] << 8) | p[5]))
-                                         : Rgb8{255, 255, 255});
-          if (++leaves > static_cast<std::size_t>(header_leaves))
-            fail("qsplat.leaf_count", rec, "tree holds more leaves than the header's " + std::to_string(header_leaves));
-          continue;
-        }
-        if (!g.has_offset)
-          fail("qsplat.node", rec, "interior record in a group whose parent was marked as having no grandchildren");
-        if (next_child >= end_) fail("qsplat.child_offset", rec, "child group lies past the end of the fragment");
-        const int count = static_cast<int>(cc) + 1;
-        pending_.push_back({next_child, count, grand != 0, {c[0], c[1], c[2]}, r});
-        next_child += (grand ? 4 : 0) + node_size * static_cast<std::size_t>(count);
-        // Every interior node has at least two children, so there are fewer interior nodes than
-        // leaves; this also bounds the work on a file whose offsets make groups overlap.
-        if (++interior > static_cast<std::size_t>(header_leaves))
-          fail("qsplat.leaf_count", rec, "tree holds more interior nodes than the header's " + std::to_string(header_leaves) + " leaves allow");
+      const std::size_t rec = g.rec;
+      g.rec += node_size;
+      --g.left;
+      const std::uint8_t* p = d_ + rec;
+      const unsigned w0 = (unsigned(p[0]) << 8) | p[1];
+      const unsigned w1 = (unsigned(p[2]) << 8) | p[3];
+      const unsigned sphere = w0 >> 3, cc = w0 & 3, grand = (w0 >> 2) & 1;
+      if (sphere >= static_cast<unsigned>(qsplat::kSphereEntries))
+        fail("qsplat.sphere_index", rec, "sphere index " + std::to_string(sphere) + " is invalid, expected 0.." +
+                                             std::to_string(qsplat::kSphereEntries - 1));
+      float c[3], r;
+      qsplat::decode_sphere(spheres[sphere], g.center, g.radius, c, r);
+      if (cc == 0) {
+        if (grand) fail("qsplat.node", rec, "leaf record with the has-grandchildren flag set");
+        out_.positions.push_back({c[0], c[1], c[2]});
+        out_.radii.push_back(r);
+        out_.normals.push_back(normals[w1 >> 2]);
+        // Uncoloured fragments get white (QSplat's default); the caller drops colours if no fragment had any.
+        out_.colors.push_back(colored_ ? qsplat::decode_color(static_cast<std::uint16_t>((p[4] << 8) | p[5]))
+                                       : Rgb8{255, 255, 255});
+        if (++leaves > static_cast<std::size_t>(header_leaves))
+          fail("qsplat.leaf_count", rec, "tree holds more leaves than the header's " + std::to_string(header_leaves));
+        continue;
       }
-      // Visit children in sibling order (depth first), so leaves come out in the file's tree order.
-      for (auto it = pending_.rbegin(); it != pending_.rend(); ++it) stack_.push_back(*it);
-      pending_.clear();
+      if (!g.has_offset)
+        fail("qsplat.node", rec, "interior record in a group whose parent was marked as having no grandchildren");
+      // Every interior node has at least two children, so there are fewer interior nodes than
+      // leaves; this also bounds the work on a file whose offsets make groups overlap.
+      if (++interior > static_cast<std::size_t>(header_leaves))
+        fail("qsplat.leaf_count", rec, "tree holds more interior nodes than the header's " + std::to_string(header_leaves) + " leaves allow");
+      const int count = static_cast<int>(cc) + 1;
+      const std::size_t child = g.next_child;
+      g.next_child += (grand ? 4 : 0) + node_size * static_cast<std::size_t>(count);
+      open_group(child, count, grand != 0, c, r, node_size);  // may reallocate stack_: g is not used after
     }
     return leaves;
   }
 
  private:
+  // Checks a group's bytes and pushes it; its child offset (if any) must point forward into the fragment.
+  void open_group(std::size_t at, int count, bool has_offset, const float center[3], float radius, std::size_t node_size) {
+    Group g{at, count, 0, has_offset, {center[0], center[1], center[2]}, radius};
+    if (has_offset) {
+      need(at, 4, "child offset");
+      const std::int32_t off = static_cast<std::int32_t>(be32(d_ + at));
+      // Groups are written breadth first, so a child group always lies after its parent's group.
+      const std::size_t min_target = at + 4 + node_size * static_cast<std::size_t>(count);
+      if (off <= 0 || at + static_cast<std::size_t>(off) < min_target || at + static_cast<std::size_t>(off) >= end_)
+        fail("qsplat.child_offset", at,
+             "child offset " + std::to_string(off) + " points outside the fragment or back into the tree (fragment ends at byte " +
+                 std::to_string(end_) + ")");
+      g.next_child = at + static_cast<std::size_t>(off);
+      g.rec = at + 4;
+    }
+    need(g.rec, node_size * static_cast<std::size_t>(count), "node records");
+    stack_.push_back(g);
+  }
+
   void need(std::size_t at, std::size_t n, const char* what) {
     if (at > end_ || n > end_ - at)
       fail("qsplat.truncated", at, std::string(what) + " run past the end of the fragment (fragment ends at byte " +
@@ -132,7 +142,7 @@ class FragmentDecoder {
   const std::string& path_;
   PointSet& out_;
   bool colored_;
-  std::vector<Group> stack_, pending_;
+  std::vector<Group> stack_;
 };
 
 }  // namespace

@@ -32,12 +32,14 @@ class TreeBuilder {
   }
 
   // Returns the nodes with the root at index 0; the children of a node are contiguous.
+  // Afterwards leaf_order() lists the input indices in depth-first leaf order.
   std::vector<Node> build() {
     nodes_.reserve(2 * order_.size() + 1);
     nodes_.emplace_back();
     fill(0, 0, order_.size());
     return std::move(nodes_);
   }
+  const std::vector<std::uint32_t>& leaf_order() const { return order_; }
 
  private:
   using Range = std::pair<std::size_t, std::size_t>;  // [begin, end) in order_
@@ -222,10 +224,12 @@ void write_data_fragment(std::vector<std::uint8_t>& out, std::vector<Node>& node
 
 }  // namespace
 
-std::vector<std::uint8_t> encode_qsplat(const PointSet& points) {
+std::vector<std::uint8_t> encode_qsplat(const PointSet& points, std::vector<std::uint32_t>* leaf_order) {
   std::vector<std::uint8_t> out;
   if (!points.comments.empty()) write_comment_fragment(out, points.comments);
-  std::vector<Node> nodes = TreeBuilder(points).build();
+  TreeBuilder builder(points);
+  std::vector<Node> nodes = builder.build();
+  if (leaf_order) *leaf_order = builder.leaf_order();
   write_data_fragment(out, nodes, points.size(), points.has_colors());
   return out;
 }

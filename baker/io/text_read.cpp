@@ -78,7 +78,7 @@ PointSet read_xyz(const std::string& path, bool require_normals, const ReadOptio
     const Vec3f p{v[0], v[1], v[2]};
     nonfinite.check(out.positions.size(), p, "xyz.nonfinite", [&] { return at_line(line); });
     out.positions.push_back(p);
-    if (n == 6) out.normals.push_back(normalized({v[3], v[4], v[5]}));
+    if (n == 6) out.normals.push_back(as_unit({v[3], v[4], v[5]}));
   }
   nonfinite.apply(out, report);
   if (report) report->format = require_normals ? "pwn" : "xyz";
@@ -145,7 +145,7 @@ TriangleMesh read_off(const std::string& path, const ReadOptions& options, ReadR
     if (has_normal) {
       float n[3];
       for (float& x : n) x = number(tok.next_on_line(), path, line, "off.bad_number", "a vertex normal");
-      mesh.normals.push_back(normalized({n[0], n[1], n[2]}));
+      mesh.normals.push_back(as_unit({n[0], n[1], n[2]}));
     }
     if (has_color) {
       std::uint8_t rgb[3];
@@ -236,7 +236,7 @@ TriangleMesh read_obj(const std::string& path, const ReadOptions& options, ReadR
     } else if (key == "vn") {
       float n[3];
       for (float& x : n) x = number(tok.next_on_line(), path, line, "obj.bad_number", "a normal component");
-      vn.push_back(normalized({n[0], n[1], n[2]}));
+      vn.push_back(as_unit({n[0], n[1], n[2]}));
     } else if (key == "f") {
       face.clear();
       for (std::string_view t = tok.next_on_line(); !t.empty(); t = tok.next_on_line()) {
