@@ -2,6 +2,8 @@
 #include "core/file_io.h"
 
 #include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -14,26 +16,40 @@
 
 namespace qf {
 
-std::vector<std::uint8_t> read_file_bytes(const std::string& path) {
+InputFile::InputFile(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))
     throw InputError("file.unreadable", path, "", "is a directory, expected a file");
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) throw InputError("file.unreadable", path, "", std::string("cannot open: ") + std::strerror(errno));
-  std::vector<std::uint8_t> data;
-  std::uint8_t chunk[1 << 16];
-  // Grow by reading until EOF: works for pipes and files whose size changes under us.
-  if (std::fseek(f, 0, SEEK_END) == 0) {
-    const long size = std::ftell(f);
-    if (size > 0) data.reserve(static_cast<std::size_t>(size));
-    std::fseek(f, 0, SEEK_SET);
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw InputError("file.unreadable", path, "", std::string("cannot open: ") + std::strerror(errno));
+  struct stat st {};
+  if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0) {
+    size_ = static_cast<std::size_t>(st.st_size);
+    void* m = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0);
+    if (m != MAP_FAILED) {
+      map_ = m;
+      ::close(fd);
+      return;
+    }
   }
-  std::size_t n;
-  while ((n = std::fread(chunk, 1, sizeof chunk, f)) > 0) data.insert(data.end(), chunk, chunk + n);
-  const bool failed = std::ferror(f) != 0;
-  std::fclose(f);
-  if (failed) throw InputError("file.unreadable", path, "", "read error");
-  return data;
+  // Not mappable (pipe, empty file, special file): read until EOF.
+  std::uint8_t chunk[1 << 16];
+  for (;;) {
+    const ssize_t n = ::read(fd, chunk, sizeof chunk);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      const int err = errno;
+      ::close(fd);
+      throw InputError("file.unreadable", path, at_byte(buffer_.size()), std::string("read error: ") + std::strerror(err));
+    }
+    if (n == 0) break;
+    buffer_.insert(buffer_.end(), chunk, chunk + n);
+  }
+  ::close(fd);
+}
+
+InputFile::~InputFile() {
+  if (map_) ::munmap(map_, size_);
 }
 
 void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write) {

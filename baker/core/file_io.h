@@ -10,8 +10,39 @@
 
 namespace qf {
 
-// Reads the whole file. Throws InputError("file.unreadable") if it cannot be opened or read.
-std::vector<std::uint8_t> read_file_bytes(const std::string& path);
+// A read-only view of bytes (a file's content, or a buffer).
+class ByteView {
+ public:
+  ByteView() = default;
+  ByteView(const std::uint8_t* data, std::size_t size) : data_(data), size_(size) {}
+  ByteView(const std::vector<std::uint8_t>& v) : data_(v.data()), size_(v.size()) {}  // NOLINT: implicit on purpose
+  const std::uint8_t* data() const { return data_; }
+  std::size_t size() const { return size_; }
+  bool empty() const { return size_ == 0; }
+  std::uint8_t operator[](std::size_t i) const { return data_[i]; }
+
+ private:
+  const std::uint8_t* data_ = nullptr;
+  std::size_t size_ = 0;
+};
+
+// The whole content of an input file. Regular files are memory-mapped (pre-faulted): on the
+// project's VMs that is ~8x faster than read() into fresh memory, whose page faults dominate.
+// Other files (pipes) are read into a buffer. Throws InputError("file.unreadable").
+// Note: a regular file truncated by another process while mapped raises SIGBUS on access.
+class InputFile {
+ public:
+  explicit InputFile(const std::string& path);
+  ~InputFile();
+  InputFile(const InputFile&) = delete;
+  InputFile& operator=(const InputFile&) = delete;
+  ByteView bytes() const { return map_ ? ByteView(static_cast<const std::uint8_t*>(map_), size_) : ByteView(buffer_); }
+
+ private:
+  void* map_ = nullptr;
+  std::size_t size_ = 0;
+  std::vector<std::uint8_t> buffer_;
+};
 
 // Calls `write` with a stream on "<path>.tmp-<pid>" next to `path`, flushes, fsyncs and renames
 // it over `path`. If `write` throws, or the stream fails, the temporary file is removed and the

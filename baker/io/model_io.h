@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "core/file_io.h"
 #include "core/types.h"
 
 namespace qf {
@@ -51,7 +52,7 @@ TriangleMesh read_obj(const std::string& path, const ReadOptions& options = {}, 
 // tree order. encode_qsplat needs normals and radii (it writes colours when the set has them,
 // comments as a comment fragment); `leaf_order`, if given, receives the input index of each leaf
 // in the order decode_qsplat will return them (the writer reorders points spatially).
-PointSet decode_qsplat(const std::vector<std::uint8_t>& bytes, const std::string& path, ReadReport* report = nullptr);
+PointSet decode_qsplat(ByteView bytes, const std::string& path, ReadReport* report = nullptr);
 std::vector<std::uint8_t> encode_qsplat(const PointSet& points, std::vector<std::uint32_t>* leaf_order = nullptr);
 
 // Writers. All write atomically (temporary name, then rename).

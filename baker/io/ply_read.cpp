@@ -87,7 +87,7 @@ Dest vertex_dest(const std::string& n) {
 // ---------------------------------------------------------------------------------------------
 // Header
 
-Header parse_header(const std::vector<std::uint8_t>& bytes, const std::string& path) {
+Header parse_header(ByteView bytes, const std::string& path) {
   Header h;
   const char* begin = reinterpret_cast<const char*>(bytes.data());
   const char* end = begin + bytes.size();
@@ -200,6 +200,7 @@ struct Sink {
 
 // Converts a colour value of any PLY type to 8 bits (floats are taken as [0,1]).
 std::uint8_t to_color8(double v, Type t) {
+  if (t == Type::kUInt8) return static_cast<std::uint8_t>(v);
   double c = v;
   if (t == Type::kFloat32 || t == Type::kFloat64) c = v * 255.0;
   else if (t == Type::kUInt16) c = v / 257.0;
@@ -286,9 +287,32 @@ double load_value(const std::uint8_t* p, Type t, bool swap) {
   return 0;
 }
 
+template <class T>
+void decode_column_as(const std::uint8_t* p, std::size_t stride, std::size_t n, bool swap, double* out) {
+  if (swap) {
+    for (std::size_t i = 0; i < n; ++i) out[i] = static_cast<double>(load<T>(p + i * stride, true));
+  } else {
+    for (std::size_t i = 0; i < n; ++i) out[i] = static_cast<double>(load<T>(p + i * stride, false));
+  }
+}
+
+// Reads one property of n records `stride` bytes apart into out[0..n).
+void decode_column(const std::uint8_t* p, std::size_t stride, std::size_t n, Type t, bool swap, double* out) {
+  switch (t) {
+    case Type::kInt8: return decode_column_as<std::int8_t>(p, stride, n, swap, out);
+    case Type::kUInt8: return decode_column_as<std::uint8_t>(p, stride, n, swap, out);
+    case Type::kInt16: return decode_column_as<std::int16_t>(p, stride, n, swap, out);
+    case Type::kUInt16: return decode_column_as<std::uint16_t>(p, stride, n, swap, out);
+    case Type::kInt32: return decode_column_as<std::int32_t>(p, stride, n, swap, out);
+    case Type::kUInt32: return decode_column_as<std::uint32_t>(p, stride, n, swap, out);
+    case Type::kFloat32: return decode_column_as<float>(p, stride, n, swap, out);
+    case Type::kFloat64: return decode_column_as<double>(p, stride, n, swap, out);
+  }
+}
+
 class BinaryBody {
  public:
-  BinaryBody(const std::vector<std::uint8_t>& bytes, std::size_t offset, bool swap, const std::string& path)
+  BinaryBody(ByteView bytes, std::size_t offset, bool swap, const std::string& path)
       : data_(bytes.data()), pos_(offset), end_(bytes.size()), swap_(swap), path_(path) {}
 
   void read_element(const Element& e, bool is_vertex, bool is_face, Sink& s, const Type* dest_types) {
@@ -308,15 +332,27 @@ class BinaryBody {
         pos_ += static_cast<std::size_t>(e.count) * stride;
         return;
       }
-      for (std::uint64_t i = 0; i < e.count; ++i) {
-        const std::size_t record = pos_;
-        VertexValues vv;
+      // Decode a block of records column by column: the type switch stays outside the inner
+      // loops, which keeps the reader near memory speed (foundation issue: >= 300 MB/s).
+      constexpr std::size_t kBlock = 512;
+      std::vector<double> columns(11 * kBlock);
+      for (std::uint64_t b0 = 0; b0 < e.count; b0 += kBlock) {
+        const std::size_t m = static_cast<std::size_t>(std::min<std::uint64_t>(kBlock, e.count - b0));
+        const std::uint8_t* base = data_ + pos_ + static_cast<std::size_t>(b0) * stride;
+        std::size_t offset = 0;
         for (const Property& p : e.props) {
-          if (p.dest != Dest::kSkip) vv.v[int(p.dest)] = load_value(data_ + pos_, p.type, swap_);
-          pos_ += type_size(p.type);
+          if (p.dest != Dest::kSkip) decode_column(base + offset, stride, m, p.type, swap_, &columns[int(p.dest) * kBlock]);
+          offset += type_size(p.type);
         }
-        store_vertex(s, vv, dest_types, i, [&] { return at_byte(record); });
+        for (std::size_t j = 0; j < m; ++j) {
+          VertexValues vv;
+          for (const Property& p : e.props)
+            if (p.dest != Dest::kSkip) vv.v[int(p.dest)] = columns[int(p.dest) * kBlock + j];
+          const std::size_t record = pos_ + static_cast<std::size_t>(b0 + j) * stride;
+          store_vertex(s, vv, dest_types, static_cast<std::size_t>(b0 + j), [&] { return at_byte(record); });
+        }
       }
+      pos_ += static_cast<std::size_t>(e.count) * stride;
       return;
     }
     // Records with lists: walk value by value.
@@ -381,7 +417,7 @@ class BinaryBody {
 
 class AsciiBody {
  public:
-  AsciiBody(const std::vector<std::uint8_t>& bytes, const Header& h, const std::string& path)
+  AsciiBody(ByteView bytes, const Header& h, const std::string& path)
       : tok_(reinterpret_cast<const char*>(bytes.data()) + h.body_offset,
              reinterpret_cast<const char*>(bytes.data()) + bytes.size(), h.body_line),
         path_(path) {}
@@ -458,7 +494,8 @@ class AsciiBody {
 // ---------------------------------------------------------------------------------------------
 
 Model read_ply(const std::string& path, const ReadOptions& options, ReadReport* report) {
-  const std::vector<std::uint8_t> bytes = read_file_bytes(path);
+  const InputFile file(path);
+  const ByteView bytes = file.bytes();
   if (bytes.empty()) throw InputError("ply.header.magic", path, "", "file is empty, expected a PLY header");
   Header h = parse_header(bytes, path);
 

@@ -35,7 +35,7 @@ struct Group {
 
 class FragmentDecoder {
  public:
-  FragmentDecoder(const std::vector<std::uint8_t>& bytes, std::size_t start, std::size_t end, const std::string& path,
+  FragmentDecoder(ByteView bytes, std::size_t start, std::size_t end, const std::string& path,
                   PointSet& out, bool colored)
       : d_(bytes.data()), start_(start), end_(end), path_(path), out_(out), colored_(colored) {}
 
@@ -149,10 +149,11 @@ class FragmentDecoder {
 
 PointSet read_qsplat(const std::string& path, const ReadOptions& /*options*/, ReadReport* report) {
   // Decoded positions are always finite (finite root, bounded table), so ReadOptions has nothing to drop.
-  return decode_qsplat(read_file_bytes(path), path, report);
+  const InputFile file(path);
+  return decode_qsplat(file.bytes(), path, report);
 }
 
-PointSet decode_qsplat(const std::vector<std::uint8_t>& bytes, const std::string& path, ReadReport* report) {
+PointSet decode_qsplat(ByteView bytes, const std::string& path, ReadReport* report) {
   PointSet out;
   std::size_t pos = 0, fragments = 0;
   bool any_color = false;

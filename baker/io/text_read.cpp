@@ -13,18 +13,16 @@ namespace {
 
 using io::quote_token;
 
-// The file's text; a NUL byte means it is not a text file at all.
-std::vector<std::uint8_t> read_text(const std::string& path, const char* code) {
-  std::vector<std::uint8_t> bytes = read_file_bytes(path);
+// A NUL byte means it is not a text file at all.
+void check_text(ByteView bytes, const std::string& path, const char* code) {
   const void* nul = std::memchr(bytes.data(), 0, bytes.size());
   if (nul)
     throw InputError(code, path, at_byte(static_cast<std::size_t>(static_cast<const std::uint8_t*>(nul) - bytes.data())),
                      "binary data (a NUL byte) in a text file");
-  return bytes;
 }
 
-const char* text_begin(const std::vector<std::uint8_t>& b) { return reinterpret_cast<const char*>(b.data()); }
-const char* text_end(const std::vector<std::uint8_t>& b) { return text_begin(b) + b.size(); }
+const char* text_begin(ByteView b) { return reinterpret_cast<const char*>(b.data()); }
+const char* text_end(ByteView b) { return text_begin(b) + b.size(); }
 
 float number(std::string_view t, const std::string& path, std::size_t line, const char* code, const char* what) {
   float v;
@@ -47,7 +45,9 @@ std::uint8_t color_component(std::string_view t, float v) {
 }  // namespace
 
 PointSet read_xyz(const std::string& path, bool require_normals, const ReadOptions& options, ReadReport* report) {
-  const std::vector<std::uint8_t> bytes = read_text(path, "xyz.binary");
+  const InputFile file(path);
+  const ByteView bytes = file.bytes();
+  check_text(bytes, path, "xyz.binary");
   io::Tokenizer tok(text_begin(bytes), text_end(bytes));
   io::NonFiniteFilter nonfinite(path, options);
   PointSet out;
@@ -86,7 +86,9 @@ PointSet read_xyz(const std::string& path, bool require_normals, const ReadOptio
 }
 
 TriangleMesh read_off(const std::string& path, const ReadOptions& options, ReadReport* report) {
-  const std::vector<std::uint8_t> bytes = read_text(path, "off.binary");
+  const InputFile file(path);
+  const ByteView bytes = file.bytes();
+  check_text(bytes, path, "off.binary");
   io::Tokenizer tok(text_begin(bytes), text_end(bytes));
   // Comments start with '#'; they may stand anywhere a token may.
   auto next = [&]() {
@@ -189,7 +191,9 @@ TriangleMesh read_off(const std::string& path, const ReadOptions& options, ReadR
 }
 
 TriangleMesh read_obj(const std::string& path, const ReadOptions& options, ReadReport* report) {
-  const std::vector<std::uint8_t> bytes = read_text(path, "obj.binary");
+  const InputFile file(path);
+  const ByteView bytes = file.bytes();
+  check_text(bytes, path, "obj.binary");
   io::Tokenizer tok(text_begin(bytes), text_end(bytes));
   io::NonFiniteFilter nonfinite(path, options);
   TriangleMesh mesh;

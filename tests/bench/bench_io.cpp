@@ -18,13 +18,16 @@ using namespace qf;
 
 namespace {
 
-double best_seconds(int repeats, const std::function<std::size_t()>& run, std::size_t& count) {
+// Best time over `repeats` runs; `first` gets the first run's (fresh output memory: page faults).
+double best_seconds(int repeats, const std::function<std::size_t()>& run, std::size_t& count, double& first) {
   double best = 1e30;
   for (int r = 0; r < repeats; ++r) {
     const auto t0 = std::chrono::steady_clock::now();
     count = run();
     const auto t1 = std::chrono::steady_clock::now();
-    best = std::min(best, std::chrono::duration<double>(t1 - t0).count());
+    const double s = std::chrono::duration<double>(t1 - t0).count();
+    if (r == 0) first = s;
+    best = std::min(best, s);
   }
   return best;
 }
@@ -73,23 +76,26 @@ int main(int argc, char** argv) {
   const Row rows[] = {{"ply binary_little_endian (xyz, normal, rgb)", dir + "/bin.ply", "MB/s", 300},
                       {"ply ascii (xyz, normal, rgb)", dir + "/ascii.ply", "MB/s", 40},
                       {"qsplat decode (colour)", dir + "/points.qs", "Mleaves/s", 10}};
-  std::printf("reader benchmark: %zu points, best of %d runs (file read from the page cache included)\n\n", n, repeats);
-  std::printf("| %-44s | %9s | %9s | %12s | %14s | %6s |\n", "input", "size MB", "time ms", "Mpoints/s", "rate (target)", "ok");
-  std::printf("|%s|%s|%s|%s|%s|%s|\n", std::string(46, '-').c_str(), std::string(11, '-').c_str(),
-              std::string(11, '-').c_str(), std::string(14, '-').c_str(), std::string(16, '-').c_str(),
-              std::string(8, '-').c_str());
+  std::printf("reader benchmark: %zu points, best of %d runs (mapping the file from the page cache included;\n"
+              "the first run also pays the page faults of fresh output memory)\n\n", n, repeats);
+  std::printf("| %-44s | %8s | %9s | %8s | %9s | %18s | %3s |\n", "input", "size MB", "first ms", "best ms",
+              "Mpoints/s", "rate (target)", "ok");
+  std::printf("|%s|%s|%s|%s|%s|%s|%s|\n", std::string(46, '-').c_str(), std::string(10, '-').c_str(),
+              std::string(11, '-').c_str(), std::string(10, '-').c_str(), std::string(11, '-').c_str(),
+              std::string(20, '-').c_str(), std::string(5, '-').c_str());
   bool all_ok = true;
   for (const Row& r : rows) {
     const double mb = static_cast<double>(std::filesystem::file_size(r.file)) / 1e6;
     std::size_t count = 0;
-    const double s = best_seconds(repeats, [&] { return read_model(r.file).points.size(); }, count);
+    double first = 0;
+    const double s = best_seconds(repeats, [&] { return read_model(r.file).points.size(); }, count, first);
     const double rate = std::string(r.unit) == "MB/s" ? mb / s : count / s / 1e6;
     const bool ok = rate >= r.target && count == p.size();
     all_ok = all_ok && ok;
     char rate_text[64];
     std::snprintf(rate_text, sizeof rate_text, "%.0f %s (%.0f)", rate, r.unit, r.target);
-    std::printf("| %-44s | %9.1f | %9.1f | %12.2f | %14s | %6s |\n", r.name, mb, s * 1e3, count / s / 1e6, rate_text,
-                ok ? "yes" : "NO");
+    std::printf("| %-44s | %8.1f | %9.1f | %8.1f | %9.2f | %18s | %3s |\n", r.name, mb, first * 1e3, s * 1e3,
+                count / s / 1e6, rate_text, ok ? "yes" : "NO");
   }
   std::filesystem::remove_all(dir);
   return all_ok ? 0 : 1;

@@ -1,0 +1,101 @@
+#!/usr/bin/env bash
+# qf-bake end to end: exit codes (0 ok, 1 bad input, 2 usage), messages naming the file and the
+# error code, help texts listing every option, and no output (not even a temporary) on failure.
+# usage: cli_test.sh QF_BAKE TEST_DATA_DIR SHARED_DIR
+set -u
+bake=$1 data=$2 shared=$3
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+pass=0 fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+
+# expect CODE DESCRIPTION -- command...
+expect() {
+  local want=$1 what=$2; shift 3
+  "$@" >"$work/out" 2>"$work/err"
+  local rc=$?
+  if [[ $rc -eq $want ]]; then ok; else bad "$what: exit $rc, expected $want; stderr: $(head -c 400 "$work/err")"; fi
+}
+
+# --- help and version ---
+expect 0 "--version" -- "$bake" --version
+grep -q '^qf-bake [0-9]' "$work/out" && ok || bad "--version prints 'qf-bake X.Y.Z'"
+expect 0 "--help" -- "$bake" --help
+cp "$work/out" "$work/overview"
+for cmd in info convert generate; do
+  grep -q "^  $cmd " "$work/overview" && ok || bad "--help lists $cmd"
+  expect 0 "$cmd --help" -- "$bake" "$cmd" --help
+  grep -q "usage: qf-bake $cmd" "$work/out" && ok || bad "$cmd --help shows usage"
+done
+"$bake" convert --help >"$work/out"
+grep -q -- "--radius-k K .*(default: 6)" "$work/out" && ok || bad "convert --help gives --radius-k's default"
+"$bake" generate --help >"$work/out"
+grep -q -- "--points N .*(default: 16000)" "$work/out" && ok || bad "generate --help gives --points' default"
+grep -q "octahedron" "$work/out" && ok || bad "generate --help lists the shapes"
+
+# --- usage errors: exit 2 ---
+expect 2 "no arguments" -- "$bake"
+expect 2 "unknown command" -- "$bake" frobnicate
+expect 2 "unknown option" -- "$bake" info "$shared/data/qsplat/pyr.qs" --bogus
+expect 2 "missing positional" -- "$bake" convert "$shared/data/qsplat/pyr.qs"
+expect 2 "unknown input extension" -- "$bake" info "$work/thing.stl"
+expect 2 "unknown output extension" -- "$bake" convert "$shared/data/qsplat/pyr.qs" "$work/out.stl"
+expect 2 "bad number" -- "$bake" generate sphere -o "$work/s.ply" --points many
+expect 2 "unknown shape" -- "$bake" generate teapot -o "$work/s.ply"
+expect 2 "missing output folder" -- "$bake" generate sphere -o "$work/no/such/dir/s.ply" --points 100
+[[ "$(ls "$work" | tr '\n' ' ')" == "err out overview " ]] && ok || bad "usage errors leave no files: $(ls "$work")"
+
+# --- good files ---
+for f in tet.qs pyr.qs sphere_col.qs sphere_nocol.qs multi.qs sphere_col.ply pyr.ply; do
+  expect 0 "info $f" -- "$bake" info "$shared/data/qsplat/$f"
+done
+"$bake" info "$shared/data/qsplat/sphere_col.qs" >"$work/out"
+grep -q "points: *2498" "$work/out" && ok || bad "info counts 2498 points"
+grep -q "attributes: *position normal color radius" "$work/out" && ok || bad "info lists attributes"
+"$bake" info --json "$shared/data/qsplat/multi.qs" >"$work/out"
+grep -q '"fragments": 3' "$work/out" && ok || bad "info --json reports fragments"
+grep -q '"points": 2507' "$work/out" && ok || bad "info --json counts multi.qs leaves"
+
+# generate -> convert through every point format -> info
+expect 0 "generate" -- "$bake" generate octahedron -o "$work/oct.ply" -q
+for ext in qs xyz pwn ply; do
+  expect 0 "convert to $ext" -- "$bake" convert "$work/oct.ply" "$work/oct2.$ext" -q
+  "$bake" info --json "$work/oct2.$ext" >"$work/out"
+  grep -q '"points": 16000' "$work/out" && ok || bad "oct2.$ext has 16000 points"
+done
+# xyz has no radii: converting it to ply estimates them and says so
+expect 0 "xyz -> ply" -- "$bake" convert "$work/oct2.xyz" "$work/oct3.ply"
+grep -q "radii estimated for 16000" "$work/err" && ok || bad "convert reports estimated radii"
+"$bake" info "$work/oct3.ply" | grep -q "radius" && ok || bad "estimated radii are written"
+# determinism: the same command twice gives the same bytes
+"$bake" generate torus -o "$work/t1.qs" -q && "$bake" generate torus -o "$work/t2.qs" -q
+cmp -s "$work/t1.qs" "$work/t2.qs" && ok || bad "generate is byte-identical across runs"
+# a mesh is not a point set for convert
+expect 1 "convert a mesh" -- "$bake" convert "$shared/data/qsplat/pyr.ply" "$work/pyr.xyz"
+grep -q "convert.mesh_input" "$work/err" && ok || bad "mesh input to convert names its error code"
+# xyz has no normals: .qs needs them
+printf "0 0 0\n1 0 0\n0 1 0\n" >"$work/p.xyz"
+expect 1 "xyz without normals -> qs" -- "$bake" convert "$work/p.xyz" "$work/x.qs"
+grep -q "convert.needs_normals" "$work/err" && ok || bad "qs output without normals names its error code"
+
+# --- every malformed file: exit 1, message names file and code, no output ---
+while IFS=$'\t' read -r file code; do
+  [[ -z "$file" || "$file" == \#* ]] && continue
+  mkdir -p "$work/m"
+  expect 1 "info $file" -- "$bake" info "$data/malformed/$file"
+  grep -qF "$file" "$work/err" && grep -qF "[$code]" "$work/err" && ok || bad "$file: message lacks file or [$code]: $(cat "$work/err")"
+  expect 1 "convert $file" -- "$bake" convert "$data/malformed/$file" "$work/m/out.ply"
+  [[ -z "$(ls -A "$work/m")" ]] && ok || bad "$file: convert left files behind: $(ls -A "$work/m")"
+done <"$data/malformed/EXPECTED.tsv"
+# non-finite coordinates can be dropped on request, and are reported
+expect 0 "--drop-nonfinite" -- "$bake" convert "$data/malformed/nan_coordinate.ply" "$work/ok.xyz" --drop-nonfinite
+grep -q "1 non-finite points dropped" "$work/err" && ok || bad "dropped points are reported"
+
+# an existing output survives a failed conversion untouched
+echo "keep me" >"$work/keep.ply"
+"$bake" convert "$data/malformed/count_lies_binary.ply" "$work/keep.ply" 2>/dev/null
+[[ "$(cat "$work/keep.ply")" == "keep me" ]] && ok || bad "a failed convert must not touch an existing output"
+
+echo "$pass passed, $fail failed"
+[[ $fail -eq 0 ]]
