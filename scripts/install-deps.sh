@@ -17,6 +17,7 @@ packages=(
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libglx-mesa0  # headless OpenGL on Mesa llvmpipe
   # tests
   libgtest-dev googletest libbenchmark-dev
+  python3-jsonschema                              # validates our JSON outputs against schemas/ in tests
 )
 
 missing=()

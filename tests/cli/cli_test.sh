@@ -57,6 +57,15 @@ grep -q "attributes: *position normal color radius" "$work/out" && ok || bad "in
 grep -q '"fragments": 3' "$work/out" && ok || bad "info --json reports fragments"
 grep -q '"points": 2507' "$work/out" && ok || bad "info --json counts multi.qs leaves"
 
+# info --json follows schemas/info.schema.json, for point sets and meshes alike
+schema="$(dirname "$0")/../../schemas/info.schema.json"
+for f in "$shared/data/qsplat/multi.qs" "$shared/data/qsplat/sphere_col.ply"; do
+  "$bake" info --json "$f" >"$work/info.json"
+  /usr/bin/python3 -c 'import json, sys, jsonschema
+jsonschema.validate(json.load(open(sys.argv[1])), json.load(open(sys.argv[2])))' "$work/info.json" "$schema" 2>"$work/err" \
+    && ok || bad "info --json of $f does not follow the schema: $(tail -3 "$work/err")"
+done
+
 # generate -> convert through every point format -> info
 expect 0 "generate" -- "$bake" generate octahedron -o "$work/oct.ply" -q
 for ext in qs xyz pwn ply; do

@@ -148,7 +148,11 @@ TEST_P(QSplatVectors, LeavesMatchSourceVertices) {
 INSTANTIATE_TEST_SUITE_P(Original, QSplatVectors,
                          ::testing::Values(Vector{"tet.qs", "tet.ply", 4}, Vector{"pyr.qs", "pyr.ply", 5},
                                            Vector{"sphere_nocol.qs", "sphere_nocol.ply", 2498},
-                                           Vector{"sphere_col.qs", "sphere_col.ply", 2498}));
+                                           Vector{"sphere_col.qs", "sphere_col.ply", 2498}),
+                         [](const ::testing::TestParamInfo<Vector>& info) {
+                           std::string name = info.param.qs;
+                           return name.substr(0, name.find('.'));
+                         });
 
 TEST(QSplatRead, CommentFragment) {
   const PointSet p = read_qsplat(vector_path("sphere_col.qs"));
