@@ -105,6 +105,8 @@ struct Vector {
   std::size_t leaves;
 };
 
+void PrintTo(const Vector& v, std::ostream* os) { *os << v.qs; }
+
 class QSplatVectors : public ::testing::TestWithParam<Vector> {};
 
 // Every leaf is one source vertex: within the quantisation error of its position, with its
@@ -149,8 +151,8 @@ INSTANTIATE_TEST_SUITE_P(Original, QSplatVectors,
                          ::testing::Values(Vector{"tet.qs", "tet.ply", 4}, Vector{"pyr.qs", "pyr.ply", 5},
                                            Vector{"sphere_nocol.qs", "sphere_nocol.ply", 2498},
                                            Vector{"sphere_col.qs", "sphere_col.ply", 2498}),
-                         [](const ::testing::TestParamInfo<Vector>& info) {
-                           std::string name = info.param.qs;
+                         [](const ::testing::TestParamInfo<Vector>& param_info) {
+                           std::string name = param_info.param.qs;
                            return name.substr(0, name.find('.'));
                          });
 
