@@ -1,5 +1,6 @@
-// Point neighbourhoods (paper 2.1): k nearest neighbours with PCL's kd-tree, stored flat.
-// This header is PCL-free; PCL stays inside neighborhoods.cpp.
+// Point neighbourhoods (paper 2.1): k nearest neighbours, optionally widened to the feature-size
+// ball B_eps(x), found with PCL's kd-tree and stored flat. This header is PCL-free; PCL stays
+// inside neighborhoods.cpp.
 #pragma once
 
 #include <cstdint>
@@ -10,7 +11,7 @@
 namespace qf {
 
 // Neighbour lists of n points, flat: the neighbours of point i are indices[offsets[i] ..
-// offsets[i+1]), sorted by increasing distance (ties by increasing index), the point itself
+// offsets[i+1]), sorted by increasing distance, ties by increasing index, the point itself
 // excluded. distances holds the Euclidean distances (world units) alongside.
 struct Neighborhoods {
   std::vector<std::uint32_t> offsets;  // n + 1 entries
@@ -21,8 +22,25 @@ struct Neighborhoods {
   std::size_t count(std::size_t i) const { return offsets[i + 1] - offsets[i]; }
 };
 
-// The min(k, n-1) nearest neighbours of every point. Uses every core; the result does not
-// depend on the thread count. Coincident points are neighbours at distance 0.
+struct NeighborhoodOptions {
+  int k = 50;            // neighbours per point; the k_min of the ball mode (paper 2.1: 50..100)
+  float epsilon = 0.0f;  // feature size (world units); 0 = off. When the k-th neighbour is closer
+                         // than epsilon, every further point inside B_eps(x) is added too (paper 2.1)
+  int max_neighbors = 200;  // cap on the ball's size, so memory stays bounded (~1.6 KB per point)
+};
+
+struct NeighborhoodReport {
+  std::size_t widened = 0;  // points whose ball added neighbours beyond k
+  std::size_t capped = 0;   // points whose ball held more than max_neighbors
+};
+
+// Neighbourhoods of every point. Uses every core; the result does not depend on the thread count.
+// Coincident points are neighbours at distance 0. Sets of at most k points give every point the
+// n - 1 others.
+Neighborhoods compute_neighborhoods(const std::vector<Vec3f>& positions, const NeighborhoodOptions& options = {},
+                                    NeighborhoodReport* report = nullptr);
+
+// The min(k, n-1) nearest neighbours of every point (compute_neighborhoods without the ball).
 Neighborhoods k_nearest(const std::vector<Vec3f>& positions, int k);
 
 struct RadiusEstimateOptions {

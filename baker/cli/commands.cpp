@@ -54,6 +54,7 @@ const std::vector<Command>& commands() {
          {"quiet", 'q', "", "", "print nothing on success"}},
         1, 1},
        run_generate},
+      {analyze_spec(), run_analyze},
   };
   return table;
 }

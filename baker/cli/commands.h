@@ -18,6 +18,8 @@ const std::vector<Command>& commands();
 int run_info(const ParsedArgs& args);
 int run_convert(const ParsedArgs& args);
 int run_generate(const ParsedArgs& args);
+int run_analyze(const ParsedArgs& args);
+CommandSpec analyze_spec();
 
 // Shared option: --drop-nonfinite (every command that reads input files).
 OptionSpec drop_nonfinite_option();

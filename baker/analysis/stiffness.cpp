@@ -1,0 +1,173 @@
+// Stiffness assembly (paper 2.2, eqs. 5-7): per-point fan contributions, then symmetrisation and
+// the zero-row-sum diagonal, built directly in compressed row storage.
+#include "analysis/stiffness.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace qf {
+namespace {
+
+struct Entry {
+  std::uint32_t col;
+  double value;
+};
+
+// Compressed rows: row i is cols/vals[offsets[i] .. offsets[i+1]), columns increasing.
+struct Csr {
+  std::vector<std::uint32_t> offsets, cols;
+  std::vector<double> vals;
+};
+
+// cot of the angle at c in triangle (a, b, c), from double-precision edge vectors.
+// Returns false for a (near) zero-area triangle.
+bool cotangent(const Vec3f& a, const Vec3f& b, const Vec3f& c, double& cot) {
+  const double ux = double(a.x) - c.x, uy = double(a.y) - c.y, uz = double(a.z) - c.z;
+  const double vx = double(b.x) - c.x, vy = double(b.y) - c.y, vz = double(b.z) - c.z;
+  const double cx = uy * vz - uz * vy, cy = uz * vx - ux * vz, cz = ux * vy - uy * vx;
+  const double cross = std::sqrt(cx * cx + cy * cy + cz * cz);
+  cot = (ux * vx + uy * vy + uz * vz) / cross;
+  return cross > 0 && std::isfinite(cot);
+}
+
+double longest_edge2(const Vec3f& a, const Vec3f& b, const Vec3f& c) {
+  return std::max({double(dot(a - b, a - b)), double(dot(b - c, b - c)), double(dot(c - a, c - a))});
+}
+
+// Step 1 (eq. 5): row i of At from point i's own fan.
+void fan_row(std::size_t i, const std::vector<Vec3f>& pos, const Fans& fans, const std::vector<float>& cls,
+             std::vector<Entry>& row, std::size_t& zero_area) {
+  row.clear();
+  const Vec3f& pi = pos[i];
+  for (std::uint32_t t = fans.offsets[i]; t < fans.offsets[i + 1]; ++t) {
+    const std::uint32_t a = fans.triangles[t][0], b = fans.triangles[t][1];
+    const Vec3f &pa = pos[a], &pb = pos[b];
+    // |T| grad(Phi_i).grad(Phi_a) = -cot(angle at b) / 2, and likewise for b.
+    double cot_a, cot_b;
+    const double area2 = 0.5 * length(cross(pa - pi, pb - pi));  // area, for the degeneracy test only
+    if (!(area2 > 1e-12 * longest_edge2(pi, pa, pb)) || !cotangent(pi, pa, pb, cot_b) || !cotangent(pi, pb, pa, cot_a)) {
+      ++zero_area;
+      continue;
+    }
+    const double c = (double(cls[i]) + cls[a] + cls[b]) / 3.0;  // C(T): mean of the nodal classifiers
+    row.push_back({a, -0.5 * c * cot_b});
+    row.push_back({b, -0.5 * c * cot_a});
+  }
+  // Merge the two contributions of each neighbour (it sits in two adjacent triangles).
+  std::sort(row.begin(), row.end(), [](const Entry& x, const Entry& y) { return x.col < y.col; });
+  std::size_t w = 0;
+  for (std::size_t r = 0; r < row.size(); ++r) {
+    if (w > 0 && row[w - 1].col == row[r].col) row[w - 1].value += row[r].value;
+    else row[w++] = row[r];
+  }
+  row.resize(w);
+}
+
+Csr transpose(const Csr& m, std::size_t n) {
+  Csr t;
+  t.offsets.assign(n + 1, 0);
+  for (std::uint32_t c : m.cols) ++t.offsets[c + 1];
+  for (std::size_t i = 0; i < n; ++i) t.offsets[i + 1] += t.offsets[i];
+  t.cols.resize(m.cols.size());
+  t.vals.resize(m.vals.size());
+  std::vector<std::uint32_t> fill(t.offsets.begin(), t.offsets.end() - 1);
+  for (std::size_t i = 0; i < n; ++i)  // rows in order: each transposed row comes out sorted
+    for (std::uint32_t r = m.offsets[i]; r < m.offsets[i + 1]; ++r) {
+      const std::uint32_t dst = fill[m.cols[r]]++;
+      t.cols[dst] = static_cast<std::uint32_t>(i);
+      t.vals[dst] = m.vals[r];
+    }
+  return t;
+}
+
+}  // namespace
+
+SparseMatrix assemble_stiffness(const std::vector<Vec3f>& positions, const Fans& fans,
+                                const std::vector<float>& classifier, StiffnessReport* report) {
+  const std::size_t n = positions.size();
+  // 1. At, row by row in parallel; contiguous blocks joined in order (thread-count independent).
+  Csr at;
+  at.offsets.assign(n + 1, 0);
+  std::vector<std::vector<Entry>> blocks;
+  std::size_t zero_area = 0;
+#pragma omp parallel reduction(+ : zero_area)
+  {
+#pragma omp single
+    blocks.resize(static_cast<std::size_t>(omp_get_num_threads()));
+    auto& out = blocks[static_cast<std::size_t>(omp_get_thread_num())];
+    std::vector<Entry> row;
+#pragma omp for schedule(static)
+    for (std::ptrdiff_t si = 0; si < static_cast<std::ptrdiff_t>(n); ++si) {
+      const auto i = static_cast<std::size_t>(si);
+      fan_row(i, positions, fans, classifier, row, zero_area);
+      at.offsets[i + 1] = static_cast<std::uint32_t>(row.size());
+      out.insert(out.end(), row.begin(), row.end());
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i) at.offsets[i + 1] += at.offsets[i];
+  at.cols.reserve(at.offsets[n]);
+  at.vals.reserve(at.offsets[n]);
+  for (auto& blk : blocks) {
+    for (const Entry& e : blk) at.cols.push_back(e.col), at.vals.push_back(e.value);
+    std::vector<Entry>().swap(blk);
+  }
+
+  // 2. Eqs. 6-7: A_ij = (At_ij + At_ji) / 2 by merging row i of At and of its transpose; the
+  //    diagonal makes the row sum 0. Both sides of a pair add the same two numbers, so A is
+  //    exactly symmetric.
+  const Csr tt = transpose(at, n);
+  std::vector<std::int32_t> outer(n + 1, 0);
+  std::vector<std::int32_t> inner;
+  std::vector<double> values;
+  inner.reserve(at.cols.size() + n + at.cols.size() / 8);
+  values.reserve(inner.capacity());
+  std::size_t one_sided = 0, empty_rows = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    std::uint32_t p = at.offsets[i], q = tt.offsets[i];
+    const std::uint32_t pe = at.offsets[i + 1], qe = tt.offsets[i + 1];
+    const std::size_t row_start = values.size();
+    double sum = 0;
+    bool diag_done = false;
+    auto put_diagonal_before = [&](std::uint32_t col) {
+      if (!diag_done && col > i) {
+        inner.push_back(static_cast<std::int32_t>(i));
+        values.push_back(0.0);  // filled below
+        diag_done = true;
+      }
+    };
+    while (p < pe || q < qe) {
+      const std::uint32_t cp = p < pe ? at.cols[p] : UINT32_MAX, cq = q < qe ? tt.cols[q] : UINT32_MAX;
+      const std::uint32_t col = std::min(cp, cq);
+      const double a = cp == col ? at.vals[p++] : 0.0;
+      const double b = cq == col ? tt.vals[q++] : 0.0;
+      one_sided += (cp != cq);
+      put_diagonal_before(col);
+      const double v = 0.5 * (a + b);
+      inner.push_back(static_cast<std::int32_t>(col));
+      values.push_back(v);
+      sum += v;
+    }
+    put_diagonal_before(UINT32_MAX);
+    for (std::size_t r = row_start; r < values.size(); ++r)
+      if (inner[r] == static_cast<std::int32_t>(i)) values[r] = -sum;
+    empty_rows += values.size() - row_start == 1;
+    outer[i + 1] = static_cast<std::int32_t>(values.size());
+  }
+
+  // 3. Into Eigen's compressed storage.
+  SparseMatrix a(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+  a.resizeNonZeros(static_cast<Eigen::Index>(values.size()));
+  std::copy(outer.begin(), outer.end(), a.outerIndexPtr());
+  std::copy(inner.begin(), inner.end(), a.innerIndexPtr());
+  std::copy(values.begin(), values.end(), a.valuePtr());
+  if (report) {
+    report->zero_area_triangles = zero_area;
+    report->empty_rows = empty_rows;
+    report->one_sided_pairs = one_sided / 2;
+  }
+  return a;
+}
+
+}  // namespace qf
