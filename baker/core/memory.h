@@ -1,0 +1,27 @@
+// Large arrays on transparent huge pages. On the project's VMs a first touch of fresh memory
+// costs ~2.7 ms per MB in page faults (measured: 64 MB memset 172 ms; 100 ms with huge pages),
+// which is a large share of the analysis of a million points. Asking for huge pages before the
+// first touch cuts the number of faults 512-fold where the kernel grants them.
+#pragma once
+
+#include <sys/mman.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace qf {
+
+// Reserves capacity for n elements and, for 2 MiB or more, advises the kernel to back the
+// buffer with huge pages. Call before filling the vector.
+template <class T>
+void reserve_huge(std::vector<T>& v, std::size_t n) {
+  v.reserve(n);
+  constexpr std::uintptr_t kHuge = std::uintptr_t{2} << 20;
+  const std::size_t bytes = v.capacity() * sizeof(T);
+  if (bytes < kHuge) return;
+  const auto begin = reinterpret_cast<std::uintptr_t>(v.data());
+  const std::uintptr_t first = (begin + kHuge - 1) & ~(kHuge - 1), last = (begin + bytes) & ~(kHuge - 1);
+  if (last > first) ::madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
+}
+
+}  // namespace qf
