@@ -1,7 +1,26 @@
 #!/usr/bin/env bash
-# Benchmarks (tables, not tests): reader throughput on 1M points.
-# usage: scripts/bench.sh [points] [repeats]
+# Benchmarks (tables, not tests): reader throughput on 1M points, and the surface analysis
+# (k = 50) on 100k and 1M synthetic points and on bunny00, with 2 threads and 1.
+# usage: scripts/bench.sh [io|analysis]...   (default: both)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh >/dev/null
-build/bin/qf-bench-io "$@"
+what=("$@")
+[[ ${#what[@]} -eq 0 ]] && what=(io analysis)
+for w in "${what[@]}"; do
+  case $w in
+    io) build/bin/qf-bench-io ;;
+    analysis)
+      models=$(scripts/fetch-models.sh bunny00.off | tail -1)
+      echo "surface analysis: time per step (wall clock), peak resident memory of the whole process per point"
+      echo
+      build/bin/qf-bench-analysis --header
+      for threads in 2 1; do
+        OMP_NUM_THREADS=$threads build/bin/qf-bench-analysis torus 100000
+        OMP_NUM_THREADS=$threads build/bin/qf-bench-analysis torus 1000000
+        OMP_NUM_THREADS=$threads build/bin/qf-bench-analysis "$models/bunny00.off"
+      done ;;
+    *) echo "unknown benchmark '$w' (io, analysis)" >&2; exit 2 ;;
+  esac
+  echo
+done

@@ -23,7 +23,7 @@ expect 0 "--version" -- "$bake" --version
 grep -q '^qf-bake [0-9]' "$work/out" && ok || bad "--version prints 'qf-bake X.Y.Z'"
 expect 0 "--help" -- "$bake" --help
 cp "$work/out" "$work/overview"
-for cmd in info convert generate; do
+for cmd in info convert generate analyze; do
   grep -q "^  $cmd " "$work/overview" && ok || bad "--help lists $cmd"
   expect 0 "$cmd --help" -- "$bake" "$cmd" --help
   grep -q "usage: qf-bake $cmd" "$work/out" && ok || bad "$cmd --help shows usage"
@@ -87,6 +87,45 @@ grep -q "convert.mesh_input" "$work/err" && ok || bad "mesh input to convert nam
 printf "0 0 0\n1 0 0\n0 1 0\n" >"$work/p.xyz"
 expect 1 "xyz without normals -> qs" -- "$bake" convert "$work/p.xyz" "$work/x.qs"
 grep -q "convert.needs_normals" "$work/err" && ok || bad "qs output without normals names its error code"
+
+# --- analyze: debug point set, Matrix Market output, thread independence ---
+expect 0 "analyze" -- "$bake" analyze "$work/oct.ply" -o "$work/an.ply" --matrix "$work/a.mtx"
+grep -q "fans: mean" "$work/err" && grep -q "time: neighbourhoods" "$work/err" && ok || bad "analyze prints its summary"
+head -c 2000 "$work/an.ply" | grep -q "property float classifier" && ok || bad "analyze writes the classifier property"
+head -c 2000 "$work/an.ply" | grep -q "property float variation" && ok || bad "analyze writes the variation property"
+head -1 "$work/a.mtx" | grep -q "^%%MatrixMarket matrix coordinate real general" && ok || bad "matrix is Matrix Market"
+/usr/bin/python3 - "$work/a.mtx" <<'PY' 2>"$work/err" && ok || bad "matrix: $(tail -2 "$work/err")"
+import sys
+rows = {}
+with open(sys.argv[1]) as f:
+    lines = [l for l in f if not l.startswith('%')]
+n, m, nnz = map(int, lines[0].split())
+assert n == m == 16000 and len(lines) - 1 == nnz, (n, m, nnz, len(lines))
+entries = {}
+for l in lines[1:]:
+    i, j, v = l.split()
+    entries[(int(i), int(j))] = float(v)
+for (i, j), v in entries.items():
+    assert entries.get((j, i)) == v, "not symmetric at %d %d" % (i, j)
+sums, scale = {}, {}
+for (i, j), v in entries.items():
+    sums[i] = sums.get(i, 0.0) + v
+    scale[i] = max(scale.get(i, 0.0), abs(v))
+assert all(abs(sums[i]) <= 1e-12 * scale[i] for i in sums), "a row does not sum to 0"
+PY
+expect 0 "analyze 1 thread" -- "$bake" analyze "$work/oct.ply" -o "$work/an1.ply" --matrix "$work/a1.mtx" --threads 1 -q
+cmp -s "$work/an.ply" "$work/an1.ply" && cmp -s "$work/a.mtx" "$work/a1.mtx" && ok || bad "analyze output differs between 1 and 2 threads"
+expect 0 "analyze variation" -- "$bake" analyze "$work/oct.ply" -o "$work/anv.ply" --classifier variation -k 30 -q
+cut -d' ' -f1-3 "$work/oct2.xyz" >"$work/bare.xyz"
+expect 0 "analyze xyz without normals" -- "$bake" analyze "$work/bare.xyz" -o "$work/anx.ply"
+grep -q "normals: estimated (PCA)" "$work/err" && ok || bad "analyze reports estimated normals"
+expect 1 "analyze a mesh" -- "$bake" analyze "$shared/data/qsplat/pyr.ply" -o "$work/m.ply"
+expect 2 "analyze bad classifier" -- "$bake" analyze "$work/oct.ply" -o "$work/x.ply" --classifier magic
+expect 2 "analyze k out of range" -- "$bake" analyze "$work/oct.ply" -o "$work/x.ply" -k 1
+printf "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\nproperty float z\nend_header\n" >"$work/empty.ply"
+expect 1 "analyze empty" -- "$bake" analyze "$work/empty.ply" -o "$work/x.ply"
+grep -q "analyze.empty" "$work/err" && ok || bad "empty input names its error"
+[[ ! -e "$work/x.ply" ]] && ok || bad "failed analyze left an output"
 
 # --- every malformed file: exit 1, message names file and code, no output ---
 while IFS=$'\t' read -r file code; do
