@@ -12,7 +12,7 @@ for w in "${what[@]}"; do
     io) build/bin/qf-bench-io ;;
     analysis)
       models=$(scripts/fetch-models.sh bunny00.off | tail -1)
-      echo "surface analysis: time per step (wall clock), peak resident memory of the whole process per point"
+      echo "surface analysis: time per step (wall clock); B/pt = peak memory added by the analysis per point"
       echo
       build/bin/qf-bench-analysis --header
       for threads in 2 1; do
