@@ -65,23 +65,6 @@ void fan_row(std::size_t i, const std::vector<Vec3f>& pos, const Fans& fans, con
   row.resize(w);
 }
 
-Csr transpose(const Csr& m, std::size_t n) {
-  Csr t;
-  t.offsets.assign(n + 1, 0);
-  for (std::uint32_t c : m.cols) ++t.offsets[c + 1];
-  for (std::size_t i = 0; i < n; ++i) t.offsets[i + 1] += t.offsets[i];
-  t.cols.resize(m.cols.size());
-  t.vals.resize(m.vals.size());
-  std::vector<std::uint32_t> fill(t.offsets.begin(), t.offsets.end() - 1);
-  for (std::size_t i = 0; i < n; ++i)  // rows in order: each transposed row comes out sorted
-    for (std::uint32_t r = m.offsets[i]; r < m.offsets[i + 1]; ++r) {
-      const std::uint32_t dst = fill[m.cols[r]]++;
-      t.cols[dst] = static_cast<std::uint32_t>(i);
-      t.vals[dst] = m.vals[r];
-    }
-  return t;
-}
-
 }  // namespace
 
 SparseMatrix assemble_stiffness(const std::vector<Vec3f>& positions, const Fans& fans,
@@ -114,58 +97,18 @@ SparseMatrix assemble_stiffness(const std::vector<Vec3f>& positions, const Fans&
     std::vector<Entry>().swap(blk);
   }
 
-  // 2. Eqs. 6-7: A_ij = (At_ij + At_ji) / 2 by merging row i of At and of its transpose; the
-  //    diagonal makes the row sum 0. Both sides of a pair add the same two numbers, so A is
-  //    exactly symmetric.
-  const Csr tt = transpose(at, n);
-  std::vector<std::int32_t> outer(n + 1, 0);
-  std::vector<std::int32_t> inner;
-  std::vector<double> values;
-  inner.reserve(at.cols.size() + n + at.cols.size() / 8);
-  values.reserve(inner.capacity());
-  std::size_t one_sided = 0, empty_rows = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    std::uint32_t p = at.offsets[i], q = tt.offsets[i];
-    const std::uint32_t pe = at.offsets[i + 1], qe = tt.offsets[i + 1];
-    const std::size_t row_start = values.size();
-    double sum = 0;
-    bool diag_done = false;
-    auto put_diagonal_before = [&](std::uint32_t col) {
-      if (!diag_done && col > i) {
-        inner.push_back(static_cast<std::int32_t>(i));
-        values.push_back(0.0);  // filled below
-        diag_done = true;
-      }
-    };
-    while (p < pe || q < qe) {
-      const std::uint32_t cp = p < pe ? at.cols[p] : UINT32_MAX, cq = q < qe ? tt.cols[q] : UINT32_MAX;
-      const std::uint32_t col = std::min(cp, cq);
-      const double a = cp == col ? at.vals[p++] : 0.0;
-      const double b = cq == col ? tt.vals[q++] : 0.0;
-      one_sided += (cp != cq);
-      put_diagonal_before(col);
-      const double v = 0.5 * (a + b);
-      inner.push_back(static_cast<std::int32_t>(col));
-      values.push_back(v);
-      sum += v;
-    }
-    put_diagonal_before(UINT32_MAX);
-    for (std::size_t r = row_start; r < values.size(); ++r)
-      if (inner[r] == static_cast<std::int32_t>(i)) values[r] = -sum;
-    empty_rows += values.size() - row_start == 1;
-    outer[i + 1] = static_cast<std::int32_t>(values.size());
-  }
-
-  // 3. Into Eigen's compressed storage.
-  SparseMatrix a(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
-  a.resizeNonZeros(static_cast<Eigen::Index>(values.size()));
-  std::copy(outer.begin(), outer.end(), a.outerIndexPtr());
-  std::copy(inner.begin(), inner.end(), a.innerIndexPtr());
-  std::copy(values.begin(), values.end(), a.valuePtr());
+  // 2. Eqs. 6-7: A_ij = (At_ij + At_ji) / 2, A_ii = -sum_j A_ij (exactly symmetric, rows sum to 0).
+  std::vector<std::int32_t> outer(at.offsets.begin(), at.offsets.end()), inner(at.cols.begin(), at.cols.end());
+  std::vector<std::uint32_t>().swap(at.offsets);
+  std::vector<std::uint32_t>().swap(at.cols);
+  const SparseMatrix at_matrix = from_rows(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n), outer, inner, at.vals);
+  std::vector<double>().swap(at.vals);
+  SymmetrizeReport sym;
+  SparseMatrix a = symmetrize_zero_row_sums(at_matrix, 0.0, &sym);
   if (report) {
     report->zero_area_triangles = zero_area;
-    report->empty_rows = empty_rows;
-    report->one_sided_pairs = one_sided / 2;
+    report->empty_rows = sym.empty_rows;
+    report->one_sided_pairs = sym.one_sided;
   }
   return a;
 }

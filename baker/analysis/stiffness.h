@@ -10,16 +10,13 @@
 // dimensionless: A does not change when the point set is scaled uniformly.
 #pragma once
 
-#include <Eigen/SparseCore>
-
 #include <cstdint>
 #include <vector>
 
 #include "analysis/fans.h"
+#include "core/sparse.h"
 
 namespace qf {
-
-using SparseMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor, std::int32_t>;
 
 struct StiffnessReport {
   std::size_t zero_area_triangles = 0;  // fan triangles skipped: their 3D area is ~0 (coincident or collinear points)

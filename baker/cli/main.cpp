@@ -6,6 +6,7 @@
 
 #include "cli/commands.h"
 #include "core/error.h"
+#include "core/memory.h"
 
 #ifndef QF_VERSION
 #define QF_VERSION "0.0.0"
@@ -57,6 +58,7 @@ int dispatch(const std::vector<std::string>& argv) {
 
 int main(int argc, char** argv) {
   std::ios::sync_with_stdio(false);
+  qf::keep_freed_memory();
   const std::vector<std::string> args(argv + 1, argv + argc);
   try {
     return dispatch(args);

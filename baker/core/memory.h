@@ -4,6 +4,7 @@
 // first touch cuts the number of faults 512-fold where the kernel grants them.
 #pragma once
 
+#include <malloc.h>
 #include <sys/mman.h>
 
 #include <cstdint>
@@ -22,6 +23,16 @@ void reserve_huge(std::vector<T>& v, std::size_t n) {
   const auto begin = reinterpret_cast<std::uintptr_t>(v.data());
   const std::uintptr_t first = (begin + kHuge - 1) & ~(kHuge - 1), last = (begin + bytes) & ~(kHuge - 1);
   if (last > first) ::madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
+}
+
+// For executables, at start-up: keep freed memory in the process for reuse instead of returning
+// it to the kernel (no mmap'ed chunks, no heap trimming), so the stages' temporaries are recycled
+// instead of faulted in afresh. Measured on 1M points: AMG hierarchy 6.7 s -> 3.4 s, analysis
+// 7.5 s -> 5.8 s. The cost is that a process keeps its peak heap until it exits.
+inline void keep_freed_memory() {
+  ::mallopt(M_MMAP_MAX, 0);
+  ::mallopt(M_TRIM_THRESHOLD, -1);
+  ::mallopt(M_TOP_PAD, 64 << 20);
 }
 
 }  // namespace qf

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "analysis/analysis.h"
+#include "core/memory.h"
 #include "io/model_io.h"
 #include "shapes/shapes.h"
 
@@ -32,6 +33,7 @@ std::size_t rss(const char* key) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  keep_freed_memory();
   if (argc > 1 && std::string(argv[1]) == "--header") {
     std::printf("| %-22s | %9s | %3s | %7s | %7s | %7s | %7s | %7s | %7s | %7s | %9s | %9s | %6s |\n", "input", "points",
                 "k", "threads", "nbhd s", "frame s", "class s", "fans s", "A s", "total s", "points/s", "B/pt",

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "core/file_io.h"
+#include "core/memory.h"
 #include "io/model_io.h"
 #include "shapes/shapes.h"
 
@@ -53,6 +54,7 @@ void write_ascii_ply(const std::string& path, const PointSet& p) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  keep_freed_memory();
   const std::size_t n = argc > 1 ? std::strtoull(argv[1], nullptr, 10) : 1000000;
   const int repeats = argc > 2 ? std::atoi(argv[2]) : 5;
   const std::string dir = (std::filesystem::temp_directory_path() / "qf-bench-io").string();
