@@ -159,7 +159,7 @@ Classifier classify(const LocalFrames& frames, const Neighborhoods& nb, const Cl
         int used = 0;
         for (std::uint32_t r = nb.offsets[i]; r < nb.offsets[i + 1] && used < int(kSpacingNeighbors); ++r)
           if (nb.distances[r] > 0) sum += nb.distances[r], ++used;
-        eps = used ? 0.5 * sum / used : 0.0;
+        eps = used ? 0.25 * sum / used : 0.0;
       }
       s = (l[0] > 0 && eps > 0) ? frames.centroid_offset[i] * double(l[2]) / (eps * l[0]) : 0.0;
     }

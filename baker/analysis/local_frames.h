@@ -46,12 +46,14 @@ struct Classifier {
   std::vector<float> variation;  // surface variation sigma = lambda2 / (lambda0 + lambda1 + lambda2), in [0, 1/3]
 };
 
-// Paper (default): C = G(|M0 - x| lambda2 / (eps lambda0)), eq. 3. With epsilon off, eps is half
-// the point's sample spacing h (h = mean distance to its 6 nearest neighbours), so s compares the
-// barycentre shift with the spacing and is unchanged by uniform scaling. On a flat area s = 0 and
-// C = 1/alpha = 100; at the octahedron's edges (k = 50) C is ~1/260 of that, the "one up to several
-// orders of magnitude" of the paper. (eps = h gives only ~1/66 there; eps = the neighbourhood
-// radius ~1/6, too weak to separate the faces.)
+// Paper (default): C = G(|M0 - x| lambda2 / (eps lambda0)), eq. 3. With epsilon off, eps is a
+// quarter of the point's sample spacing h (h = mean distance to its 6 nearest neighbours), so s
+// compares the barycentre shift with the spacing and is unchanged by uniform scaling. On a flat
+// area s = 0 and C = 1/alpha = 100; at the octahedron's edges (k = 50) C is ~1/1000 of that, the
+// "several orders of magnitude" of the paper. Why a quarter: eps = h gives only ~1/66 and the
+// neighbourhood radius ~1/6; with h/2 (~1/260) AMG still merges functions across the octahedron's
+// edges at its coarse levels, with h/4 it keeps one face per function down to 16 functions
+// (amg-notes 3.5: crease couplings must be ~1e-3 of the others).
 // Variation (thesis 2.3): C = G(3 sigma), 3 sigma in [0, 1] taking the role of s.
 // Both stay finite for degenerate neighbourhoods (lambda0 = 0 gives s = 0).
 Classifier classify(const LocalFrames& frames, const Neighborhoods& nb, const ClassifierOptions& options = {});

@@ -136,4 +136,80 @@ SparseMatrix galerkin_product(const SparseMatrix& a, const SparseMatrix& p) {
   return from_rows(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(m), outer, inner, values);
 }
 
+SparseMatrix sparse_product(const SparseMatrix& a, const SparseMatrix& b, double prune) {
+  const auto n = static_cast<std::size_t>(a.rows()), m = static_cast<std::size_t>(b.cols());
+  std::vector<std::int32_t> outer(n + 1, 0);
+  std::vector<std::vector<std::int32_t>> block_cols;
+  std::vector<std::vector<double>> block_vals;
+#pragma omp parallel
+  {
+#pragma omp single
+    {
+      block_cols.resize(static_cast<std::size_t>(omp_get_num_threads()));
+      block_vals.resize(block_cols.size());
+    }
+    const auto t = static_cast<std::size_t>(omp_get_thread_num());
+    std::vector<double> acc(m, 0.0);
+    std::vector<std::int32_t> touched;
+    std::vector<char> seen(m, 0);
+    const std::int32_t *ap = a.outerIndexPtr(), *ai = a.innerIndexPtr(), *bp = b.outerIndexPtr(), *bi = b.innerIndexPtr();
+    const double *av = a.valuePtr(), *bv = b.valuePtr();
+#pragma omp for schedule(static)
+    for (std::ptrdiff_t si = 0; si < static_cast<std::ptrdiff_t>(n); ++si) {
+      touched.clear();
+      for (std::int32_t e = ap[si]; e < ap[si + 1]; ++e)
+        for (std::int32_t c = bp[ai[e]]; c < bp[ai[e] + 1]; ++c) {
+          const auto j = static_cast<std::size_t>(bi[c]);
+          if (!seen[j]) seen[j] = 1, touched.push_back(static_cast<std::int32_t>(j));
+          acc[j] += av[e] * bv[c];
+        }
+      std::sort(touched.begin(), touched.end());
+      double sum = 0, kept = 0, largest = 0;
+      for (std::int32_t j : touched) sum += acc[static_cast<std::size_t>(j)], largest = std::max(largest, acc[static_cast<std::size_t>(j)]);
+      for (std::int32_t j : touched) {
+        const double v = acc[static_cast<std::size_t>(j)];
+        if (!(prune > 0) || v >= prune || v == largest) kept += v;
+      }
+      const double scale = (prune > 0 && kept > 0) ? sum / kept : 1.0;
+      std::size_t count = 0;
+      for (std::int32_t j : touched) {
+        const double v = acc[static_cast<std::size_t>(j)];
+        acc[static_cast<std::size_t>(j)] = 0.0;
+        seen[static_cast<std::size_t>(j)] = 0;
+        if (prune > 0 && v < prune && v != largest) continue;
+        block_cols[t].push_back(j);
+        block_vals[t].push_back(v * scale);
+        ++count;
+      }
+      outer[static_cast<std::size_t>(si) + 1] = static_cast<std::int32_t>(count);
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i) outer[i + 1] += outer[i];
+  std::vector<std::int32_t> inner;
+  std::vector<double> values;
+  inner.reserve(static_cast<std::size_t>(outer[n]));
+  values.reserve(static_cast<std::size_t>(outer[n]));
+  for (std::size_t t = 0; t < block_cols.size(); ++t) {
+    inner.insert(inner.end(), block_cols[t].begin(), block_cols[t].end());
+    values.insert(values.end(), block_vals[t].begin(), block_vals[t].end());
+  }
+  return from_rows(a.rows(), b.cols(), outer, inner, values);
+}
+
+SparseMatrix scatter_rows(const SparseMatrix& m, const std::vector<std::uint32_t>& order) {
+  const std::size_t n = order.size();
+  std::vector<std::uint32_t> source(n);  // source[i] = row of m that becomes row i
+  for (std::size_t r = 0; r < n; ++r) source[order[r]] = static_cast<std::uint32_t>(r);
+  std::vector<std::int32_t> outer(n + 1, 0), inner;
+  std::vector<double> values;
+  inner.reserve(static_cast<std::size_t>(m.nonZeros()));
+  values.reserve(static_cast<std::size_t>(m.nonZeros()));
+  for (std::size_t i = 0; i < n; ++i) {
+    for (SparseMatrix::InnerIterator it(m, static_cast<Eigen::Index>(source[i])); it; ++it)
+      inner.push_back(static_cast<std::int32_t>(it.col())), values.push_back(it.value());
+    outer[i + 1] = static_cast<std::int32_t>(values.size());
+  }
+  return from_rows(m.rows(), m.cols(), outer, inner, values);
+}
+
 }  // namespace qf

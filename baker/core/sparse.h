@@ -30,4 +30,12 @@ SparseMatrix symmetrize_zero_row_sums(const SparseMatrix& a, double drop = 0.0, 
 // a fixed order, so the result does not depend on the thread count.
 SparseMatrix galerkin_product(const SparseMatrix& a, const SparseMatrix& p);
 
+// C = A B (A: n x k, B: k x m), row by row over every core, entries summed in a fixed order.
+// With prune > 0, each row of C then loses its entries below `prune` (its largest entry is always
+// kept) and is rescaled to its former sum: for row-stochastic A and B, C stays row-stochastic.
+SparseMatrix sparse_product(const SparseMatrix& a, const SparseMatrix& b, double prune = 0.0);
+
+// The matrix whose row order[r] is row r of `m` (order is a permutation of the rows).
+SparseMatrix scatter_rows(const SparseMatrix& m, const std::vector<std::uint32_t>& order);
+
 }  // namespace qf

@@ -1,0 +1,193 @@
+// AMG hierarchy, basis functions and domains (paper 2.3; amg-notes 4): the contracts of every P,
+// A_l and Psi_l, coarsening ratios, faces and creases kept apart, determinism.
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <cmath>
+#include <map>
+
+#include "amg/basis.h"
+#include "amg/hierarchy.h"
+#include "analysis/analysis.h"
+#include "domains/domains.h"
+#include "shapes/shapes.h"
+
+namespace qf {
+namespace {
+
+void expect_stochastic(const SparseMatrix& m, const char* what) {
+  for (Eigen::Index i = 0; i < m.rows(); ++i) {
+    double sum = 0;
+    for (SparseMatrix::InnerIterator it(m, i); it; ++it) {
+      ASSERT_GE(it.value(), 0.0) << what << " row " << i;
+      sum += it.value();
+    }
+    ASSERT_LE(std::fabs(sum - 1.0), 1e-12) << what << " row " << i;
+  }
+}
+
+void expect_symmetric_zero_rows(const SparseMatrix& a) {
+  const SparseMatrix at = a.transpose();
+  for (Eigen::Index i = 0; i < a.rows(); ++i) {
+    double sum = 0, scale = 0;
+    for (SparseMatrix::InnerIterator it(a, i); it; ++it) {
+      ASSERT_EQ(it.value(), at.coeff(i, it.col()));
+      sum += it.value();
+      scale = std::max(scale, std::fabs(it.value()));
+    }
+    ASSERT_LE(std::fabs(sum), 1e-10 * std::max(scale, 1e-300)) << "row " << i;
+  }
+}
+
+TEST(Amg, ContractsOnEveryLevel) {
+  const PointSet p = generate_shape("torus", {20000, 3});
+  const SurfaceAnalysis a = analyze_surface(p);
+  const AmgHierarchy h = build_hierarchy(a.stiffness);
+  ASSERT_GE(h.level_count(), 8u);
+  EXPECT_LE(h.levels.back().size, 9u);
+  EXPECT_EQ(h.components, 1u);
+  for (std::size_t l = 1; l < h.level_count(); ++l) {
+    SCOPED_TRACE(l);
+    expect_stochastic(h.P[l - 1], "P");
+    EXPECT_GE(h.levels[l].ratio, 1.8);
+    EXPECT_LE(h.levels[l].ratio, 3.5);
+  }
+  // The coarse operators, recomputed from Psi (A_l = Psi_l^T A Psi_l), keep symmetry and zero row sums.
+  for_each_basis(h, h.level_count() - 1, {}, [&](std::size_t l, const SparseMatrix& psi) {
+    SCOPED_TRACE(l);
+    ASSERT_EQ(static_cast<std::size_t>(psi.cols()), h.levels[l].size);
+    expect_stochastic(psi, "Psi");
+    expect_symmetric_zero_rows(symmetrize_zero_row_sums(galerkin_product(a.stiffness, psi), 0.0));
+  });
+}
+
+TEST(Amg, DeterministicAcrossRunsAndThreads) {
+  const PointSet p = generate_shape("sphere", {15000, 4});
+  const SurfaceAnalysis a = analyze_surface(p);
+  omp_set_num_threads(1);
+  const std::uint64_t one = hierarchy_hash(build_hierarchy(a.stiffness));
+  omp_set_num_threads(2);
+  const AmgHierarchy h = build_hierarchy(a.stiffness);
+  EXPECT_EQ(hierarchy_hash(h), one);
+  EXPECT_EQ(hierarchy_hash(build_hierarchy(a.stiffness)), one);
+  omp_set_num_threads(1);
+  const SparseMatrix psi1 = basis_at_level(h, h.level_count() - 2);
+  omp_set_num_threads(2);
+  const SparseMatrix psi2 = basis_at_level(h, h.level_count() - 2);
+  ASSERT_EQ(psi1.nonZeros(), psi2.nonZeros());
+  EXPECT_TRUE(std::equal(psi1.valuePtr(), psi1.valuePtr() + psi1.nonZeros(), psi2.valuePtr()));
+}
+
+// Octahedron face of a point and its distance (in the face) to the nearest edge.
+int face_of(Vec3f p) { return (p.x < 0) | (p.y < 0) << 1 | (p.z < 0) << 2; }
+float edge_distance(Vec3f p) {
+  return std::min({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z)}) / std::sqrt(2.0f / 3.0f);
+}
+
+// Core of every basis function (Psi > 0.5) on a single face, not counting the crease band: the
+// points within two sample spacings of an edge, where the classifier is low on both sides.
+std::size_t straddling_cores(const SparseMatrix& psi, const PointSet& p, float band,
+                             int (*side)(Vec3f), float (*distance)(Vec3f)) {
+  const SparseMatrix by_function = psi.transpose();
+  std::size_t straddling = 0;
+  for (Eigen::Index f = 0; f < by_function.rows(); ++f) {
+    std::map<int, int> sides;
+    for (SparseMatrix::InnerIterator it(by_function, f); it; ++it) {
+      const Vec3f x = p.positions[static_cast<std::size_t>(it.col())];
+      if (it.value() > 0.5 && distance(x) > band) ++sides[side(x)];
+    }
+    straddling += sides.size() > 1;
+  }
+  return straddling;
+}
+
+TEST(Amg, OctahedronFunctionsStayOnTheirFaces) {
+  const PointSet p = generate_shape("octahedron");
+  const SurfaceAnalysis a = analyze_surface(p);
+  const AmgHierarchy h = build_hierarchy(a.stiffness);
+  std::size_t level = 0;
+  for (std::size_t l = 1; l < h.level_count(); ++l)
+    if (h.levels[l].size >= 8) level = l;
+  ASSERT_GT(level, 0u);
+  const float spacing = std::sqrt(8 * std::sqrt(3.0f) / 2 / float(p.size()));
+  const SparseMatrix psi = basis_at_level(h, level);
+  EXPECT_EQ(straddling_cores(psi, p, 2 * spacing, face_of, edge_distance), 0u)
+      << "level " << level << " with " << h.levels[level].size << " functions";
+}
+
+int crease_side(Vec3f p) { return p.y == 0.0f ? 0 : 1; }
+float crease_distance(Vec3f p) { return std::max(p.x, p.y); }
+
+TEST(Amg, NoFunctionStraddlesACreaseUntilTheLastLevels) {
+  const PointSet p = generate_shape("crease", {20000, 3});
+  const SurfaceAnalysis a = analyze_surface(p);
+  const AmgHierarchy h = build_hierarchy(a.stiffness);
+  const float spacing = std::sqrt(2.0f / 20000.0f);
+  ASSERT_GE(h.level_count(), 6u);
+  for_each_basis(h, h.level_count() - 3, {}, [&](std::size_t l, const SparseMatrix& psi) {
+    EXPECT_EQ(straddling_cores(psi, p, 2 * spacing, crease_side, crease_distance), 0u)
+        << "level " << l << " with " << psi.cols() << " functions";
+  });
+}
+
+TEST(Domains, ThresholdStrictAndGraph) {
+  const PointSet p = generate_shape("torus", {10000, 6});
+  const SurfaceAnalysis a = analyze_surface(p);
+  const AmgHierarchy h = build_hierarchy(a.stiffness);
+  const std::size_t level = h.level_count() - 3;
+  const SparseMatrix psi = basis_at_level(h, level);
+  const Domains d = make_domains(psi);
+  ASSERT_EQ(d.count(), static_cast<std::size_t>(psi.cols()));
+  // Every point of a domain has weight > tau there, and every such weight puts it in the domain.
+  std::size_t memberships = 0;
+  for (Eigen::Index i = 0; i < psi.rows(); ++i)
+    for (SparseMatrix::InnerIterator it(psi, i); it; ++it) memberships += it.value() > 0.05;
+  EXPECT_EQ(d.points.size(), memberships);
+  for (std::size_t f = 0; f < d.count(); ++f)
+    for (std::uint32_t r = d.offsets[f]; r < d.offsets[f + 1]; ++r)
+      EXPECT_GT(psi.coeff(d.points[r], static_cast<Eigen::Index>(f)), 0.05);
+  EXPECT_GT(d.shared_points, 0u);  // overlapping domains
+  ASSERT_FALSE(d.edges.empty());
+  for (const auto& e : d.edges) EXPECT_LT(e[0], e[1]);
+  // A connected closed surface: the neighbour graph reaches every non-empty domain.
+  std::vector<int> seen(d.count(), 0);
+  std::vector<std::uint32_t> stack{d.edges[0][0]};
+  seen[d.edges[0][0]] = 1;
+  while (!stack.empty()) {
+    const std::uint32_t x = stack.back();
+    stack.pop_back();
+    for (const auto& e : d.edges)
+      for (int s = 0; s < 2; ++s)
+        if (e[s] == x && !seen[e[1 - s]]) seen[e[1 - s]] = 1, stack.push_back(e[1 - s]);
+  }
+  for (std::size_t f = 0; f < d.count(); ++f) {
+    if (d.size(f) > 0) EXPECT_TRUE(seen[f]) << "domain " << f;
+  }
+  // Strict domains partition the points.
+  DomainOptions strict;
+  strict.strict = true;
+  const Domains s = make_domains(psi, strict);
+  EXPECT_EQ(s.points.size(), p.size());
+  EXPECT_EQ(s.shared_points, 0u);
+  EXPECT_EQ(s.uncovered, 0u);
+}
+
+TEST(Amg, DisconnectedPartsAreReported) {
+  // Two spheres far apart: two components; coarsening cannot merge them.
+  PointSet p = generate_shape("sphere", {4000, 1});
+  const PointSet q = generate_shape("sphere", {4000, 2});
+  for (std::size_t i = 0; i < q.size(); ++i) {
+    p.positions.push_back(q.positions[i] + Vec3f{10, 0, 0});
+    p.normals.push_back(q.normals[i]);
+  }
+  p.colors.clear();
+  p.radii.clear();
+  const SurfaceAnalysis a = analyze_surface(p);
+  const AmgHierarchy h = build_hierarchy(a.stiffness);
+  EXPECT_EQ(h.components, 2u);
+  EXPECT_GE(h.levels.back().size, 2u);
+  expect_stochastic(basis_at_level(h, h.level_count() - 1), "coarsest Psi");
+}
+
+}  // namespace
+}  // namespace qf
