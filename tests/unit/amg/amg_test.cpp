@@ -161,7 +161,9 @@ TEST(Domains, ThresholdStrictAndGraph) {
         if (e[s] == x && !seen[e[1 - s]]) seen[e[1 - s]] = 1, stack.push_back(e[1 - s]);
   }
   for (std::size_t f = 0; f < d.count(); ++f) {
-    if (d.size(f) > 0) EXPECT_TRUE(seen[f]) << "domain " << f;
+    if (d.size(f) > 0) {
+      EXPECT_TRUE(seen[f]) << "domain " << f;
+    }
   }
   // Strict domains partition the points.
   DomainOptions strict;
