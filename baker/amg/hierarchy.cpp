@@ -6,6 +6,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
+#include <string>
 
 namespace qf {
 namespace {
@@ -298,6 +300,24 @@ AmgHierarchy build_hierarchy(const SparseMatrix& a0, const AmgOptions& options) 
                         std::chrono::duration<double>(t2 - t1).count()});
   }
   return h;
+}
+
+std::size_t level_by_index(const AmgHierarchy& h, long long k) {
+  const auto count = static_cast<long long>(h.level_count());
+  const long long level = k >= 0 ? k : count - 1 + k;
+  if (level < 0 || level >= count)
+    throw std::out_of_range("level " + std::to_string(k) + " does not exist: the hierarchy has levels 0.." +
+                            std::to_string(count - 1) + " (or -" + std::to_string(count - 1) + "..0 from the coarsest)");
+  return static_cast<std::size_t>(level);
+}
+
+std::size_t level_by_primitives(const AmgHierarchy& h, std::size_t primitives) {
+  std::size_t best = 0;
+  for (std::size_t l = 0; l < h.level_count(); ++l) {
+    const auto miss = [&](std::size_t x) { return x > primitives ? x - primitives : primitives - x; };
+    if (miss(h.levels[l].size) <= miss(h.levels[best].size)) best = l;  // later = coarser wins ties
+  }
+  return best;
 }
 
 std::uint64_t hierarchy_hash(const AmgHierarchy& h) {

@@ -53,6 +53,13 @@ struct AmgHierarchy {
 // disconnected parts are left). Deterministic: no randomness, no dependence on thread count.
 AmgHierarchy build_hierarchy(const SparseMatrix& a, const AmgOptions& options = {});
 
+// Level by its number: k >= 0 counts from the finest (0 = the points themselves), k < 0 back from
+// the coarsest L = level_count() - 1 (k = -5 is the paper's "L-5"). Throws std::out_of_range.
+std::size_t level_by_index(const AmgHierarchy& h, long long k);
+
+// The level whose number of basis functions is nearest `primitives` (the coarser one on ties).
+std::size_t level_by_primitives(const AmgHierarchy& h, std::size_t primitives);
+
 // A stable 64-bit fingerprint of the hierarchy (sizes, structure and values of every P).
 std::uint64_t hierarchy_hash(const AmgHierarchy& h);
 

@@ -1,6 +1,4 @@
 // The analyze command: stages 1-3 (neighbourhoods, classifier, fans, stiffness) with debug outputs.
-#include <omp.h>
-
 #include <cstdio>
 #include <iostream>
 
@@ -13,21 +11,18 @@
 namespace qf::cli {
 
 CommandSpec analyze_spec() {
-  return {"analyze", "IN -o OUT.ply [options]",
+  CommandSpec spec{"analyze", "IN -o OUT.ply [options]",
           "surface analysis: neighbourhoods, moment classifier, local Delaunay fans, stiffness matrix",
           "Writes the points with the classifier as colours (smooth = red, creases = blue, as the paper's\n"
           "figure 1b), the classifier and the surface variation as extra float properties (classifier,\n"
           "variation), and the oriented normals. Prints a summary with the time per step.",
           {{"output", 'o', "OUT.ply", "", "output point set (.ply); required"},
-           {"k", 'k', "N", "50", "neighbours per point (paper 2.1: 50..100)"},
-           {"epsilon", 0, "E", "off", "feature size in model units: neighbourhoods widen to the ball B_E, and E is the eps of eq. 3"},
-           {"max-neighbors", 0, "N", "200", "cap on a widened neighbourhood"},
-           {"classifier", 0, "paper|variation", "paper", "C = G(|M0-x| l2/(eps l0)) (paper eq. 3), or G(3 sigma) from the surface variation"},
            {"matrix", 0, "A.mtx", "", "also write the stiffness matrix A (Matrix Market coordinate format)"},
-           {"threads", 'j', "N", "all cores", "threads to use (the output does not depend on it)"},
            drop_nonfinite_option(),
            {"quiet", 'q', "", "", "print nothing on success"}},
           1, 1};
+  for (OptionSpec& o : analysis_option_specs()) spec.options.push_back(o);
+  return spec;
 }
 
 int run_analyze(const ParsedArgs& args) {
@@ -35,28 +30,10 @@ int run_analyze(const ParsedArgs& args) {
   if (!args.has("output")) throw UsageError("analyze needs -o OUT.ply (see qf-bake analyze --help)");
   const std::string out = args.get("output");
   if (file_extension(out) != "ply") throw UsageError("analyze writes .ply, not '" + out + "'");
-  AnalysisOptions o;
-  o.neighborhoods.k = static_cast<int>(args.get_int("k", o.neighborhoods.k, 3, 1000));
-  o.neighborhoods.max_neighbors =
-      static_cast<int>(args.get_int("max-neighbors", o.neighborhoods.max_neighbors, 3, 100000));
-  if (args.has("epsilon")) {
-    o.neighborhoods.epsilon = static_cast<float>(args.get_double("epsilon", 0, 0, 1e30));
-    o.classifier.epsilon = o.neighborhoods.epsilon;
-  }
+  const AnalysisOptions o = read_analysis_options(args);
   const std::string kind = args.get("classifier", "paper");
-  if (kind == "variation") o.classifier.kind = ClassifierKind::kVariation;
-  else if (kind != "paper") throw UsageError("--classifier expects paper or variation, got '" + kind + "'");
-  if (args.has("threads")) omp_set_num_threads(static_cast<int>(args.get_int("threads", 0, 1, 1024)));
-  ReadOptions ro;
-  ro.drop_nonfinite = args.flag("drop-nonfinite");
-
   ReadReport read_report;
-  Model model = read_model(in, ro, &read_report);
-  if (model.is_mesh)
-    throw InputError("analyze.mesh_input", in, "",
-                     "is a triangle mesh; analyze takes point sets (.ply without faces, .qs, .xyz, .pwn)");
-  PointSet& points = model.points;
-  if (points.size() == 0) throw InputError("analyze.empty", in, "", "holds no points");
+  const PointSet points = load_points(in, args, "analyze", read_report);
   const SurfaceAnalysis a = analyze_surface(points, o);
 
   // The debug point set: classifier colours, oriented normals, classifier and variation values.

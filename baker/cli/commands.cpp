@@ -1,6 +1,8 @@
 // The command table, and the convert and generate commands.
 #include "cli/commands.h"
 
+#include <omp.h>
+
 #include <iostream>
 
 #include "analysis/neighborhoods.h"
@@ -15,6 +17,40 @@ OptionSpec drop_nonfinite_option() {
   return {"drop-nonfinite", 0, "", "",
           "drop points (or mesh vertices and their triangles) with NaN/Inf coordinates and report how many, "
           "instead of rejecting the file"};
+}
+
+std::vector<OptionSpec> analysis_option_specs() {
+  return {{"k", 'k', "N", "50", "neighbours per point (paper 2.1: 50..100)"},
+          {"epsilon", 0, "E", "off", "feature size in model units: neighbourhoods widen to the ball B_E, and E is the eps of eq. 3"},
+          {"max-neighbors", 0, "N", "200", "cap on a widened neighbourhood"},
+          {"classifier", 0, "paper|variation", "paper", "C = G(|M0-x| l2/(eps l0)) (paper eq. 3), or G(3 sigma) from the surface variation"},
+          {"threads", 'j', "N", "all cores", "threads to use (the outputs do not depend on it)"}};
+}
+
+AnalysisOptions read_analysis_options(const ParsedArgs& args) {
+  AnalysisOptions o;
+  o.neighborhoods.k = static_cast<int>(args.get_int("k", o.neighborhoods.k, 3, 1000));
+  o.neighborhoods.max_neighbors = static_cast<int>(args.get_int("max-neighbors", o.neighborhoods.max_neighbors, 3, 100000));
+  if (args.has("epsilon")) {
+    o.neighborhoods.epsilon = static_cast<float>(args.get_double("epsilon", 0, 0, 1e30));
+    o.classifier.epsilon = o.neighborhoods.epsilon;
+  }
+  const std::string kind = args.get("classifier", "paper");
+  if (kind == "variation") o.classifier.kind = ClassifierKind::kVariation;
+  else if (kind != "paper") throw UsageError("--classifier expects paper or variation, got '" + kind + "'");
+  if (args.has("threads")) omp_set_num_threads(static_cast<int>(args.get_int("threads", 0, 1, 1024)));
+  return o;
+}
+
+PointSet load_points(const std::string& path, const ParsedArgs& args, const std::string& command, ReadReport& report) {
+  ReadOptions ro;
+  ro.drop_nonfinite = args.flag("drop-nonfinite");
+  Model model = read_model(path, ro, &report);
+  if (model.is_mesh)
+    throw InputError(command + ".mesh_input", path, "",
+                     "is a triangle mesh; " + command + " takes point sets (.ply without faces, .qs, .xyz, .pwn)");
+  if (model.points.size() == 0) throw InputError(command + ".empty", path, "", "holds no points");
+  return std::move(model.points);
 }
 
 static std::string shape_list() {
@@ -55,6 +91,7 @@ const std::vector<Command>& commands() {
         1, 1},
        run_generate},
       {analyze_spec(), run_analyze},
+      {decompose_spec(), run_decompose},
   };
   return table;
 }

@@ -4,7 +4,9 @@
 #include <string>
 #include <vector>
 
+#include "analysis/analysis.h"
 #include "cli/args.h"
+#include "io/model_io.h"
 
 namespace qf::cli {
 
@@ -23,5 +25,16 @@ CommandSpec analyze_spec();
 
 // Shared option: --drop-nonfinite (every command that reads input files).
 OptionSpec drop_nonfinite_option();
+
+// Shared by the commands that run the surface analysis: -k, --epsilon, --max-neighbors,
+// --classifier, --threads; and reading them into options (UsageError on bad values).
+std::vector<OptionSpec> analysis_option_specs();
+AnalysisOptions read_analysis_options(const ParsedArgs& args);
+
+// Reads a point set for the analysis: rejects meshes and empty sets with InputError `command`.*.
+PointSet load_points(const std::string& path, const ParsedArgs& args, const std::string& command, ReadReport& report);
+
+CommandSpec decompose_spec();
+int run_decompose(const ParsedArgs& args);
 
 }  // namespace qf::cli

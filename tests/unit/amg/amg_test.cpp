@@ -4,10 +4,13 @@
 #include <omp.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <map>
 
 #include "amg/basis.h"
 #include "amg/hierarchy.h"
+#include "amg/hierarchy_cache.h"
 #include "analysis/analysis.h"
 #include "domains/domains.h"
 #include "shapes/shapes.h"
@@ -189,6 +192,66 @@ TEST(Amg, DisconnectedPartsAreReported) {
   EXPECT_EQ(h.components, 2u);
   EXPECT_GE(h.levels.back().size, 2u);
   expect_stochastic(basis_at_level(h, h.level_count() - 1), "coarsest Psi");
+}
+
+}  // namespace
+}  // namespace qf
+
+namespace qf {
+namespace {
+
+TEST(HierarchyCache, RoundTripsExactlyAndRejectsDamage) {
+  const PointSet p = generate_shape("cube", {6000, 5});
+  const AnalysisOptions ao;
+  const AmgOptions amg;
+  const AmgHierarchy h = build_hierarchy(analyze_surface(p, ao).stiffness, amg);
+  const std::string dir = ::testing::TempDir() + "qf-cache-test";
+  std::filesystem::remove_all(dir);
+  const std::string key = hierarchy_cache_key(p, ao, amg);
+  std::string why;
+  EXPECT_FALSE(load_hierarchy(dir, key, &why));
+  EXPECT_EQ(why, "missing");
+  save_hierarchy(dir, key, h);
+  const std::optional<AmgHierarchy> back = load_hierarchy(dir, key, &why);
+  ASSERT_TRUE(back);
+  EXPECT_EQ(hierarchy_hash(*back), hierarchy_hash(h));
+  EXPECT_EQ(back->components, h.components);
+  // Other settings or other points: another key.
+  AnalysisOptions k30 = ao;
+  k30.neighborhoods.k = 30;
+  EXPECT_NE(hierarchy_cache_key(p, k30, amg), key);
+  PointSet moved = p;
+  moved.positions[17].x += 1e-6f;
+  EXPECT_NE(hierarchy_cache_key(moved, ao, amg), key);
+  // A truncated or bit-flipped file is detected, never trusted.
+  const std::string file = dir + "/" + key + ".qfamg";
+  std::string bytes;
+  {
+    std::ifstream in(file, std::ios::binary);
+    bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  std::ofstream(file, std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+  EXPECT_FALSE(load_hierarchy(dir, key, &why));
+  EXPECT_EQ(why, "truncated");
+  std::string flipped = bytes;
+  flipped[flipped.size() - 100] ^= 0x10;
+  std::ofstream(file, std::ios::binary) << flipped;
+  EXPECT_FALSE(load_hierarchy(dir, key, &why));
+  EXPECT_EQ(why, "corrupt (checksum)");
+  std::filesystem::remove_all(dir);
+}
+
+TEST(Levels, ByIndexAndByPrimitives) {
+  const PointSet p = generate_shape("octahedron");
+  const AmgHierarchy h = build_hierarchy(analyze_surface(p).stiffness);
+  const std::size_t last = h.level_count() - 1;
+  EXPECT_EQ(level_by_index(h, 0), 0u);
+  EXPECT_EQ(level_by_index(h, -1), last - 1);
+  EXPECT_EQ(level_by_index(h, -static_cast<long long>(last)), 0u);
+  EXPECT_THROW(level_by_index(h, static_cast<long long>(last) + 1), std::out_of_range);
+  EXPECT_EQ(level_by_primitives(h, 1), last);
+  EXPECT_EQ(level_by_primitives(h, 1000000), 0u);
+  for (std::size_t l = 0; l <= last; ++l) EXPECT_EQ(level_by_primitives(h, h.levels[l].size), l);
 }
 
 }  // namespace

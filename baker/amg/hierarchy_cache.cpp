@@ -1,0 +1,186 @@
+// Hierarchy cache files: a fixed header (magic, version, key, payload size and checksum) and the
+// hierarchy's arrays, little-endian.
+#include "amg/hierarchy_cache.h"
+
+#include <cstring>
+#include <filesystem>
+#include <ostream>
+
+#include "core/error.h"
+#include "core/file_io.h"
+
+namespace qf {
+namespace {
+
+constexpr char kMagic[8] = {'Q', 'F', 'A', 'M', 'G', 'C', 'H', '\0'};
+constexpr std::uint32_t kVersion = 1;  // bump when the file layout or the algorithms change
+
+struct Hasher {
+  std::uint64_t a = 1469598103934665603ull, b = 0x9E3779B97F4A7C15ull;  // two FNV-1a streams
+  void feed(const void* data, std::size_t bytes) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t i = 0; i < bytes; ++i) {
+      a = (a ^ p[i]) * 1099511628211ull;
+      b = (b ^ p[i]) * 0x100000001B3ull ^ (b >> 29);
+    }
+  }
+  template <class T>
+  void value(const T& v) {
+    feed(&v, sizeof v);
+  }
+};
+
+std::uint64_t checksum(const std::string& payload) {
+  Hasher h;
+  h.feed(payload.data(), payload.size());
+  return h.a;
+}
+
+template <class T>
+void put(std::string& s, const T& v) {
+  s.append(reinterpret_cast<const char*>(&v), sizeof v);
+}
+template <class T>
+void put_array(std::string& s, const T* data, std::size_t n) {
+  put(s, static_cast<std::uint64_t>(n));
+  s.append(reinterpret_cast<const char*>(data), n * sizeof(T));
+}
+
+class Reader {
+ public:
+  Reader(const std::uint8_t* p, std::size_t n) : p_(p), n_(n) {}
+  template <class T>
+  bool get(T& v) {
+    if (sizeof v > n_ - pos_) return false;
+    std::memcpy(&v, p_ + pos_, sizeof v);
+    pos_ += sizeof v;
+    return true;
+  }
+  template <class T>
+  bool get_array(std::vector<T>& out, std::uint64_t max_count) {
+    std::uint64_t n = 0;
+    if (!get(n) || n > max_count || n * sizeof(T) > n_ - pos_) return false;
+    out.resize(static_cast<std::size_t>(n));
+    std::memcpy(out.data(), p_ + pos_, static_cast<std::size_t>(n) * sizeof(T));
+    pos_ += static_cast<std::size_t>(n) * sizeof(T);
+    return true;
+  }
+  bool done() const { return pos_ == n_; }
+
+ private:
+  const std::uint8_t* p_;
+  std::size_t n_, pos_ = 0;
+};
+
+std::string path_of(const std::string& dir, const std::string& key) { return dir + "/" + key + ".qfamg"; }
+
+}  // namespace
+
+std::string hierarchy_cache_key(const PointSet& points, const AnalysisOptions& ao, const AmgOptions& amg) {
+  Hasher h;
+  h.value(kVersion);
+  h.value(static_cast<std::uint64_t>(points.size()));
+  h.feed(points.positions.data(), points.positions.size() * sizeof(Vec3f));
+  h.value(static_cast<std::uint8_t>(points.has_normals()));
+  h.feed(points.normals.data(), points.normals.size() * sizeof(Vec3f));
+  h.value(ao.neighborhoods.k), h.value(ao.neighborhoods.epsilon), h.value(ao.neighborhoods.max_neighbors);
+  h.value(static_cast<int>(ao.classifier.kind)), h.value(ao.classifier.alpha), h.value(ao.classifier.beta);
+  h.value(ao.classifier.epsilon);
+  h.value(amg.theta), h.value(amg.target_ratio_min), h.value(amg.target_ratio_max), h.value(amg.ratio_tries);
+  h.value(static_cast<std::uint64_t>(amg.stop_size)), h.value(amg.max_levels);
+  char hex[33];
+  std::snprintf(hex, sizeof hex, "%016llx%016llx", static_cast<unsigned long long>(h.a), static_cast<unsigned long long>(h.b));
+  return hex;
+}
+
+void save_hierarchy(const std::string& dir, const std::string& key, const AmgHierarchy& h) {
+  std::string payload;
+  put(payload, static_cast<std::uint64_t>(h.components));
+  put(payload, static_cast<std::uint64_t>(h.isolated));
+  put(payload, static_cast<std::uint64_t>(h.levels.size()));
+  for (const AmgLevel& l : h.levels) put(payload, static_cast<std::uint64_t>(l.size)), put(payload, l.theta), put(payload, l.ratio);
+  put_array(payload, h.fine_order.data(), h.fine_order.size());
+  for (const SparseMatrix& p : h.P) {
+    put(payload, static_cast<std::uint64_t>(p.rows()));
+    put(payload, static_cast<std::uint64_t>(p.cols()));
+    put_array(payload, p.outerIndexPtr(), static_cast<std::size_t>(p.rows()) + 1);
+    put_array(payload, p.innerIndexPtr(), static_cast<std::size_t>(p.nonZeros()));
+    put_array(payload, p.valuePtr(), static_cast<std::size_t>(p.nonZeros()));
+  }
+  std::filesystem::create_directories(dir);
+  write_file_atomically(path_of(dir, key), [&](std::ostream& out) {
+    std::string header(kMagic, sizeof kMagic);
+    put(header, kVersion);
+    header += key;
+    put(header, static_cast<std::uint64_t>(payload.size()));
+    put(header, checksum(payload));
+    out << header << payload;
+  });
+}
+
+std::optional<AmgHierarchy> load_hierarchy(const std::string& dir, const std::string& key, std::string* why) {
+  auto fail = [&](const char* reason) -> std::optional<AmgHierarchy> {
+    if (why) *why = reason;
+    return std::nullopt;
+  };
+  const std::string path = path_of(dir, key);
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return fail("missing");
+  std::optional<InputFile> file;
+  try {
+    file.emplace(path);
+  } catch (const InputError&) {
+    return fail("unreadable");
+  }
+  const ByteView bytes = file->bytes();
+  Reader header(bytes.data(), bytes.size());
+  char magic[sizeof kMagic];
+  std::uint32_t version = 0;
+  std::string stored_key(key.size(), '\0');
+  std::uint64_t size = 0, sum = 0;
+  if (bytes.size() < sizeof kMagic || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0) return fail("not a cache file");
+  for (char& c : magic) header.get(c);
+  if (!header.get(version)) return fail("truncated");
+  if (version != kVersion) return fail("another format version");
+  for (char& c : stored_key)
+    if (!header.get(c)) return fail("truncated");
+  if (stored_key != key) return fail("another key");
+  if (!header.get(size) || !header.get(sum)) return fail("truncated");
+  const std::size_t start = sizeof kMagic + sizeof version + key.size() + 2 * sizeof(std::uint64_t);
+  if (bytes.size() - start != size) return fail("truncated");
+  const std::string payload(reinterpret_cast<const char*>(bytes.data() + start), static_cast<std::size_t>(size));
+  if (checksum(payload) != sum) return fail("corrupt (checksum)");
+
+  Reader r(bytes.data() + start, static_cast<std::size_t>(size));
+  AmgHierarchy h;
+  std::uint64_t components = 0, isolated = 0, levels = 0;
+  if (!r.get(components) || !r.get(isolated) || !r.get(levels) || levels == 0 || levels > 64) return fail("corrupt");
+  h.components = components, h.isolated = isolated;
+  for (std::uint64_t l = 0; l < levels; ++l) {
+    std::uint64_t s = 0;
+    AmgLevel lv;
+    if (!r.get(s) || !r.get(lv.theta) || !r.get(lv.ratio)) return fail("corrupt");
+    lv.size = s;
+    h.levels.push_back(lv);
+  }
+  if (!r.get_array(h.fine_order, h.levels[0].size)) return fail("corrupt");
+  for (std::uint64_t l = 1; l < levels; ++l) {
+    std::uint64_t rows = 0, cols = 0;
+    std::vector<std::int32_t> outer, inner;
+    std::vector<double> values;
+    if (!r.get(rows) || !r.get(cols) || rows != h.levels[l - 1].size || cols != h.levels[l].size) return fail("corrupt");
+    if (!r.get_array(outer, rows + 1) || !r.get_array(inner, size) || !r.get_array(values, size)) return fail("corrupt");
+    if (outer.size() != rows + 1 || inner.size() != values.size() || outer.front() != 0 ||
+        outer.back() != static_cast<std::int32_t>(inner.size()))
+      return fail("corrupt");
+    for (std::size_t i = 0; i + 1 < outer.size(); ++i)
+      if (outer[i] > outer[i + 1]) return fail("corrupt");
+    for (std::int32_t c : inner)
+      if (c < 0 || static_cast<std::uint64_t>(c) >= cols) return fail("corrupt");
+    h.P.push_back(from_rows(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(cols), outer, inner, values));
+  }
+  if (!r.done()) return fail("corrupt");
+  return h;
+}
+
+}  // namespace qf

@@ -1,0 +1,24 @@
+// On-disk cache of AMG hierarchies (thesis 5.2.1: the hierarchy depends only on the input and the
+// analysis settings, so choosing another level must not redo analysis and coarsening).
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "amg/hierarchy.h"
+#include "analysis/analysis.h"
+
+namespace qf {
+
+// 128-bit content key of everything the hierarchy depends on: the format version, positions,
+// normals (when present), analysis options and AMG options. Hex, 32 characters.
+std::string hierarchy_cache_key(const PointSet& points, const AnalysisOptions& analysis, const AmgOptions& amg);
+
+// "<dir>/<key>.qfamg". A file that is missing, truncated, corrupt (checksum), of another format
+// version or for another key yields nullopt, with the reason in `why` ("missing", "corrupt", ...).
+std::optional<AmgHierarchy> load_hierarchy(const std::string& dir, const std::string& key, std::string* why = nullptr);
+
+// Writes the hierarchy atomically (temporary name, then rename), creating `dir` if needed.
+void save_hierarchy(const std::string& dir, const std::string& key, const AmgHierarchy& h);
+
+}  // namespace qf
