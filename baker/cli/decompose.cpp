@@ -18,6 +18,7 @@
 #include "core/error.h"
 #include "core/file_io.h"
 #include "domains/domains.h"
+#include "domains/merge.h"
 
 namespace qf::cli {
 namespace {
@@ -103,6 +104,9 @@ CommandSpec decompose_spec() {
                     {"primitives", 'n', "N", "200", "instead of --level: the level with the number of basis functions nearest N"},
                     {"tau", 0, "T", "0.05", "domain threshold: D = {x : Psi(x) > T} (paper; the thesis used 0.01)"},
                     {"strict", 0, "", "", "strict domains: each point only in its strongest function's domain"},
+                    {"merge", 0, "", "", "merge overlapping flat domains that face the same way (thesis 3.4), biggest overlap first"},
+                    {"merge-variation", 0, "V", "0.01", "--merge: a domain is flat when its surface variation is at most V"},
+                    {"merge-angle", 0, "DEG", "10", "--merge: the two domains' planes differ by at most DEG degrees"},
                     {"neighbor-share", 0, "S", "0.05", "domains i, j are neighbours when they share more than S of either's points"},
                     {"prune", 0, "W", "0.001", "drop basis weights below W after each product (rows renormalised); 0 = exact"},
                     {"summary", 0, "levels.json", "", "write a JSON summary of every level"},
@@ -127,6 +131,10 @@ int run_decompose(const ParsedArgs& args) {
   dopt.tau = args.get_double("tau", dopt.tau, 0.0, 1.0);
   dopt.strict = args.flag("strict");
   dopt.neighbor_share = args.get_double("neighbor-share", dopt.neighbor_share, 0.0, 1.0);
+  MergeOptions mopt;
+  mopt.max_variation = args.get_double("merge-variation", mopt.max_variation, 0.0, 1.0 / 3.0);
+  mopt.max_angle_degrees = args.get_double("merge-angle", mopt.max_angle_degrees, 0.0, 90.0);
+  mopt.domains = dopt;
   BasisOptions bopt;
   bopt.prune = args.get_double("prune", bopt.prune, 0.0, 0.5);
 
@@ -162,7 +170,11 @@ int run_decompose(const ParsedArgs& args) {
   std::size_t level;
   if (args.has("level")) {
     const std::string text = args.get("level");
-    level = (text == "L" || text == "l") ? h.level_count() - 1 : level_by_index(h, parse_level(text));
+    try {
+      level = (text == "L" || text == "l") ? h.level_count() - 1 : level_by_index(h, parse_level(text));
+    } catch (const std::out_of_range& e) {
+      throw UsageError(std::string("--level: ") + e.what());
+    }
   } else {
     level = level_by_primitives(h, static_cast<std::size_t>(args.get_int("primitives", 200, 1, 1ll << 40)));
   }
@@ -194,6 +206,8 @@ int run_decompose(const ParsedArgs& args) {
     }
     tb = std::chrono::steady_clock::now();
   });
+  MergeReport merge_report;
+  if (args.flag("merge")) chosen = merge_domains(chosen, points.positions, mopt, &merge_report);
   const Domains domains = make_domains(chosen, dopt);
 
   // The debug point set: colours mixed by weight, strongest function and its weight.
@@ -229,6 +243,7 @@ int run_decompose(const ParsedArgs& args) {
     j["isolated_points"] = h.isolated;
     j["hierarchy_hash"] = hash;
     j["chosen_level"] = level;
+    if (args.flag("merge")) j["merged"] = {{"functions_before", merge_report.before}, {"functions_after", merge_report.after}};
     j["levels"] = levels;
     // Wall-clock times: the only part of the file that differs between runs.
     j["seconds"] = {{"hierarchy", canonical_double(std::chrono::duration<float>(t2 - t0).count())},
@@ -243,6 +258,9 @@ int run_decompose(const ParsedArgs& args) {
     std::fprintf(stderr, "  level %zu: %zu basis functions, %zu domains (%zu empty), %zu points shared, %zu uncovered, %zu graph edges\n",
                  level, static_cast<std::size_t>(chosen.cols()), domains.count() - domains.empty, domains.empty,
                  domains.shared_points, domains.uncovered, domains.edges.size());
+    if (args.flag("merge"))
+      std::fprintf(stderr, "  merged: %zu -> %zu basis functions (%zu merges)\n", merge_report.before, merge_report.after,
+                   merge_report.merges);
     std::fprintf(stderr, "  cache: %s (%s)\n", cache_state.c_str(), cache_dir.empty() ? "disabled" : cache_dir.c_str());
     std::fprintf(stderr, "  time: analysis and hierarchy %.3f s, basis %.3f s\n",
                  std::chrono::duration<double>(t2 - t0).count(), basis_seconds);

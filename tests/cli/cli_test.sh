@@ -23,7 +23,7 @@ expect 0 "--version" -- "$bake" --version
 grep -q '^qf-bake [0-9]' "$work/out" && ok || bad "--version prints 'qf-bake X.Y.Z'"
 expect 0 "--help" -- "$bake" --help
 cp "$work/out" "$work/overview"
-for cmd in info convert generate analyze; do
+for cmd in info convert generate analyze decompose; do
   grep -q "^  $cmd " "$work/overview" && ok || bad "--help lists $cmd"
   expect 0 "$cmd --help" -- "$bake" "$cmd" --help
   grep -q "usage: qf-bake $cmd" "$work/out" && ok || bad "$cmd --help shows usage"
@@ -126,6 +126,49 @@ printf "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty floa
 expect 1 "analyze empty" -- "$bake" analyze "$work/empty.ply" -o "$work/x.ply"
 grep -q "analyze.empty" "$work/err" && ok || bad "empty input names its error"
 [[ ! -e "$work/x.ply" ]] && ok || bad "failed analyze left an output"
+
+# --- decompose: levels, summary, basis dump, cache, merging ---
+export QF_CACHE="$work/cache"
+expect 0 "decompose" -- "$bake" decompose "$work/oct.ply" -o "$work/d1.ply" --summary "$work/l1.json" --basis-dump "$work/b1.txt" --level 5
+grep -q "cache: miss (missing)" "$work/err" && ok || bad "first decompose misses the cache: $(cat "$work/err")"
+expect 0 "decompose again" -- "$bake" decompose "$work/oct.ply" -o "$work/d2.ply" --summary "$work/l2.json" --basis-dump "$work/b2.txt" --level 5 --threads 1
+grep -q "cache: hit" "$work/err" && ok || bad "second decompose hits the cache"
+cmp -s "$work/d1.ply" "$work/d2.ply" && cmp -s "$work/b1.txt" "$work/b2.txt" && ok || bad "decompose outputs differ between a cache miss and a hit (1 vs 2 threads)"
+diff <(grep -v '"hierarchy":\|"basis":' "$work/l1.json") <(grep -v '"hierarchy":\|"basis":' "$work/l2.json") >/dev/null && ok || bad "summaries differ beyond their times"
+expect 0 "decompose without cache" -- "$bake" decompose "$work/oct.ply" -o "$work/d3.ply" --level 5 --no-cache -q
+cmp -s "$work/d1.ply" "$work/d3.ply" && ok || bad "a rebuilt hierarchy gives other output"
+/usr/bin/python3 - "$work/l1.json" "$work/b1.txt" <<'PY' 2>"$work/err" && ok || bad "summary or basis dump: $(tail -2 "$work/err")"
+import json, sys
+s = json.load(open(sys.argv[1]))
+levels = s["levels"]
+assert s["points"] == 16000 and levels[0]["functions"] == 16000 and s["chosen_level"] == 5
+for a, b in zip(levels, levels[1:]):
+    assert 1.8 <= a["functions"] / b["functions"] <= 3.5, (a["functions"], b["functions"])
+    for key in ("ratio", "theta", "domain_points", "shared_points", "graph_edges", "uncovered_points"):
+        assert key in b, key
+n = 0
+for line in open(sys.argv[2]):
+    if line.startswith("#"):
+        continue
+    parts = line.split()
+    assert int(parts[0]) == n
+    weights = [float(p.split(":")[1]) for p in parts[1:]]
+    assert all(w >= 0 for w in weights) and abs(sum(weights) - 1) < 1e-12, line
+    n += 1
+assert n == 16000
+PY
+corrupt=$(ls "$work/cache"/*.qfamg | head -1)
+head -c 500 "$corrupt" >"$work/half" && cp "$work/half" "$corrupt"
+expect 0 "decompose with a truncated cache" -- "$bake" decompose "$work/oct.ply" -o "$work/d4.ply" --level 5
+grep -q "cache: miss (truncated)" "$work/err" && cmp -s "$work/d1.ply" "$work/d4.ply" && ok || bad "a truncated cache must be rebuilt: $(grep cache "$work/err")"
+expect 0 "decompose --merge" -- "$bake" decompose "$work/oct.ply" -o "$work/m.ply" --level -1 --merge
+grep -q "level [0-9]*: 8 basis functions" "$work/err" && ok || bad "merged octahedron has 8 domains: $(grep level "$work/err")"
+expect 0 "decompose --level L" -- "$bake" decompose "$work/oct.ply" -o "$work/x.ply" --level L -q
+expect 0 "decompose --primitives" -- "$bake" decompose "$work/oct.ply" -o "$work/x.ply" --primitives 40 --strict --tau 0.01 -q
+expect 2 "decompose level out of range" -- "$bake" decompose "$work/oct.ply" -o "$work/x.ply" --level 99
+expect 2 "decompose bad level" -- "$bake" decompose "$work/oct.ply" -o "$work/x.ply" --level abc
+expect 2 "decompose level and primitives" -- "$bake" decompose "$work/oct.ply" -o "$work/x.ply" --level 2 --primitives 9
+unset QF_CACHE
 
 # --- every malformed file: exit 1, message names file and code, no output ---
 while IFS=$'\t' read -r file code; do

@@ -7,12 +7,14 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 
 #include "amg/basis.h"
 #include "amg/hierarchy.h"
 #include "amg/hierarchy_cache.h"
 #include "analysis/analysis.h"
 #include "domains/domains.h"
+#include "domains/merge.h"
 #include "shapes/shapes.h"
 
 namespace qf {
@@ -252,6 +254,40 @@ TEST(Levels, ByIndexAndByPrimitives) {
   EXPECT_EQ(level_by_primitives(h, 1), last);
   EXPECT_EQ(level_by_primitives(h, 1000000), 0u);
   for (std::size_t l = 0; l <= last; ++l) EXPECT_EQ(level_by_primitives(h, h.levels[l].size), l);
+}
+
+}  // namespace
+}  // namespace qf
+
+namespace qf {
+namespace {
+
+TEST(Merge, OctahedronEndsWithOneDomainPerFace) {
+  // Paper figure 1c: merging flat, parallel, overlapping domains leaves the 8 faces, and the
+  // neighbour graph is the octahedron's: 12 edges.
+  const PointSet p = generate_shape("octahedron");
+  const AmgHierarchy h = build_hierarchy(analyze_surface(p).stiffness);
+  const float spacing = std::sqrt(8 * std::sqrt(3.0f) / 2 / float(p.size()));
+  bool found = false;
+  for_each_basis(h, h.level_count() - 1, {}, [&](std::size_t l, const SparseMatrix& psi) {
+    MergeReport r;
+    const SparseMatrix merged = merge_domains(psi, p.positions, {}, &r);
+    expect_stochastic(merged, "merged Psi");
+    EXPECT_EQ(straddling_cores(merged, p, 2 * spacing, face_of, edge_distance), 0u) << "level " << l;
+    if (r.after != 8) return;
+    // One function per face: each face's points mostly (> 0.5) in exactly one function.
+    std::map<int, std::set<Eigen::Index>> owners;
+    for (Eigen::Index i = 0; i < merged.rows(); ++i)
+      for (SparseMatrix::InnerIterator it(merged, i); it; ++it)
+        if (it.value() > 0.5 && edge_distance(p.positions[static_cast<std::size_t>(i)]) > 2 * spacing)
+          owners[face_of(p.positions[static_cast<std::size_t>(i)])].insert(it.col());
+    if (owners.size() != 8) return;
+    for (const auto& kv : owners)
+      if (kv.second.size() != 1) return;
+    EXPECT_EQ(make_domains(merged).edges.size(), 12u) << "level " << l;
+    found = true;
+  });
+  EXPECT_TRUE(found) << "no level merges to exactly one domain per face";
 }
 
 }  // namespace
