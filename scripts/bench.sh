@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
-# Benchmarks (tables, not tests): reader throughput on 1M points, and the surface analysis
-# (k = 50) on 100k and 1M synthetic points and on bunny00, with 2 threads and 1.
-# usage: scripts/bench.sh [io|analysis]...   (default: both)
+# Benchmarks (tables, not tests): reader throughput on 1M points; the surface analysis (k = 50)
+# on 100k and 1M synthetic points and on bunny00, with 2 threads and 1; the AMG stages.
+# usage: scripts/bench.sh [io|analysis|amg]...   (default: all)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh >/dev/null
 what=("$@")
-[[ ${#what[@]} -eq 0 ]] && what=(io analysis)
+[[ ${#what[@]} -eq 0 ]] && what=(io analysis amg)
 for w in "${what[@]}"; do
   case $w in
     io) build/bin/qf-bench-io ;;
@@ -20,7 +20,16 @@ for w in "${what[@]}"; do
         OMP_NUM_THREADS=$threads build/bin/qf-bench-analysis torus 1000000
         OMP_NUM_THREADS=$threads build/bin/qf-bench-analysis "$models/bunny00.off"
       done ;;
-    *) echo "unknown benchmark '$w' (io, analysis)" >&2; exit 2 ;;
+    amg)
+      models=$(scripts/fetch-models.sh bunny00.off | tail -1)
+      echo "AMG: hierarchy, every level's basis (Psi), one level's domains (nearest 200 functions);"
+      echo "end-end = analysis + hierarchy + domains; B/pt = peak memory added per point"
+      echo
+      build/bin/qf-bench-amg --header
+      build/bin/qf-bench-amg "$models/bunny00.off"
+      build/bin/qf-bench-amg torus 100000
+      build/bin/qf-bench-amg torus 1000000 ;;
+    *) echo "unknown benchmark '$w' (io, analysis, amg)" >&2; exit 2 ;;
   esac
   echo
 done

@@ -8,11 +8,12 @@ namespace qf {
 void for_each_basis(const AmgHierarchy& h, std::size_t last, const BasisOptions& options,
                     const std::function<void(std::size_t, const SparseMatrix&)>& visit) {
   if (last >= h.level_count()) throw std::out_of_range("basis level " + std::to_string(last) + " does not exist");
-  // Built in the hierarchy's fine order, handed out in point order.
+  // P_1's rows are in the hierarchy's fine order: put them in point order once, and every later
+  // product Psi_{l-1} P_l keeps that row order.
   SparseMatrix psi;
   for (std::size_t l = 1; l <= last; ++l) {
-    psi = l == 1 ? h.P[0] : sparse_product(psi, h.P[l - 1], options.prune);
-    visit(l, scatter_rows(psi, h.fine_order));
+    psi = l == 1 ? scatter_rows(h.P[0], h.fine_order) : sparse_product(psi, h.P[l - 1], options.prune);
+    visit(l, psi);
   }
 }
 

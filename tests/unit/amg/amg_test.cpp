@@ -292,3 +292,21 @@ TEST(Merge, OctahedronEndsWithOneDomainPerFace) {
 
 }  // namespace
 }  // namespace qf
+
+namespace qf {
+namespace {
+
+TEST(AmgLarge, MillionPointsGiveTenToFifteenLevels) {
+  const PointSet p = generate_shape("torus", {1000000, 1});
+  const AmgHierarchy h = build_hierarchy(analyze_surface(p).stiffness);
+  EXPECT_GE(h.level_count() - 1, 10u);
+  EXPECT_LE(h.level_count() - 1, 15u);
+  for (std::size_t l = 1; l < h.level_count(); ++l) {
+    EXPECT_GE(h.levels[l].ratio, 1.8) << "level " << l;
+    EXPECT_LE(h.levels[l].ratio, 3.5) << "level " << l;
+    expect_stochastic(h.P[l - 1], "P");
+  }
+}
+
+}  // namespace
+}  // namespace qf
