@@ -15,12 +15,6 @@ struct Entry {
   double value;
 };
 
-// Compressed rows: row i is cols/vals[offsets[i] .. offsets[i+1]), columns increasing.
-struct Csr {
-  std::vector<std::uint32_t> offsets, cols;
-  std::vector<double> vals;
-};
-
 // cot of the angle at c in triangle (a, b, c), from double-precision edge vectors.
 // Returns false for a (near) zero-area triangle.
 bool cotangent(const Vec3f& a, const Vec3f& b, const Vec3f& c, double& cot) {
@@ -71,8 +65,7 @@ SparseMatrix assemble_stiffness(const std::vector<Vec3f>& positions, const Fans&
                                 const std::vector<float>& classifier, StiffnessReport* report) {
   const std::size_t n = positions.size();
   // 1. At, row by row in parallel; contiguous blocks joined in order (thread-count independent).
-  Csr at;
-  at.offsets.assign(n + 1, 0);
+  std::vector<std::int32_t> outer(n + 1, 0);
   std::vector<std::vector<Entry>> blocks;
   std::size_t zero_area = 0;
 #pragma omp parallel reduction(+ : zero_area)
@@ -85,26 +78,24 @@ SparseMatrix assemble_stiffness(const std::vector<Vec3f>& positions, const Fans&
     for (std::ptrdiff_t si = 0; si < static_cast<std::ptrdiff_t>(n); ++si) {
       const auto i = static_cast<std::size_t>(si);
       fan_row(i, positions, fans, classifier, row, zero_area);
-      at.offsets[i + 1] = static_cast<std::uint32_t>(row.size());
+      outer[i + 1] = static_cast<std::int32_t>(row.size());
       out.insert(out.end(), row.begin(), row.end());
     }
   }
-  for (std::size_t i = 0; i < n; ++i) at.offsets[i + 1] += at.offsets[i];
-  at.cols.reserve(at.offsets[n]);
-  at.vals.reserve(at.offsets[n]);
+  for (std::size_t i = 0; i < n; ++i) outer[i + 1] += outer[i];
+  std::vector<std::int32_t> inner;
+  std::vector<double> values;
+  inner.reserve(static_cast<std::size_t>(outer[n]));
+  values.reserve(static_cast<std::size_t>(outer[n]));
   for (auto& blk : blocks) {
-    for (const Entry& e : blk) at.cols.push_back(e.col), at.vals.push_back(e.value);
+    for (const Entry& e : blk) inner.push_back(static_cast<std::int32_t>(e.col)), values.push_back(e.value);
     std::vector<Entry>().swap(blk);
   }
+  const SparseMatrix at = from_rows(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n), outer, inner, values);
 
   // 2. Eqs. 6-7: A_ij = (At_ij + At_ji) / 2, A_ii = -sum_j A_ij (exactly symmetric, rows sum to 0).
-  std::vector<std::int32_t> outer(at.offsets.begin(), at.offsets.end()), inner(at.cols.begin(), at.cols.end());
-  std::vector<std::uint32_t>().swap(at.offsets);
-  std::vector<std::uint32_t>().swap(at.cols);
-  const SparseMatrix at_matrix = from_rows(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n), outer, inner, at.vals);
-  std::vector<double>().swap(at.vals);
   SymmetrizeReport sym;
-  SparseMatrix a = symmetrize_zero_row_sums(at_matrix, 0.0, &sym);
+  SparseMatrix a = symmetrize_zero_row_sums(at, 0.0, &sym);
   if (report) {
     report->zero_area_triangles = zero_area;
     report->empty_rows = sym.empty_rows;
