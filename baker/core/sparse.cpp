@@ -8,6 +8,62 @@
 
 namespace qf {
 
+namespace {
+
+// Builds an n_rows x n_cols matrix row by row over every core. Each thread owns a Scratch (made
+// by make_scratch) and takes a contiguous block of rows (static schedule); row(i, scratch, cols,
+// vals) appends row i's entries in increasing column order. Blocks are joined in row order, so
+// the result does not depend on the thread count.
+template <class MakeScratch, class Row>
+SparseMatrix rows_in_parallel(std::size_t n_rows, Eigen::Index n_cols, MakeScratch&& make_scratch, Row&& row) {
+  std::vector<std::int32_t> outer(n_rows + 1, 0);
+  std::vector<std::vector<std::int32_t>> block_cols;
+  std::vector<std::vector<double>> block_vals;
+#pragma omp parallel
+  {
+#pragma omp single
+    {
+      block_cols.resize(static_cast<std::size_t>(omp_get_num_threads()));
+      block_vals.resize(block_cols.size());
+    }
+    const auto t = static_cast<std::size_t>(omp_get_thread_num());
+    auto scratch = make_scratch();
+    auto& cols = block_cols[t];
+    auto& vals = block_vals[t];
+#pragma omp for schedule(static)
+    for (std::ptrdiff_t si = 0; si < static_cast<std::ptrdiff_t>(n_rows); ++si) {
+      const std::size_t before = cols.size();
+      row(static_cast<std::size_t>(si), scratch, cols, vals);
+      outer[static_cast<std::size_t>(si) + 1] = static_cast<std::int32_t>(cols.size() - before);
+    }
+  }
+  for (std::size_t i = 0; i < n_rows; ++i) outer[i + 1] += outer[i];
+  std::vector<std::int32_t> inner;
+  std::vector<double> values;
+  inner.reserve(static_cast<std::size_t>(outer[n_rows]));
+  values.reserve(static_cast<std::size_t>(outer[n_rows]));
+  for (std::size_t t = 0; t < block_cols.size(); ++t) {
+    inner.insert(inner.end(), block_cols[t].begin(), block_cols[t].end());
+    values.insert(values.end(), block_vals[t].begin(), block_vals[t].end());
+  }
+  return from_rows(static_cast<Eigen::Index>(n_rows), n_cols, outer, inner, values);
+}
+
+// A dense accumulator for one sparse row: values by column, and the columns touched.
+struct RowAccumulator {
+  explicit RowAccumulator(std::size_t n) : value(n, 0.0), seen(n, 0) {}
+  void add(std::int32_t j, double v) {
+    const auto u = static_cast<std::size_t>(j);
+    if (!seen[u]) seen[u] = 1, touched.push_back(j);
+    value[u] += v;
+  }
+  std::vector<double> value;
+  std::vector<char> seen;
+  std::vector<std::int32_t> touched;
+};
+
+}  // namespace
+
 SparseMatrix from_rows(Eigen::Index rows, Eigen::Index cols, const std::vector<std::int32_t>& outer,
                        const std::vector<std::int32_t>& inner, const std::vector<double>& values) {
   SparseMatrix m(rows, cols);
@@ -70,130 +126,54 @@ SparseMatrix symmetrize_zero_row_sums(const SparseMatrix& a, double drop, Symmet
 SparseMatrix galerkin_product(const SparseMatrix& a, const SparseMatrix& p) {
   const SparseMatrix pt = p.transpose();  // row I of P^T: the fine points interpolating from I
   const auto m = static_cast<std::size_t>(p.cols());
-  std::vector<std::int32_t> outer(m + 1, 0);
-  std::vector<std::vector<std::int32_t>> block_cols;
-  std::vector<std::vector<double>> block_vals;
-  // Each thread takes a contiguous block of coarse rows; rows are joined in order afterwards.
-#pragma omp parallel
-  {
-#pragma omp single
-    {
-      block_cols.resize(static_cast<std::size_t>(omp_get_num_threads()));
-      block_vals.resize(block_cols.size());
-    }
-    const auto t = static_cast<std::size_t>(omp_get_thread_num());
-    // Galerkin rows hold about as many entries as A's rows: reserve once (growth copies into
-    // fresh pages are slow on these machines).
-    const std::size_t per_row = static_cast<std::size_t>(a.nonZeros()) / std::max<std::size_t>(1, static_cast<std::size_t>(a.rows())) + 4;
-    block_cols[t].reserve(per_row * (m / block_cols.size() + 1));
-    block_vals[t].reserve(per_row * (m / block_cols.size() + 1));
-    std::vector<double> acc(m, 0.0);          // dense accumulator of one coarse row
-    std::vector<std::int32_t> touched;
-    std::vector<char> seen(m, 0);
-    const std::int32_t *tp = pt.outerIndexPtr(), *ti = pt.innerIndexPtr();
-    const double* tv = pt.valuePtr();
-    const std::int32_t *ap = a.outerIndexPtr(), *ai = a.innerIndexPtr();
-    const double* av = a.valuePtr();
-    const std::int32_t *pp = p.outerIndexPtr(), *pi = p.innerIndexPtr();
-    const double* pv = p.valuePtr();
-#pragma omp for schedule(static)
-    for (std::ptrdiff_t si = 0; si < static_cast<std::ptrdiff_t>(m); ++si) {
-      touched.clear();
-      // Row I of P^T A P = sum_i p_iI sum_k a_ik P[k, :].
-      for (std::int32_t f = tp[si]; f < tp[si + 1]; ++f) {
-        const std::int32_t i = ti[f];
-        for (std::int32_t e = ap[i]; e < ap[i + 1]; ++e) {
-          const double w = tv[f] * av[e];
-          const std::int32_t k = ai[e];
-          for (std::int32_t c = pp[k]; c < pp[k + 1]; ++c) {
-            const auto j = static_cast<std::size_t>(pi[c]);
-            if (!seen[j]) seen[j] = 1, touched.push_back(static_cast<std::int32_t>(j));
-            acc[j] += w * pv[c];
+  const std::int32_t *tp = pt.outerIndexPtr(), *ti = pt.innerIndexPtr(), *ap = a.outerIndexPtr(), *ai = a.innerIndexPtr();
+  const std::int32_t *pp = p.outerIndexPtr(), *pi = p.innerIndexPtr();
+  const double *tv = pt.valuePtr(), *av = a.valuePtr(), *pv = p.valuePtr();
+  return rows_in_parallel(
+      m, static_cast<Eigen::Index>(m), [&] { return RowAccumulator(m); },
+      [&](std::size_t row, RowAccumulator& acc, std::vector<std::int32_t>& cols, std::vector<double>& vals) {
+        // Row I of P^T A P = sum_i p_iI sum_k a_ik P[k, :].
+        for (std::int32_t f = tp[row]; f < tp[row + 1]; ++f)
+          for (std::int32_t e = ap[ti[f]]; e < ap[ti[f] + 1]; ++e) {
+            const double w = tv[f] * av[e];
+            for (std::int32_t c = pp[ai[e]]; c < pp[ai[e] + 1]; ++c) acc.add(pi[c], w * pv[c]);
           }
+        std::sort(acc.touched.begin(), acc.touched.end());
+        for (std::int32_t j : acc.touched) {
+          cols.push_back(j);
+          vals.push_back(acc.value[static_cast<std::size_t>(j)]);
+          acc.value[static_cast<std::size_t>(j)] = 0.0;
+          acc.seen[static_cast<std::size_t>(j)] = 0;
         }
-      }
-      std::sort(touched.begin(), touched.end());
-      auto& cols = block_cols[t];
-      auto& vals = block_vals[t];
-      for (std::int32_t j : touched) {
-        cols.push_back(j);
-        vals.push_back(acc[static_cast<std::size_t>(j)]);
-        acc[static_cast<std::size_t>(j)] = 0.0;
-        seen[static_cast<std::size_t>(j)] = 0;
-      }
-      outer[static_cast<std::size_t>(si) + 1] = static_cast<std::int32_t>(touched.size());
-    }
-  }
-  for (std::size_t i = 0; i < m; ++i) outer[i + 1] += outer[i];
-  std::vector<std::int32_t> inner;
-  std::vector<double> values;
-  inner.reserve(static_cast<std::size_t>(outer[m]));
-  values.reserve(static_cast<std::size_t>(outer[m]));
-  for (std::size_t t = 0; t < block_cols.size(); ++t) {
-    inner.insert(inner.end(), block_cols[t].begin(), block_cols[t].end());
-    values.insert(values.end(), block_vals[t].begin(), block_vals[t].end());
-  }
-  return from_rows(static_cast<Eigen::Index>(m), static_cast<Eigen::Index>(m), outer, inner, values);
+        acc.touched.clear();
+      });
 }
 
 SparseMatrix sparse_product(const SparseMatrix& a, const SparseMatrix& b, double prune) {
-  const auto n = static_cast<std::size_t>(a.rows()), m = static_cast<std::size_t>(b.cols());
-  std::vector<std::int32_t> outer(n + 1, 0);
-  std::vector<std::vector<std::int32_t>> block_cols;
-  std::vector<std::vector<double>> block_vals;
-#pragma omp parallel
-  {
-#pragma omp single
-    {
-      block_cols.resize(static_cast<std::size_t>(omp_get_num_threads()));
-      block_vals.resize(block_cols.size());
-    }
-    const auto t = static_cast<std::size_t>(omp_get_thread_num());
-    std::vector<double> acc(m, 0.0);
-    std::vector<std::int32_t> touched;
-    std::vector<char> seen(m, 0);
-    const std::int32_t *ap = a.outerIndexPtr(), *ai = a.innerIndexPtr(), *bp = b.outerIndexPtr(), *bi = b.innerIndexPtr();
-    const double *av = a.valuePtr(), *bv = b.valuePtr();
-#pragma omp for schedule(static)
-    for (std::ptrdiff_t si = 0; si < static_cast<std::ptrdiff_t>(n); ++si) {
-      touched.clear();
-      for (std::int32_t e = ap[si]; e < ap[si + 1]; ++e)
-        for (std::int32_t c = bp[ai[e]]; c < bp[ai[e] + 1]; ++c) {
-          const auto j = static_cast<std::size_t>(bi[c]);
-          if (!seen[j]) seen[j] = 1, touched.push_back(static_cast<std::int32_t>(j));
-          acc[j] += av[e] * bv[c];
+  const auto m = static_cast<std::size_t>(b.cols());
+  const std::int32_t *ap = a.outerIndexPtr(), *ai = a.innerIndexPtr(), *bp = b.outerIndexPtr(), *bi = b.innerIndexPtr();
+  const double *av = a.valuePtr(), *bv = b.valuePtr();
+  return rows_in_parallel(
+      static_cast<std::size_t>(a.rows()), b.cols(), [&] { return RowAccumulator(m); },
+      [&](std::size_t row, RowAccumulator& acc, std::vector<std::int32_t>& cols, std::vector<double>& vals) {
+        for (std::int32_t e = ap[row]; e < ap[row + 1]; ++e)
+          for (std::int32_t c = bp[ai[e]]; c < bp[ai[e] + 1]; ++c) acc.add(bi[c], av[e] * bv[c]);
+        std::sort(acc.touched.begin(), acc.touched.end());
+        // Pruning: drop entries below `prune` (never the largest) and rescale to the old row sum.
+        double sum = 0, kept = 0, largest = 0;
+        for (std::int32_t j : acc.touched) sum += acc.value[static_cast<std::size_t>(j)], largest = std::max(largest, acc.value[static_cast<std::size_t>(j)]);
+        auto keep = [&](double v) { return !(prune > 0) || v >= prune || v == largest; };
+        for (std::int32_t j : acc.touched)
+          if (keep(acc.value[static_cast<std::size_t>(j)])) kept += acc.value[static_cast<std::size_t>(j)];
+        const double scale = (prune > 0 && kept > 0) ? sum / kept : 1.0;
+        for (std::int32_t j : acc.touched) {
+          const double v = acc.value[static_cast<std::size_t>(j)];
+          acc.value[static_cast<std::size_t>(j)] = 0.0;
+          acc.seen[static_cast<std::size_t>(j)] = 0;
+          if (keep(v)) cols.push_back(j), vals.push_back(v * scale);
         }
-      std::sort(touched.begin(), touched.end());
-      double sum = 0, kept = 0, largest = 0;
-      for (std::int32_t j : touched) sum += acc[static_cast<std::size_t>(j)], largest = std::max(largest, acc[static_cast<std::size_t>(j)]);
-      for (std::int32_t j : touched) {
-        const double v = acc[static_cast<std::size_t>(j)];
-        if (!(prune > 0) || v >= prune || v == largest) kept += v;
-      }
-      const double scale = (prune > 0 && kept > 0) ? sum / kept : 1.0;
-      std::size_t count = 0;
-      for (std::int32_t j : touched) {
-        const double v = acc[static_cast<std::size_t>(j)];
-        acc[static_cast<std::size_t>(j)] = 0.0;
-        seen[static_cast<std::size_t>(j)] = 0;
-        if (prune > 0 && v < prune && v != largest) continue;
-        block_cols[t].push_back(j);
-        block_vals[t].push_back(v * scale);
-        ++count;
-      }
-      outer[static_cast<std::size_t>(si) + 1] = static_cast<std::int32_t>(count);
-    }
-  }
-  for (std::size_t i = 0; i < n; ++i) outer[i + 1] += outer[i];
-  std::vector<std::int32_t> inner;
-  std::vector<double> values;
-  inner.reserve(static_cast<std::size_t>(outer[n]));
-  values.reserve(static_cast<std::size_t>(outer[n]));
-  for (std::size_t t = 0; t < block_cols.size(); ++t) {
-    inner.insert(inner.end(), block_cols[t].begin(), block_cols[t].end());
-    values.insert(values.end(), block_vals[t].begin(), block_vals[t].end());
-  }
-  return from_rows(a.rows(), b.cols(), outer, inner, values);
+        acc.touched.clear();
+      });
 }
 
 SparseMatrix scatter_rows(const SparseMatrix& m, const std::vector<std::uint32_t>& order) {

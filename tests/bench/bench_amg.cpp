@@ -6,12 +6,12 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <string>
 
 #include "amg/basis.h"
 #include "amg/hierarchy.h"
 #include "analysis/analysis.h"
+#include "bench_util.h"
 #include "core/memory.h"
 #include "domains/domains.h"
 #include "io/model_io.h"
@@ -21,13 +21,6 @@ using namespace qf;
 
 namespace {
 
-std::size_t rss(const char* key) {
-  std::ifstream in("/proc/self/status");
-  std::string line;
-  while (std::getline(in, line))
-    if (line.rfind(key, 0) == 0) return std::strtoull(line.c_str() + 6, nullptr, 10) * 1024;
-  return 0;
-}
 
 double seconds_since(std::chrono::steady_clock::time_point& t) {
   const auto now = std::chrono::steady_clock::now();
@@ -50,18 +43,9 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (argc < 2) return std::fprintf(stderr, "usage: qf-bench-amg --header | SOURCE [points]\n"), 2;
-  const std::string source = argv[1];
-  PointSet points;
-  std::string name = source;
-  if (source.find('.') != std::string::npos) {
-    Model m = read_model(source);
-    if (m.is_mesh) points.positions = std::move(m.mesh.positions);
-    else points = std::move(m.points);
-    name = source.substr(source.find_last_of('/') + 1);
-  } else {
-    points = generate_shape(source, {argc > 2 ? std::strtoull(argv[2], nullptr, 10) : 100000, 1});
-  }
-  const std::size_t base = rss("VmRSS:");
+  std::string name;
+  const PointSet points = bench::load_input(argv[1], argc > 2 ? std::strtoull(argv[2], nullptr, 10) : 100000, name);
+  const std::size_t base = bench::memory("VmRSS:");
   auto t = std::chrono::steady_clock::now();
   AmgHierarchy h;
   double t_analysis;
@@ -71,7 +55,7 @@ int main(int argc, char** argv) {
     h = build_hierarchy(a.stiffness);
   }
   const double t_hierarchy = seconds_since(t);
-  const std::size_t peak_ah = rss("VmHWM:");
+  const std::size_t peak_ah = bench::memory("VmHWM:");
   // One level's domains, as a bake needs: the level nearest 200 functions.
   const std::size_t level = level_by_primitives(h, 200);
   const Domains d = make_domains(basis_at_level(h, level));
@@ -82,7 +66,7 @@ int main(int argc, char** argv) {
     max_weights = std::max(max_weights, double(psi.nonZeros()) / double(psi.rows()));
   });
   const double t_basis = seconds_since(t);
-  const std::size_t peak = rss("VmHWM:");
+  const std::size_t peak = bench::memory("VmHWM:");
   std::printf("| %-14s | %8zu | %6zu | %10.3f | %9.3f | %9.3f | %8.1f | %9.3f | %9.3f | %9.0f | %9.0f |\n", name.c_str(),
               points.size(), h.level_count(), t_analysis, t_hierarchy, t_basis, max_weights, t_domains,
               t_analysis + t_hierarchy + t_domains, double(peak_ah - base) / double(points.size()),

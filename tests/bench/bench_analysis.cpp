@@ -9,10 +9,10 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <string>
 
 #include "analysis/analysis.h"
+#include "bench_util.h"
 #include "core/memory.h"
 #include "io/model_io.h"
 #include "shapes/shapes.h"
@@ -21,14 +21,6 @@ using namespace qf;
 
 namespace {
 
-// Resident memory of the process (VmRSS) or its peak so far (VmHWM), bytes.
-std::size_t rss(const char* key) {
-  std::ifstream in("/proc/self/status");
-  std::string line;
-  while (std::getline(in, line))
-    if (line.rfind(key, 0) == 0) return std::strtoull(line.c_str() + 6, nullptr, 10) * 1024;
-  return 0;
-}
 
 }  // namespace
 
@@ -49,23 +41,13 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "usage: qf-bench-analysis --header | SOURCE [points] [k]\n");
     return 2;
   }
-  const std::string source = argv[1];
-  const std::size_t n = argc > 2 ? std::strtoull(argv[2], nullptr, 10) : 100000;
   AnalysisOptions o;
   o.neighborhoods.k = argc > 3 ? std::atoi(argv[3]) : 50;
-  PointSet points;
-  std::string name = source;
-  if (source.find('.') != std::string::npos) {
-    Model m = read_model(source);
-    if (m.is_mesh) points.positions = std::move(m.mesh.positions);
-    else points = std::move(m.points);
-    name = source.substr(source.find_last_of('/') + 1);
-  } else {
-    points = generate_shape(source, {n, 1});
-  }
-  const std::size_t before = rss("VmRSS:");  // libraries and the input point set
+  std::string name;
+  const PointSet points = bench::load_input(argv[1], argc > 2 ? std::strtoull(argv[2], nullptr, 10) : 100000, name);
+  const std::size_t before = bench::memory("VmRSS:");  // libraries and the input point set
   const SurfaceAnalysis a = analyze_surface(points, o);
-  const std::size_t peak = rss("VmHWM:");
+  const std::size_t peak = bench::memory("VmHWM:");
   double total = 0, t[5] = {0, 0, 0, 0, 0};
   for (std::size_t s = 0; s < a.report.times.size() && s < 5; ++s) t[s] = a.report.times[s].seconds, total += t[s];
   std::printf("| %-22s | %9zu | %3d | %7d | %7.3f | %7.3f | %7.3f | %7.3f | %7.3f | %7.3f | %9.0f | %9.0f | %6.2f |\n",
