@@ -4,6 +4,8 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <atomic>
+#include <cstdint>
 #include <cmath>
 
 namespace qf {
@@ -14,8 +16,11 @@ namespace {
 // by make_scratch) and takes a contiguous block of rows (static schedule); row(i, scratch, cols,
 // vals) appends row i's entries in increasing column order. Blocks are joined in row order, so
 // the result does not depend on the thread count.
+// `expected` is the expected number of entries in all, to reserve the blocks once (growing them
+// copies into fresh pages, which is slow on the project's machines).
 template <class MakeScratch, class Row>
-SparseMatrix rows_in_parallel(std::size_t n_rows, Eigen::Index n_cols, MakeScratch&& make_scratch, Row&& row) {
+SparseMatrix rows_in_parallel(std::size_t n_rows, Eigen::Index n_cols, std::size_t expected, MakeScratch&& make_scratch,
+                              Row&& row) {
   std::vector<std::int32_t> outer(n_rows + 1, 0);
   std::vector<std::vector<std::int32_t>> block_cols;
   std::vector<std::vector<double>> block_vals;
@@ -30,6 +35,8 @@ SparseMatrix rows_in_parallel(std::size_t n_rows, Eigen::Index n_cols, MakeScrat
     auto scratch = make_scratch();
     auto& cols = block_cols[t];
     auto& vals = block_vals[t];
+    cols.reserve(expected / block_cols.size() + 1024);
+    vals.reserve(expected / block_cols.size() + 1024);
 #pragma omp for schedule(static)
     for (std::ptrdiff_t si = 0; si < static_cast<std::ptrdiff_t>(n_rows); ++si) {
       const std::size_t before = cols.size();
@@ -79,48 +86,45 @@ SparseMatrix symmetrize_zero_row_sums(const SparseMatrix& a, double drop, Symmet
   const auto n = static_cast<std::size_t>(a.rows());
   std::vector<double> diag(n, 0.0);
   for (std::size_t i = 0; i < n; ++i) diag[i] = std::fabs(a.coeff(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)));
-  std::vector<std::int32_t> outer(n + 1, 0), inner;
-  std::vector<double> values;
-  inner.reserve(static_cast<std::size_t>(a.nonZeros()) + n);
-  values.reserve(inner.capacity());
-  std::size_t one_sided = 0, empty_rows = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto row = static_cast<Eigen::Index>(i);
-    SparseMatrix::InnerIterator p(a, row), q(t, row);
-    const std::size_t start = values.size();
-    double sum = 0;
-    bool diag_done = false;
-    auto put_diagonal_before = [&](Eigen::Index col) {
-      if (!diag_done && col > row) {
-        inner.push_back(static_cast<std::int32_t>(i));
-        values.push_back(0.0);  // set below
-        diag_done = true;
-      }
-    };
-    // Merge row i of A and of A^T (both sorted by column).
-    while (p || q) {
-      const Eigen::Index cp = p ? p.col() : a.cols(), cq = q ? q.col() : a.cols();
-      const Eigen::Index col = std::min(cp, cq);
-      const double x = cp == col ? p.value() : 0.0, y = cq == col ? q.value() : 0.0;
-      if (cp == col) ++p;
-      if (cq == col) ++q;
-      if (col == row) continue;
-      one_sided += (cp != cq);
-      const double v = 0.5 * (x + y);
-      if (v == 0.0 || std::fabs(v) <= drop * std::max(diag[i], diag[static_cast<std::size_t>(col)])) continue;
-      put_diagonal_before(col);
-      inner.push_back(static_cast<std::int32_t>(col));
-      values.push_back(v);
-      sum += v;
-    }
-    put_diagonal_before(a.cols());
-    for (std::size_t r = start; r < values.size(); ++r)
-      if (inner[r] == static_cast<std::int32_t>(i)) values[r] = -sum;
-    empty_rows += values.size() - start == 1;
-    outer[i + 1] = static_cast<std::int32_t>(values.size());
-  }
+  std::atomic<std::size_t> one_sided{0}, empty_rows{0};
+  SparseMatrix s = rows_in_parallel(
+      n, a.cols(), static_cast<std::size_t>(a.nonZeros()) + n, [] { return 0; },
+      [&](std::size_t i, int&, std::vector<std::int32_t>& cols, std::vector<double>& vals) {
+        const auto row = static_cast<Eigen::Index>(i);
+        SparseMatrix::InnerIterator p(a, row), q(t, row);
+        std::size_t diagonal = SIZE_MAX, entries = 0, one_side = 0;
+        double sum = 0;
+        auto put_diagonal_before = [&](Eigen::Index col) {
+          if (diagonal == SIZE_MAX && col > row) {
+            diagonal = vals.size();
+            cols.push_back(static_cast<std::int32_t>(i));
+            vals.push_back(0.0);  // set below
+          }
+        };
+        // Merge row i of A and of A^T (both sorted by column).
+        while (p || q) {
+          const Eigen::Index cp = p ? p.col() : a.cols(), cq = q ? q.col() : a.cols();
+          const Eigen::Index col = std::min(cp, cq);
+          const double x = cp == col ? p.value() : 0.0, y = cq == col ? q.value() : 0.0;
+          if (cp == col) ++p;
+          if (cq == col) ++q;
+          if (col == row) continue;
+          one_side += (cp != cq);
+          const double v = 0.5 * (x + y);
+          if (v == 0.0 || std::fabs(v) <= drop * std::max(diag[i], diag[static_cast<std::size_t>(col)])) continue;
+          put_diagonal_before(col);
+          cols.push_back(static_cast<std::int32_t>(col));
+          vals.push_back(v);
+          sum += v;
+          ++entries;
+        }
+        put_diagonal_before(a.cols());
+        vals[diagonal] = -sum;
+        if (one_side) one_sided += one_side;
+        if (entries == 0) ++empty_rows;
+      });
   if (report) report->one_sided = one_sided / 2, report->empty_rows = empty_rows;
-  return from_rows(a.rows(), a.cols(), outer, inner, values);
+  return s;
 }
 
 SparseMatrix galerkin_product(const SparseMatrix& a, const SparseMatrix& p) {
@@ -130,7 +134,8 @@ SparseMatrix galerkin_product(const SparseMatrix& a, const SparseMatrix& p) {
   const std::int32_t *pp = p.outerIndexPtr(), *pi = p.innerIndexPtr();
   const double *tv = pt.valuePtr(), *av = a.valuePtr(), *pv = p.valuePtr();
   return rows_in_parallel(
-      m, static_cast<Eigen::Index>(m), [&] { return RowAccumulator(m); },
+      m, static_cast<Eigen::Index>(m), static_cast<std::size_t>(a.nonZeros()) * m / std::max<std::size_t>(1, static_cast<std::size_t>(a.rows())) + m,
+      [&] { return RowAccumulator(m); },
       [&](std::size_t row, RowAccumulator& acc, std::vector<std::int32_t>& cols, std::vector<double>& vals) {
         // Row I of P^T A P = sum_i p_iI sum_k a_ik P[k, :].
         for (std::int32_t f = tp[row]; f < tp[row + 1]; ++f)
@@ -154,7 +159,8 @@ SparseMatrix sparse_product(const SparseMatrix& a, const SparseMatrix& b, double
   const std::int32_t *ap = a.outerIndexPtr(), *ai = a.innerIndexPtr(), *bp = b.outerIndexPtr(), *bi = b.innerIndexPtr();
   const double *av = a.valuePtr(), *bv = b.valuePtr();
   return rows_in_parallel(
-      static_cast<std::size_t>(a.rows()), b.cols(), [&] { return RowAccumulator(m); },
+      static_cast<std::size_t>(a.rows()), b.cols(), static_cast<std::size_t>(a.nonZeros()) * 2,
+      [&] { return RowAccumulator(m); },
       [&](std::size_t row, RowAccumulator& acc, std::vector<std::int32_t>& cols, std::vector<double>& vals) {
         for (std::int32_t e = ap[row]; e < ap[row + 1]; ++e)
           for (std::int32_t c = bp[ai[e]]; c < bp[ai[e] + 1]; ++c) acc.add(bi[c], av[e] * bv[c]);
