@@ -157,6 +157,9 @@ for line in open(sys.argv[2]):
     n += 1
 assert n == 16000
 PY
+/usr/bin/python3 -c 'import json, sys, jsonschema
+jsonschema.validate(json.load(open(sys.argv[1])), json.load(open(sys.argv[2])))' "$work/l1.json" "$(dirname "$0")/../../schemas/levels.schema.json" 2>"$work/err" \
+  && ok || bad "decompose --summary does not follow schemas/levels.schema.json: $(tail -3 "$work/err")"
 corrupt=$(ls "$work/cache"/*.qfamg | head -1)
 head -c 500 "$corrupt" >"$work/half" && cp "$work/half" "$corrupt"
 expect 0 "decompose with a truncated cache" -- "$bake" decompose "$work/oct.ply" -o "$work/d4.ply" --level 5
