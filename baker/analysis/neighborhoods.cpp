@@ -237,13 +237,14 @@ std::size_t estimate_radii(PointSet& points, const RadiusEstimateOptions& option
   std::vector<float> estimate(n, 0.0f);
   std::vector<float> positive;
   for (std::size_t i = 0; i < n; ++i) {
-    double sum = 0;
+    // The k-th neighbour at non-zero distance (the lists are sorted; coincident points come first).
+    float reach = 0;
     int used = 0;
     for (std::uint32_t r = nb.offsets[i]; r < nb.offsets[i + 1]; ++r)
-      if (nb.distances[r] > 0) sum += nb.distances[r], ++used;
+      if (nb.distances[r] > 0) reach = nb.distances[r], ++used;
     if (used > 0) {
-      estimate[i] = static_cast<float>(sum / used);
-      positive.push_back(estimate[i]);
+      estimate[i] = reach;
+      positive.push_back(reach);
     }
   }
   float fallback;

@@ -51,8 +51,8 @@ TEST(RadiusEstimate, SpacingAndFallbacks) {
   for (int y = 0; y < 20; ++y)
     for (int x = 0; x < 20; ++x) grid.positions.push_back({0.1f * x, 0.1f * y, 0});
   EXPECT_EQ(estimate_radii(grid), 400u);
-  // interior: 4 neighbours at 0.1 and 2 (of the 4) at 0.1*sqrt(2): mean 0.1138
-  EXPECT_NEAR(grid.radii[10 * 20 + 10], (4 * 0.1 + 2 * 0.1 * std::sqrt(2.0)) / 6, 1e-5);
+  // interior: 4 neighbours at 0.1, then 4 at 0.1 sqrt(2): the 6th is at 0.1414
+  EXPECT_NEAR(grid.radii[10 * 20 + 10], 0.1 * std::sqrt(2.0), 1e-5);
   EXPECT_EQ(estimate_radii(grid), 0u);  // already complete: nothing to do
 
   PointSet same;

@@ -1,0 +1,197 @@
+// Texture resampling: linear affine (CGAL 2D Delaunay, concavity edges dropped, radial fallback)
+// or radial basis functions; colour extension into empty texels (thesis 3.3).
+#include "primitives/texture.h"
+
+#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+
+namespace qf {
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Vb = CGAL::Triangulation_vertex_base_with_info_2<std::uint32_t, Kernel>;
+using Tds = CGAL::Triangulation_data_structure_2<Vb>;
+using Delaunay = CGAL::Delaunay_triangulation_2<Kernel, Tds>;
+
+struct Sample {
+  double s, t;  // rectangle coordinates
+  double r;     // splat radius
+  double rgb[3];
+  double alpha;  // Psi of the domain
+};
+
+// Accumulates weighted colour and alpha per texel.
+struct Accumulator {
+  std::vector<double> rgb, alpha, weight;
+  std::vector<char> done;  // texel set by the linear affine interpolation
+  explicit Accumulator(std::size_t n) : rgb(3 * n, 0.0), alpha(n, 0.0), weight(n, 0.0), done(n, 0) {}
+};
+
+double profile(RadialProfile p, double d, double support) {
+  if (d > support) return 0.0;
+  switch (p) {
+    case RadialProfile::kConstant: return 1.0;
+    case RadialProfile::kLinear: return (support - d) / support;
+    case RadialProfile::kGaussian: {
+      const double sigma = support / 3.0;
+      return std::exp(-d * d / (2 * sigma * sigma));
+    }
+  }
+  return 0.0;
+}
+
+// Adds every sample's radial profile to the texels it reaches (skipping texels already done).
+void splat_radial(const std::vector<Sample>& samples, const Texture& tex, const SupportRect& rect, const TextureOptions& o,
+                  Accumulator& acc) {
+  for (const Sample& p : samples) {
+    const double support = o.width * p.r;
+    const int i0 = std::max(0, static_cast<int>(std::floor((p.s - support + rect.half_u) / tex.texel - 0.5)));
+    const int i1 = std::min(tex.width - 1, static_cast<int>(std::ceil((p.s + support + rect.half_u) / tex.texel - 0.5)));
+    const int j0 = std::max(0, static_cast<int>(std::floor((p.t - support + rect.half_v) / tex.texel - 0.5)));
+    const int j1 = std::min(tex.height - 1, static_cast<int>(std::ceil((p.t + support + rect.half_v) / tex.texel - 0.5)));
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) {
+        const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(tex.width) + static_cast<std::size_t>(i);
+        if (acc.done[k]) continue;
+        const double s = -rect.half_u + (i + 0.5) * tex.texel, t = -rect.half_v + (j + 0.5) * tex.texel;
+        const double w = profile(o.profile, std::hypot(s - p.s, t - p.t), support);
+        if (w <= 0) continue;
+        for (int c = 0; c < 3; ++c) acc.rgb[3 * k + static_cast<std::size_t>(c)] += w * p.rgb[c];
+        acc.alpha[k] += w * p.alpha;
+        acc.weight[k] += w;
+      }
+  }
+}
+
+// Linear affine interpolation over the Delaunay triangles whose edges are all no longer than the
+// sum of their end points' radii.
+void interpolate_triangles(const std::vector<Sample>& samples, const Texture& tex, const SupportRect& rect, Accumulator& acc) {
+  std::vector<std::pair<Kernel::Point_2, std::uint32_t>> pts;
+  pts.reserve(samples.size());
+  for (std::uint32_t k = 0; k < samples.size(); ++k) pts.push_back({Kernel::Point_2(samples[k].s, samples[k].t), k});
+  Delaunay dt;
+  dt.insert(pts.begin(), pts.end());
+  if (dt.dimension() < 2) return;
+  for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) {
+    const Sample* v[3];
+    for (int c = 0; c < 3; ++c) v[c] = &samples[f->vertex(c)->info()];
+    bool concave = false;
+    for (int c = 0; c < 3 && !concave; ++c) {
+      const Sample &a = *v[c], &b = *v[(c + 1) % 3];
+      concave = std::hypot(a.s - b.s, a.t - b.t) > a.r + b.r;
+    }
+    if (concave) continue;
+    const double det = (v[1]->s - v[0]->s) * (v[2]->t - v[0]->t) - (v[2]->s - v[0]->s) * (v[1]->t - v[0]->t);
+    if (det == 0) continue;
+    const double smin = std::min({v[0]->s, v[1]->s, v[2]->s}), smax = std::max({v[0]->s, v[1]->s, v[2]->s});
+    const double tmin = std::min({v[0]->t, v[1]->t, v[2]->t}), tmax = std::max({v[0]->t, v[1]->t, v[2]->t});
+    const int i0 = std::max(0, static_cast<int>(std::ceil((smin + rect.half_u) / tex.texel - 0.5)));
+    const int i1 = std::min(tex.width - 1, static_cast<int>(std::floor((smax + rect.half_u) / tex.texel - 0.5)));
+    const int j0 = std::max(0, static_cast<int>(std::ceil((tmin + rect.half_v) / tex.texel - 0.5)));
+    const int j1 = std::min(tex.height - 1, static_cast<int>(std::floor((tmax + rect.half_v) / tex.texel - 0.5)));
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) {
+        const double s = -rect.half_u + (i + 0.5) * tex.texel, t = -rect.half_v + (j + 0.5) * tex.texel;
+        const double b1 = ((s - v[0]->s) * (v[2]->t - v[0]->t) - (v[2]->s - v[0]->s) * (t - v[0]->t)) / det;
+        const double b2 = ((v[1]->s - v[0]->s) * (t - v[0]->t) - (s - v[0]->s) * (v[1]->t - v[0]->t)) / det;
+        const double b0 = 1 - b1 - b2;
+        constexpr double kEdge = -1e-9;  // texels on a shared edge belong to the first triangle that sees them
+        if (b0 < kEdge || b1 < kEdge || b2 < kEdge) continue;
+        const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(tex.width) + static_cast<std::size_t>(i);
+        if (acc.done[k]) continue;
+        acc.done[k] = 1;
+        const double b[3] = {b0, b1, b2};
+        for (int c = 0; c < 3; ++c) {
+          acc.rgb[3 * k + 0] += b[c] * v[c]->rgb[0];
+          acc.rgb[3 * k + 1] += b[c] * v[c]->rgb[1];
+          acc.rgb[3 * k + 2] += b[c] * v[c]->rgb[2];
+          acc.alpha[k] += b[c] * v[c]->alpha;
+        }
+        acc.weight[k] = 1.0;
+      }
+  }
+}
+
+std::uint8_t to8(double v) { return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 255.0))); }
+
+// Texels with alpha 0 take the colour of the nearest texel with alpha > 0 (breadth-first over the
+// grid, 4-neighbourhood, sources in index order), so filtering never pulls in black (thesis 3.3.4).
+void extend_colors(Texture& tex) {
+  const std::size_t n = static_cast<std::size_t>(tex.width) * static_cast<std::size_t>(tex.height);
+  std::vector<char> has(n, 0);
+  std::deque<std::size_t> queue;
+  for (std::size_t k = 0; k < n; ++k)
+    if (tex.rgba[4 * k + 3] > 0) has[k] = 1, queue.push_back(k);
+  if (queue.empty()) return;
+  while (!queue.empty()) {
+    const std::size_t k = queue.front();
+    queue.pop_front();
+    const int i = static_cast<int>(k % static_cast<std::size_t>(tex.width)), j = static_cast<int>(k / static_cast<std::size_t>(tex.width));
+    const int di[4] = {1, -1, 0, 0}, dj[4] = {0, 0, 1, -1};
+    for (int e = 0; e < 4; ++e) {
+      const int a = i + di[e], b = j + dj[e];
+      if (a < 0 || b < 0 || a >= tex.width || b >= tex.height) continue;
+      const std::size_t q = static_cast<std::size_t>(b) * static_cast<std::size_t>(tex.width) + static_cast<std::size_t>(a);
+      if (has[q]) continue;
+      has[q] = 1;
+      for (int c = 0; c < 3; ++c) tex.rgba[4 * q + static_cast<std::size_t>(c)] = tex.rgba[4 * k + static_cast<std::size_t>(c)];
+      queue.push_back(q);
+    }
+  }
+}
+
+}  // namespace
+
+Texture resample_texture(const std::vector<Vec3f>& positions, const std::vector<Rgb8>& colors,
+                         const std::vector<float>& radii, const SparseMatrix& psi, const Domains& domains,
+                         const SupportRect& rect, const TextureOptions& o) {
+  Texture tex;
+  // 1. The texel grid: texel = factor x mean radius, at most max_side texels a side.
+  double texel = std::max(1e-30, double(o.texel_factor) * rect.mean_radius);
+  const double longest = 2.0 * std::max(rect.half_u, rect.half_v);
+  if (longest / texel > o.max_side) texel = longest / o.max_side;
+  tex.texel = static_cast<float>(texel);
+  tex.width = std::max(1, static_cast<int>(std::ceil(2.0 * rect.half_u / texel)));
+  tex.height = std::max(1, static_cast<int>(std::ceil(2.0 * rect.half_v / texel)));
+  // The grid is centred on the rectangle: texel centres run from -half to +half.
+  SupportRect r = rect;
+  r.half_u = static_cast<float>(0.5 * tex.width * texel);
+  r.half_v = static_cast<float>(0.5 * tex.height * texel);
+  // 2. The domain's points in rectangle coordinates.
+  std::vector<Sample> samples;
+  const std::size_t d = rect.domain;
+  for (std::uint32_t q = domains.offsets[d]; q < domains.offsets[d + 1]; ++q) {
+    const std::uint32_t i = domains.points[q];
+    const Vec3f x = positions[i] - rect.center;
+    Sample sm{dot(x, rect.axis_u), dot(x, rect.axis_v), radii[i], {0, 0, 0}, psi.coeff(i, static_cast<Eigen::Index>(d))};
+    const Rgb8 c = colors.empty() ? o.base_color : colors[i];
+    sm.rgb[0] = c.r, sm.rgb[1] = c.g, sm.rgb[2] = c.b;
+    samples.push_back(sm);
+  }
+  // 3. Resample.
+  const std::size_t n = static_cast<std::size_t>(tex.width) * static_cast<std::size_t>(tex.height);
+  Accumulator acc(n);
+  if (o.method == ResampleMethod::kLinearAffine) interpolate_triangles(samples, tex, r, acc);
+  splat_radial(samples, tex, r, o, acc);
+  tex.rgba.assign(4 * n, 0);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double w = acc.weight[k];
+    if (!(w > 0)) continue;
+    // Colours are always a weighted mean; alpha is normalised only as the criterion says (an
+    // interpolated texel has weight 1 already).
+    const bool normalize = o.normalization == RadialNormalization::kWhenPositive ? w > 0 : w >= 1.0;
+    const double alpha = normalize ? acc.alpha[k] / w : acc.alpha[k];
+    for (int c = 0; c < 3; ++c) tex.rgba[4 * k + static_cast<std::size_t>(c)] = to8(acc.rgb[3 * k + static_cast<std::size_t>(c)] / w);
+    tex.rgba[4 * k + 3] = to8(255.0 * alpha);
+    tex.covered += tex.rgba[4 * k + 3] > 0;
+  }
+  if (o.extend_colors) extend_colors(tex);
+  return tex;
+}
+
+}  // namespace qf

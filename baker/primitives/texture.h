@@ -1,0 +1,49 @@
+// Texture resampling of a domain primitive (paper 3.2; thesis 3.3): the domain's points, projected
+// onto its support rectangle, resampled onto a texel grid. RGB = the points' colours, A = the
+// basis function Psi of the domain.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/sparse.h"
+#include "core/types.h"
+#include "domains/domains.h"
+#include "primitives/support.h"
+
+namespace qf {
+
+enum class ResampleMethod { kLinearAffine, kRadial };
+enum class RadialProfile { kConstant, kLinear, kGaussian };
+enum class RadialNormalization { kWhenAtLeastOne, kWhenPositive };  // thesis eqs. 3.3 / 3.4
+
+struct TextureOptions {
+  float texel_factor = 1.0f;  // texel size = factor x the domain's mean point radius (thesis 5.2.1)
+  int max_side = 1024;        // texels; a bigger rectangle gets proportionally larger texels
+  ResampleMethod method = ResampleMethod::kLinearAffine;
+  RadialProfile profile = RadialProfile::kLinear;  // radial method and the linear-affine fallback
+  float width = 1.0f;                              // radial support = width x point radius
+  RadialNormalization normalization = RadialNormalization::kWhenAtLeastOne;
+  bool extend_colors = true;  // texels with alpha 0 take the colour of the nearest coloured texel
+  Rgb8 base_color{200, 200, 200};  // for inputs without colours
+};
+
+// An RGBA8 image, rows from t = -half_v (row 0) upward; texel (i, j) is centred at
+// s = -half_u + (i + 0.5) texel, t = -half_v + (j + 0.5) texel in the rectangle's axes.
+struct Texture {
+  int width = 0, height = 0;
+  float texel = 0;  // world units
+  std::vector<std::uint8_t> rgba;  // width * height * 4
+  std::size_t covered = 0;         // texels with alpha > 0
+};
+
+// Resamples domain `rect.domain` of Psi onto the rectangle's texel grid. Linear affine (default):
+// 2D Delaunay of the projected points (CGAL), triangles with an edge longer than the sum of its
+// end points' radii dropped (concavities, thesis fig. 3.8), barycentric interpolation inside;
+// texels outside the kept triangles but within a point's radius use the radial profile; all
+// others get alpha 0. Radial: sum of the profiles, normalised per texel as the option says.
+Texture resample_texture(const std::vector<Vec3f>& positions, const std::vector<Rgb8>& colors,
+                         const std::vector<float>& radii, const SparseMatrix& psi, const Domains& domains,
+                         const SupportRect& rect, const TextureOptions& options = {});
+
+}  // namespace qf

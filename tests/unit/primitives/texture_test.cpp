@@ -1,0 +1,140 @@
+// Texture resampling (thesis 3.3): interpolation, concavities, radial profiles, colour extension,
+// partition of unity across overlapping domains.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "primitives/support.h"
+#include "primitives/texture.h"
+
+namespace qf {
+namespace {
+
+struct Scene {
+  std::vector<Vec3f> positions, normals;
+  std::vector<Rgb8> colors;
+  std::vector<float> radii;
+  SparseMatrix psi;
+};
+
+// Points on a grid in the plane z = 0 (spacing 0.05, radius 0.05), red = 255 x / 2; `keep` decides
+// which grid points exist. Psi: column 0 = 1 - x/2, column 1 = x/2 (two overlapping functions).
+template <class Keep>
+Scene grid(Keep keep) {
+  Scene s;
+  std::vector<std::int32_t> outer{0}, inner;
+  std::vector<double> values;
+  for (int y = 0; y <= 40; ++y)
+    for (int x = 0; x <= 40; ++x) {
+      const float px = 0.05f * x, py = 0.05f * y;
+      if (!keep(px, py)) continue;
+      s.positions.push_back({px, py, 0});
+      s.normals.push_back({0, 0, 1});
+      s.radii.push_back(0.05f);
+      s.colors.push_back({static_cast<std::uint8_t>(std::lround(127.5f * px)), 50, 100});
+      inner.push_back(0), values.push_back(1.0 - px / 2);
+      inner.push_back(1), values.push_back(px / 2);
+      outer.push_back(static_cast<std::int32_t>(inner.size()));
+    }
+  s.psi = from_rows(static_cast<Eigen::Index>(s.positions.size()), 2, outer, inner, values);
+  return s;
+}
+
+// The texel holding world point (x, y, 0): its RGBA, and (in `center`) the world position of
+// its centre.
+std::array<int, 4> texel_at(const Texture& t, const SupportRect& r, float x, float y, Vec3f* center = nullptr) {
+  const Vec3f d = Vec3f{x, y, 0} - r.center;
+  const int i = static_cast<int>(std::floor((dot(d, r.axis_u) + 0.5f * t.width * t.texel) / t.texel));
+  const int j = static_cast<int>(std::floor((dot(d, r.axis_v) + 0.5f * t.height * t.texel) / t.texel));
+  if (center)
+    *center = r.center + r.axis_u * ((i + 0.5f) * t.texel - 0.5f * t.width * t.texel) +
+              r.axis_v * ((j + 0.5f) * t.texel - 0.5f * t.height * t.texel);
+  const std::size_t k = 4 * (static_cast<std::size_t>(j) * static_cast<std::size_t>(t.width) + static_cast<std::size_t>(i));
+  return {t.rgba[k], t.rgba[k + 1], t.rgba[k + 2], t.rgba[k + 3]};
+}
+
+TEST(Texture, LinearAffineInterpolatesColourAndWeight) {
+  const Scene s = grid([](float, float) { return true; });
+  DomainOptions all;
+  all.tau = 0.0;  // every point in both domains
+  const Domains d = make_domains(s.psi, all);
+  const SupportRect r = support_rectangles(s.positions, s.normals, s.radii, s.psi, d)[0];
+  const Texture t = resample_texture(s.positions, s.colors, s.radii, s.psi, d, r);
+  EXPECT_NEAR(t.texel, 0.05f, 1e-6f);
+  EXPECT_EQ(t.width, 42);  // 2 + 2 radii over 0.05
+  for (float x : {0.3f, 0.8f, 1.37f, 1.9f}) {
+    Vec3f at;
+    const auto c = texel_at(t, r, x, 0.77f, &at);
+    EXPECT_NEAR(c[0], 127.5 * at.x, 1.0) << "x " << at.x;           // red follows x linearly
+    EXPECT_NEAR(c[3], 255 * (1 - at.x / 2), 1.0) << "x " << at.x;  // alpha follows Psi_0
+  }
+  EXPECT_GT(t.covered, static_cast<std::size_t>(40 * 40));
+}
+
+TEST(Texture, PartitionOfUnityAcrossDomains) {
+  const Scene s = grid([](float, float) { return true; });
+  DomainOptions all;
+  all.tau = 0.0;
+  const Domains d = make_domains(s.psi, all);
+  SupportRect r0 = support_rectangles(s.positions, s.normals, s.radii, s.psi, d)[0];
+  SupportRect r1 = r0;
+  r1.domain = 1;  // the same rectangle for both functions: texels line up
+  const Texture t0 = resample_texture(s.positions, s.colors, s.radii, s.psi, d, r0);
+  const Texture t1 = resample_texture(s.positions, s.colors, s.radii, s.psi, d, r1);
+  for (float x = 0.1f; x < 1.95f; x += 0.13f)
+    for (float y = 0.1f; y < 1.95f; y += 0.17f)
+      EXPECT_NEAR(texel_at(t0, r0, x, y)[3] + texel_at(t1, r0, x, y)[3], 255, 2) << x << "," << y;
+}
+
+TEST(Texture, ConcavitiesStayEmptyAndColoursExtend) {
+  // An L: the quadrant x > 1, y > 1 has no points. Delaunay triangles across it have edges much
+  // longer than two radii and are dropped.
+  const Scene s = grid([](float x, float y) { return !(x > 1.01f && y > 1.01f); });
+  const Domains d = make_domains(s.psi);
+  const SupportRect r = support_rectangles(s.positions, s.normals, s.radii, s.psi, d)[0];
+  const Texture t = resample_texture(s.positions, s.colors, s.radii, s.psi, d, r);
+  const auto empty = texel_at(t, r, 1.6f, 1.6f);
+  EXPECT_EQ(empty[3], 0);
+  EXPECT_GT(empty[0] + empty[1] + empty[2], 0);  // colour extended from the nearest texel, not black
+  EXPECT_GT(texel_at(t, r, 0.6f, 1.6f)[3], 100);
+  TextureOptions plain;
+  plain.extend_colors = false;
+  const auto black = texel_at(resample_texture(s.positions, s.colors, s.radii, s.psi, d, r, plain), r, 1.6f, 1.6f);
+  EXPECT_EQ(black[0] + black[1] + black[2] + black[3], 0);
+}
+
+TEST(Texture, RadialProfiles) {
+  const Scene s = grid([](float, float) { return true; });
+  const Domains d = make_domains(s.psi);
+  const SupportRect r = support_rectangles(s.positions, s.normals, s.radii, s.psi, d)[0];
+  for (RadialProfile p : {RadialProfile::kConstant, RadialProfile::kLinear, RadialProfile::kGaussian}) {
+    TextureOptions o;
+    o.method = ResampleMethod::kRadial;
+    o.profile = p;
+    o.width = 2.0f;
+    const Texture t = resample_texture(s.positions, s.colors, s.radii, s.psi, d, r, o);
+    // Inside, the profiles overlap (f >= 1): alpha is the normalised Psi_0 = 1 - x/2.
+    EXPECT_NEAR(texel_at(t, r, 0.52f, 1.0f)[3], 255 * (1 - 0.52 / 2), 12) << int(p);
+    EXPECT_NEAR(texel_at(t, r, 0.52f, 1.0f)[0], 127.5 * 0.52, 12) << int(p);
+  }
+  // Without colours, the base colour.
+  TextureOptions o;
+  const Texture t = resample_texture(s.positions, {}, s.radii, s.psi, d, r, o);
+  const auto c = texel_at(t, r, 1.0f, 1.0f);
+  EXPECT_EQ(c[0], 200);
+  EXPECT_EQ(c[1], 200);
+}
+
+TEST(Texture, MaxSideLimitsTheGrid) {
+  const Scene s = grid([](float, float) { return true; });
+  const Domains d = make_domains(s.psi);
+  const SupportRect r = support_rectangles(s.positions, s.normals, s.radii, s.psi, d)[0];
+  TextureOptions o;
+  o.max_side = 16;
+  const Texture t = resample_texture(s.positions, s.colors, s.radii, s.psi, d, r, o);
+  EXPECT_LE(std::max(t.width, t.height), 16);
+  EXPECT_GT(t.texel, 0.05f);
+}
+
+}  // namespace
+}  // namespace qf
