@@ -1,0 +1,83 @@
+// Shelf packing of the primitives' textures into block-aligned tiles with edge-extended gutters.
+#include "primitives/atlas.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+
+namespace qf {
+namespace {
+
+int round_up(int v, int m) { return (v + m - 1) / m * m; }
+
+// Fills the cell at (x, y), pad_w x pad_h texels, with texture `t` placed `gutter` texels in from
+// the cell's corner and its edge texels repeated over the rest of the cell. The texture's row 0 is
+// its bottom row; images run top to bottom.
+void blit(const Texture& t, int x, int y, int pad_w, int pad_h, int gutter, int image_w, std::vector<std::uint8_t>& img) {
+  for (int j = 0; j < pad_h; ++j)
+    for (int i = 0; i < pad_w; ++i) {
+      const int si = std::clamp(i - gutter, 0, t.width - 1);
+      const int sj = std::clamp(j - gutter, 0, t.height - 1);
+      const std::size_t src = 4 * (static_cast<std::size_t>(t.height - 1 - sj) * static_cast<std::size_t>(t.width) + static_cast<std::size_t>(si));
+      const std::size_t dst = 4 * (static_cast<std::size_t>(y + j) * static_cast<std::size_t>(image_w) + static_cast<std::size_t>(x + i));
+      std::copy(t.rgba.begin() + static_cast<std::ptrdiff_t>(src), t.rgba.begin() + static_cast<std::ptrdiff_t>(src) + 4,
+                img.begin() + static_cast<std::ptrdiff_t>(dst));
+    }
+}
+
+}  // namespace
+
+Atlas pack_atlas(const std::vector<Texture>& textures, const AtlasOptions& o) {
+  Atlas a;
+  a.tiles.resize(textures.size());
+  // 1. Padded tile sizes and the packing order.
+  std::vector<int> pw(textures.size()), ph(textures.size());
+  std::size_t area = 0;
+  for (std::size_t k = 0; k < textures.size(); ++k) {
+    pw[k] = round_up(textures[k].width + 2 * o.gutter, o.block);  // gutter on every side
+    ph[k] = round_up(textures[k].height + 2 * o.gutter, o.block);
+    if (pw[k] > o.max_side || ph[k] > o.max_side) throw std::logic_error("pack_atlas: a texture is larger than max_side");
+    area += static_cast<std::size_t>(pw[k]) * static_cast<std::size_t>(ph[k]);
+    a.texels += static_cast<std::size_t>(textures[k].width) * static_cast<std::size_t>(textures[k].height);
+  }
+  std::vector<std::size_t> order(textures.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return ph[x] > ph[y]; });
+  // 2. Atlas width: the power of two near the square root of the area (at most max_side).
+  int width = o.block;
+  while (width < o.max_side && static_cast<std::size_t>(width) * static_cast<std::size_t>(width) < area) width *= 2;
+  for (std::size_t k : order) width = std::max(width, pw[k]);
+  // 3. Shelves, left to right, top to bottom; a full atlas opens the next one.
+  std::vector<int> heights;
+  int x = 0, y = 0, shelf = 0;
+  std::uint32_t image = 0;
+  heights.push_back(0);
+  for (std::size_t k : order) {
+    if (x + pw[k] > width) x = 0, y += shelf, shelf = 0;
+    if (y + ph[k] > o.max_side) {
+      ++image, x = 0, y = 0, shelf = 0;
+      heights.push_back(0);
+    }
+    a.tiles[k] = {image, x + o.gutter, y + o.gutter, textures[k].width, textures[k].height, 0, 0, 0, 0};
+    x += pw[k];
+    shelf = std::max(shelf, ph[k]);
+    heights[image] = std::max(heights[image], y + shelf);
+  }
+  // 4. Images and texture coordinates.
+  for (std::size_t i = 0; i < heights.size(); ++i) {
+    a.widths.push_back(width);
+    a.heights.push_back(round_up(std::max(heights[i], 1), o.block));
+    a.images.emplace_back(4 * static_cast<std::size_t>(width) * static_cast<std::size_t>(a.heights.back()), 0);
+  }
+  for (std::size_t k = 0; k < textures.size(); ++k) {
+    AtlasTile& t = a.tiles[k];
+    blit(textures[k], t.x - o.gutter, t.y - o.gutter, pw[k], ph[k], o.gutter, width, a.images[t.atlas]);
+    const float w = static_cast<float>(a.widths[t.atlas]), h = static_cast<float>(a.heights[t.atlas]);
+    t.u0 = t.x / w, t.u1 = (t.x + t.width) / w;
+    t.v0 = t.y / h, t.v1 = (t.y + t.height) / h;
+  }
+  return a;
+}
+
+}  // namespace qf
