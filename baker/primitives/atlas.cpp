@@ -14,14 +14,15 @@ int round_up(int v, int m) { return (v + m - 1) / m * m; }
 // Fills the cell at (x, y), pad_w x pad_h texels, with texture `t` placed `gutter` texels in from
 // the cell's corner and its edge texels repeated over the rest of the cell. The texture's row 0 is
 // its bottom row; images run top to bottom.
-void blit(const Texture& t, int x, int y, int pad_w, int pad_h, int gutter, int image_w, std::vector<std::uint8_t>& img) {
+void blit(const std::vector<std::uint8_t>& rgba, const Texture& t, int x, int y, int pad_w, int pad_h, int gutter,
+          int image_w, std::vector<std::uint8_t>& img) {
   for (int j = 0; j < pad_h; ++j)
     for (int i = 0; i < pad_w; ++i) {
       const int si = std::clamp(i - gutter, 0, t.width - 1);
       const int sj = std::clamp(j - gutter, 0, t.height - 1);
       const std::size_t src = 4 * (static_cast<std::size_t>(t.height - 1 - sj) * static_cast<std::size_t>(t.width) + static_cast<std::size_t>(si));
       const std::size_t dst = 4 * (static_cast<std::size_t>(y + j) * static_cast<std::size_t>(image_w) + static_cast<std::size_t>(x + i));
-      std::copy(t.rgba.begin() + static_cast<std::ptrdiff_t>(src), t.rgba.begin() + static_cast<std::ptrdiff_t>(src) + 4,
+      std::copy(rgba.begin() + static_cast<std::ptrdiff_t>(src), rgba.begin() + static_cast<std::ptrdiff_t>(src) + 4,
                 img.begin() + static_cast<std::ptrdiff_t>(dst));
     }
 }
@@ -64,15 +65,22 @@ Atlas pack_atlas(const std::vector<Texture>& textures, const AtlasOptions& o) {
     shelf = std::max(shelf, ph[k]);
     heights[image] = std::max(heights[image], y + shelf);
   }
-  // 4. Images and texture coordinates.
+  // 4. Images (and normal maps, when every texture has one) and texture coordinates.
+  const bool with_normals = !textures.empty() &&
+      std::all_of(textures.begin(), textures.end(), [](const Texture& t) { return !t.normals.empty(); });
   for (std::size_t i = 0; i < heights.size(); ++i) {
     a.widths.push_back(width);
     a.heights.push_back(round_up(std::max(heights[i], 1), o.block));
-    a.images.emplace_back(4 * static_cast<std::size_t>(width) * static_cast<std::size_t>(a.heights.back()), 0);
+    const std::size_t bytes = 4 * static_cast<std::size_t>(width) * static_cast<std::size_t>(a.heights.back());
+    a.images.emplace_back(bytes, 0);
+    if (with_normals) a.normal_images.emplace_back(bytes, 0);
   }
   for (std::size_t k = 0; k < textures.size(); ++k) {
     AtlasTile& t = a.tiles[k];
-    blit(textures[k], t.x - o.gutter, t.y - o.gutter, pw[k], ph[k], o.gutter, width, a.images[t.atlas]);
+    blit(textures[k].rgba, textures[k], t.x - o.gutter, t.y - o.gutter, pw[k], ph[k], o.gutter, width, a.images[t.atlas]);
+    if (with_normals)
+      blit(textures[k].normals, textures[k], t.x - o.gutter, t.y - o.gutter, pw[k], ph[k], o.gutter, width,
+           a.normal_images[t.atlas]);
     const float w = static_cast<float>(a.widths[t.atlas]), h = static_cast<float>(a.heights[t.atlas]);
     t.u0 = t.x / w, t.u1 = (t.x + t.width) / w;
     t.v0 = t.y / h, t.v1 = (t.y + t.height) / h;

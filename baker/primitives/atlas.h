@@ -30,6 +30,7 @@ struct AtlasTile {
 struct Atlas {
   std::vector<int> widths, heights;                // per image
   std::vector<std::vector<std::uint8_t>> images;  // RGBA8, rows top to bottom
+  std::vector<std::vector<std::uint8_t>> normal_images;  // the normal maps, same layout (when every texture has one)
   std::vector<AtlasTile> tiles;                    // per input texture, in input order
   std::size_t texels = 0;                          // used by tiles (gutters not counted)
 };

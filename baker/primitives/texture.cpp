@@ -18,18 +18,21 @@ using Vb = CGAL::Triangulation_vertex_base_with_info_2<std::uint32_t, Kernel>;
 using Tds = CGAL::Triangulation_data_structure_2<Vb>;
 using Delaunay = CGAL::Delaunay_triangulation_2<Kernel, Tds>;
 
+// Per-point channels resampled together: colour (3), tangent-space normal (3).
+constexpr int kChannels = 6;
+
 struct Sample {
   double s, t;  // rectangle coordinates
   double r;     // splat radius
-  double rgb[3];
+  double value[kChannels];
   double alpha;  // Psi of the domain
 };
 
-// Accumulates weighted colour and alpha per texel.
+// Accumulates weighted channels and alpha per texel.
 struct Accumulator {
-  std::vector<double> rgb, alpha, weight;
+  std::vector<double> value, alpha, weight;
   std::vector<char> done;  // texel set by the linear affine interpolation
-  explicit Accumulator(std::size_t n) : rgb(3 * n, 0.0), alpha(n, 0.0), weight(n, 0.0), done(n, 0) {}
+  explicit Accumulator(std::size_t n) : value(kChannels * n, 0.0), alpha(n, 0.0), weight(n, 0.0), done(n, 0) {}
 };
 
 double profile(RadialProfile p, double d, double support) {
@@ -61,7 +64,7 @@ void splat_radial(const std::vector<Sample>& samples, const Texture& tex, const 
         const double s = -rect.half_u + (i + 0.5) * tex.texel, t = -rect.half_v + (j + 0.5) * tex.texel;
         const double w = profile(o.profile, std::hypot(s - p.s, t - p.t), support);
         if (w <= 0) continue;
-        for (int c = 0; c < 3; ++c) acc.rgb[3 * k + static_cast<std::size_t>(c)] += w * p.rgb[c];
+        for (int c = 0; c < kChannels; ++c) acc.value[kChannels * k + static_cast<std::size_t>(c)] += w * p.value[c];
         acc.alpha[k] += w * p.alpha;
         acc.weight[k] += w;
       }
@@ -107,9 +110,7 @@ void interpolate_triangles(const std::vector<Sample>& samples, const Texture& te
         acc.done[k] = 1;
         const double b[3] = {b0, b1, b2};
         for (int c = 0; c < 3; ++c) {
-          acc.rgb[3 * k + 0] += b[c] * v[c]->rgb[0];
-          acc.rgb[3 * k + 1] += b[c] * v[c]->rgb[1];
-          acc.rgb[3 * k + 2] += b[c] * v[c]->rgb[2];
+          for (int ch = 0; ch < kChannels; ++ch) acc.value[kChannels * k + static_cast<std::size_t>(ch)] += b[c] * v[c]->value[ch];
           acc.alpha[k] += b[c] * v[c]->alpha;
         }
         acc.weight[k] = 1.0;
@@ -119,8 +120,9 @@ void interpolate_triangles(const std::vector<Sample>& samples, const Texture& te
 
 std::uint8_t to8(double v) { return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 255.0))); }
 
-// Texels with alpha 0 take the colour of the nearest texel with alpha > 0 (breadth-first over the
-// grid, 4-neighbourhood, sources in index order), so filtering never pulls in black (thesis 3.3.4).
+// Texels with alpha 0 take the colour (and normal) of the nearest texel with alpha > 0 (breadth
+// first over the grid, 4-neighbourhood, sources in index order), so filtering never pulls in black
+// (thesis 3.3.4).
 void extend_colors(Texture& tex) {
   const std::size_t n = static_cast<std::size_t>(tex.width) * static_cast<std::size_t>(tex.height);
   std::vector<char> has(n, 0);
@@ -140,6 +142,8 @@ void extend_colors(Texture& tex) {
       if (has[q]) continue;
       has[q] = 1;
       for (int c = 0; c < 3; ++c) tex.rgba[4 * q + static_cast<std::size_t>(c)] = tex.rgba[4 * k + static_cast<std::size_t>(c)];
+      if (!tex.normals.empty())
+        for (int c = 0; c < 3; ++c) tex.normals[4 * q + static_cast<std::size_t>(c)] = tex.normals[4 * k + static_cast<std::size_t>(c)];
       queue.push_back(q);
     }
   }
@@ -148,8 +152,8 @@ void extend_colors(Texture& tex) {
 }  // namespace
 
 Texture resample_texture(const std::vector<Vec3f>& positions, const std::vector<Rgb8>& colors,
-                         const std::vector<float>& radii, const SparseMatrix& psi, const Domains& domains,
-                         const SupportRect& rect, const TextureOptions& o) {
+                         const std::vector<Vec3f>& normals, const std::vector<float>& radii, const SparseMatrix& psi,
+                         const Domains& domains, const SupportRect& rect, const TextureOptions& o) {
   Texture tex;
   // 1. The texel grid: texel = factor x mean radius, at most max_side texels a side.
   double texel = std::max(1e-30, double(o.texel_factor) * rect.mean_radius);
@@ -168,9 +172,13 @@ Texture resample_texture(const std::vector<Vec3f>& positions, const std::vector<
   for (std::uint32_t q = domains.offsets[d]; q < domains.offsets[d + 1]; ++q) {
     const std::uint32_t i = domains.points[q];
     const Vec3f x = positions[i] - rect.center;
-    Sample sm{dot(x, rect.axis_u), dot(x, rect.axis_v), radii[i], {0, 0, 0}, psi.coeff(i, static_cast<Eigen::Index>(d))};
+    Sample sm{dot(x, rect.axis_u), dot(x, rect.axis_v), radii[i], {0, 0, 0, 0, 0, 1}, psi.coeff(i, static_cast<Eigen::Index>(d))};
     const Rgb8 c = colors.empty() ? o.base_color : colors[i];
-    sm.rgb[0] = c.r, sm.rgb[1] = c.g, sm.rgb[2] = c.b;
+    sm.value[0] = c.r, sm.value[1] = c.g, sm.value[2] = c.b;
+    if (!normals.empty()) {
+      const Vec3f n = normals[i];
+      sm.value[3] = dot(n, rect.axis_u), sm.value[4] = dot(n, rect.axis_v), sm.value[5] = dot(n, rect.normal);
+    }
     samples.push_back(sm);
   }
   // 3. Resample.
@@ -179,14 +187,24 @@ Texture resample_texture(const std::vector<Vec3f>& positions, const std::vector<
   if (o.method == ResampleMethod::kLinearAffine) interpolate_triangles(samples, tex, r, acc);
   splat_radial(samples, tex, r, o, acc);
   tex.rgba.assign(4 * n, 0);
+  if (!normals.empty()) {
+    tex.normals.assign(4 * n, 255);
+    for (std::size_t k = 0; k < n; ++k) tex.normals[4 * k] = tex.normals[4 * k + 1] = 128;  // (0, 0, 1)
+  }
   for (std::size_t k = 0; k < n; ++k) {
     const double w = acc.weight[k];
     if (!(w > 0)) continue;
+    if (!normals.empty()) {
+      const double* v = &acc.value[kChannels * k + 3];
+      const double len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+      if (len > 0)
+        for (int c = 0; c < 3; ++c) tex.normals[4 * k + static_cast<std::size_t>(c)] = to8(127.5 * (v[c] / len + 1.0));
+    }
     // Colours are always a weighted mean; alpha is normalised only as the criterion says (an
     // interpolated texel has weight 1 already).
     const bool normalize = o.normalization == RadialNormalization::kWhenPositive ? w > 0 : w >= 1.0;
     const double alpha = normalize ? acc.alpha[k] / w : acc.alpha[k];
-    for (int c = 0; c < 3; ++c) tex.rgba[4 * k + static_cast<std::size_t>(c)] = to8(acc.rgb[3 * k + static_cast<std::size_t>(c)] / w);
+    for (int c = 0; c < 3; ++c) tex.rgba[4 * k + static_cast<std::size_t>(c)] = to8(acc.value[kChannels * k + static_cast<std::size_t>(c)] / w);
     tex.rgba[4 * k + 3] = to8(255.0 * alpha);
     tex.covered += tex.rgba[4 * k + 3] > 0;
   }

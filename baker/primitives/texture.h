@@ -34,6 +34,9 @@ struct Texture {
   int width = 0, height = 0;
   float texel = 0;  // world units
   std::vector<std::uint8_t> rgba;  // width * height * 4
+  // Tangent-space normal map (glTF convention: RGB = (n.axis_u, n.axis_v, n.normal) * 0.5 + 0.5),
+  // width * height * 4 with A = 255; empty when no normals were given.
+  std::vector<std::uint8_t> normals;
   std::size_t covered = 0;         // texels with alpha > 0
 };
 
@@ -42,8 +45,11 @@ struct Texture {
 // end points' radii dropped (concavities, thesis fig. 3.8), barycentric interpolation inside;
 // texels outside the kept triangles but within a point's radius use the radial profile; all
 // others get alpha 0. Radial: sum of the profiles, normalised per texel as the option says.
+// With `normals` (one per point, or empty), the same resampling of the point normals gives the
+// normal map (paper section 6's first future-work item): per-texel normals, renormalised, in the
+// rectangle's tangent frame, so engines light the quad per texel.
 Texture resample_texture(const std::vector<Vec3f>& positions, const std::vector<Rgb8>& colors,
-                         const std::vector<float>& radii, const SparseMatrix& psi, const Domains& domains,
-                         const SupportRect& rect, const TextureOptions& options = {});
+                         const std::vector<Vec3f>& normals, const std::vector<float>& radii, const SparseMatrix& psi,
+                         const Domains& domains, const SupportRect& rect, const TextureOptions& options = {});
 
 }  // namespace qf

@@ -68,6 +68,23 @@ TEST(Atlas, RowsAreFlippedToTopDown) {
   EXPECT_EQ(a.images[0][4 * (static_cast<std::size_t>(tile.y + 1) * static_cast<std::size_t>(a.widths[0]) + static_cast<std::size_t>(tile.x))], 77);
 }
 
+TEST(Atlas, NormalMapsShareTheLayout) {
+  std::vector<Texture> ts = many();
+  for (Texture& t : ts) {
+    t.normals = t.rgba;
+    for (std::size_t k = 0; k < t.normals.size(); ++k) t.normals[k] = static_cast<std::uint8_t>(255 - t.normals[k]);
+  }
+  const Atlas a = pack_atlas(ts);
+  ASSERT_EQ(a.normal_images.size(), a.images.size());
+  for (std::size_t k = 0; k < a.images[0].size(); ++k) {
+    if (a.images[0][k] != 0) {
+      ASSERT_EQ(a.normal_images[0][k], 255 - a.images[0][k]);
+    }
+  }
+  ts[3].normals.clear();
+  EXPECT_TRUE(pack_atlas(ts).normal_images.empty());
+}
+
 TEST(Atlas, ManyImagesPastTheSizeLimit) {
   AtlasOptions o;
   o.max_side = 128;

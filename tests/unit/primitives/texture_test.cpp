@@ -59,7 +59,7 @@ TEST(Texture, LinearAffineInterpolatesColourAndWeight) {
   all.tau = 0.0;  // every point in both domains
   const Domains d = make_domains(s.psi, all);
   const SupportRect r = support_rectangles(s.positions, s.normals, s.radii, s.psi, d)[0];
-  const Texture t = resample_texture(s.positions, s.colors, s.radii, s.psi, d, r);
+  const Texture t = resample_texture(s.positions, s.colors, {}, s.radii, s.psi, d, r);
   EXPECT_NEAR(t.texel, 0.05f, 1e-6f);
   EXPECT_EQ(t.width, 42);  // 2 + 2 radii over 0.05
   for (float x : {0.3f, 0.8f, 1.37f, 1.9f}) {
@@ -79,8 +79,8 @@ TEST(Texture, PartitionOfUnityAcrossDomains) {
   SupportRect r0 = support_rectangles(s.positions, s.normals, s.radii, s.psi, d)[0];
   SupportRect r1 = r0;
   r1.domain = 1;  // the same rectangle for both functions: texels line up
-  const Texture t0 = resample_texture(s.positions, s.colors, s.radii, s.psi, d, r0);
-  const Texture t1 = resample_texture(s.positions, s.colors, s.radii, s.psi, d, r1);
+  const Texture t0 = resample_texture(s.positions, s.colors, {}, s.radii, s.psi, d, r0);
+  const Texture t1 = resample_texture(s.positions, s.colors, {}, s.radii, s.psi, d, r1);
   for (float x = 0.1f; x < 1.95f; x += 0.13f)
     for (float y = 0.1f; y < 1.95f; y += 0.17f)
       EXPECT_NEAR(texel_at(t0, r0, x, y)[3] + texel_at(t1, r0, x, y)[3], 255, 2) << x << "," << y;
@@ -92,14 +92,14 @@ TEST(Texture, ConcavitiesStayEmptyAndColoursExtend) {
   const Scene s = grid([](float x, float y) { return !(x > 1.01f && y > 1.01f); });
   const Domains d = make_domains(s.psi);
   const SupportRect r = support_rectangles(s.positions, s.normals, s.radii, s.psi, d)[0];
-  const Texture t = resample_texture(s.positions, s.colors, s.radii, s.psi, d, r);
+  const Texture t = resample_texture(s.positions, s.colors, {}, s.radii, s.psi, d, r);
   const auto empty = texel_at(t, r, 1.6f, 1.6f);
   EXPECT_EQ(empty[3], 0);
   EXPECT_GT(empty[0] + empty[1] + empty[2], 0);  // colour extended from the nearest texel, not black
   EXPECT_GT(texel_at(t, r, 0.6f, 1.6f)[3], 100);
   TextureOptions plain;
   plain.extend_colors = false;
-  const auto black = texel_at(resample_texture(s.positions, s.colors, s.radii, s.psi, d, r, plain), r, 1.6f, 1.6f);
+  const auto black = texel_at(resample_texture(s.positions, s.colors, {}, s.radii, s.psi, d, r, plain), r, 1.6f, 1.6f);
   EXPECT_EQ(black[0] + black[1] + black[2] + black[3], 0);
 }
 
@@ -112,17 +112,45 @@ TEST(Texture, RadialProfiles) {
     o.method = ResampleMethod::kRadial;
     o.profile = p;
     o.width = 2.0f;
-    const Texture t = resample_texture(s.positions, s.colors, s.radii, s.psi, d, r, o);
+    const Texture t = resample_texture(s.positions, s.colors, {}, s.radii, s.psi, d, r, o);
     // Inside, the profiles overlap (f >= 1): alpha is the normalised Psi_0 = 1 - x/2.
     EXPECT_NEAR(texel_at(t, r, 0.52f, 1.0f)[3], 255 * (1 - 0.52 / 2), 12) << int(p);
     EXPECT_NEAR(texel_at(t, r, 0.52f, 1.0f)[0], 127.5 * 0.52, 12) << int(p);
   }
   // Without colours, the base colour.
   TextureOptions o;
-  const Texture t = resample_texture(s.positions, {}, s.radii, s.psi, d, r, o);
+  const Texture t = resample_texture(s.positions, {}, {}, s.radii, s.psi, d, r, o);
   const auto c = texel_at(t, r, 1.0f, 1.0f);
   EXPECT_EQ(c[0], 200);
   EXPECT_EQ(c[1], 200);
+}
+
+TEST(Texture, NormalMapInTangentSpace) {
+  // Normals tilted towards +x by 30 degrees on the left half, straight up on the right half.
+  Scene s = grid([](float, float) { return true; });
+  const float tilt = 3.14159265f / 6;
+  for (std::size_t i = 0; i < s.positions.size(); ++i)
+    s.normals[i] = s.positions[i].x < 1.0f ? Vec3f{std::sin(tilt), 0, std::cos(tilt)} : Vec3f{0, 0, 1};
+  const Domains d = make_domains(s.psi);
+  const SupportRect r = support_rectangles(s.positions, s.normals, s.radii, s.psi, d)[0];
+  const Texture t = resample_texture(s.positions, s.colors, s.normals, s.radii, s.psi, d, r);
+  ASSERT_EQ(t.normals.size(), t.rgba.size());
+  auto normal_at = [&](float x, float y) {
+    Vec3f at;
+    texel_at(t, r, x, y, &at);
+    const Vec3f dd = at - r.center;
+    const int i = static_cast<int>(std::floor((dot(dd, r.axis_u) + 0.5f * t.width * t.texel) / t.texel));
+    const int j = static_cast<int>(std::floor((dot(dd, r.axis_v) + 0.5f * t.height * t.texel) / t.texel));
+    const std::size_t k = 4 * (static_cast<std::size_t>(j) * static_cast<std::size_t>(t.width) + static_cast<std::size_t>(i));
+    auto dec = [&](int c) { return t.normals[k + static_cast<std::size_t>(c)] / 127.5f - 1.0f; };
+    // Back to world space through the tangent frame.
+    return r.axis_u * dec(0) + r.axis_v * dec(1) + r.normal * dec(2);
+  };
+  const Vec3f left = normal_at(0.4f, 1.0f), right = normal_at(1.6f, 1.0f);
+  EXPECT_NEAR(left.x, std::sin(tilt), 0.02f);
+  EXPECT_NEAR(left.z, std::cos(tilt), 0.02f);
+  EXPECT_NEAR(right.z, 1.0f, 0.02f);
+  EXPECT_TRUE(resample_texture(s.positions, s.colors, {}, s.radii, s.psi, d, r).normals.empty());
 }
 
 TEST(Texture, MaxSideLimitsTheGrid) {
@@ -131,7 +159,7 @@ TEST(Texture, MaxSideLimitsTheGrid) {
   const SupportRect r = support_rectangles(s.positions, s.normals, s.radii, s.psi, d)[0];
   TextureOptions o;
   o.max_side = 16;
-  const Texture t = resample_texture(s.positions, s.colors, s.radii, s.psi, d, r, o);
+  const Texture t = resample_texture(s.positions, s.colors, {}, s.radii, s.psi, d, r, o);
   EXPECT_LE(std::max(t.width, t.height), 16);
   EXPECT_GT(t.texel, 0.05f);
 }
