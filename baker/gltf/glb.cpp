@@ -1,0 +1,218 @@
+// .glb writer on tinygltf 2.7 (gltf-notes.md section 6 for its pitfalls: primitive mode, empty
+// arrays, extensionsUsed by hand, images through bufferViews).
+#include "gltf/glb.h"
+
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "gltf/png.h"
+
+namespace qf {
+namespace {
+
+using tinygltf::Value;
+
+// Appends raw bytes to buffer 0 (4-byte aligned) and returns a bufferView over them.
+int add_view(tinygltf::Model& m, const void* data, std::size_t bytes, int target) {
+  std::vector<unsigned char>& buf = m.buffers[0].data;
+  buf.resize((buf.size() + 3) / 4 * 4, 0);
+  tinygltf::BufferView v;
+  v.buffer = 0;
+  v.byteOffset = buf.size();
+  v.byteLength = bytes;
+  if (target) v.target = target;
+  const auto* p = static_cast<const unsigned char*>(data);
+  buf.insert(buf.end(), p, p + bytes);
+  m.bufferViews.push_back(v);
+  return static_cast<int>(m.bufferViews.size() - 1);
+}
+
+// A float VECn accessor with exact min/max (of the float32 values as stored).
+int add_floats(tinygltf::Model& m, const std::vector<float>& v, int components, int type, bool bounds) {
+  tinygltf::Accessor a;
+  a.bufferView = add_view(m, v.data(), v.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
+  a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
+  a.count = v.size() / static_cast<std::size_t>(components);
+  a.type = type;
+  if (bounds) {
+    a.minValues.assign(static_cast<std::size_t>(components), INFINITY);
+    a.maxValues.assign(static_cast<std::size_t>(components), -INFINITY);
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const auto c = i % static_cast<std::size_t>(components);
+      a.minValues[c] = std::min(a.minValues[c], canonical_double(v[i]));
+      a.maxValues[c] = std::max(a.maxValues[c], canonical_double(v[i]));
+    }
+  }
+  m.accessors.push_back(a);
+  return static_cast<int>(m.accessors.size() - 1);
+}
+
+Value number_array(const std::vector<float>& v) {
+  Value::Array a;
+  for (float x : v) a.push_back(Value(canonical_double(x)));
+  return Value(a);
+}
+Value int_array(const std::vector<std::uint32_t>& v) {
+  Value::Array a;
+  for (std::uint32_t x : v) a.push_back(Value(static_cast<int>(x)));
+  return Value(a);
+}
+
+int add_png_texture(tinygltf::Model& m, const std::vector<std::uint8_t>& rgba, int w, int h, const std::string& name) {
+  const std::vector<std::uint8_t> png = encode_png(rgba.data(), w, h, 4);
+  tinygltf::Image img;
+  img.name = name;
+  img.mimeType = "image/png";
+  img.bufferView = add_view(m, png.data(), png.size(), 0);
+  m.images.push_back(img);
+  tinygltf::Texture t;
+  t.source = static_cast<int>(m.images.size() - 1);
+  t.sampler = 0;
+  m.textures.push_back(t);
+  return static_cast<int>(m.textures.size() - 1);
+}
+
+}  // namespace
+
+ImpostorLevel make_impostor_level(std::size_t level, const std::vector<SupportRect>& rects,
+                                  const std::vector<Texture>& textures, const Domains& domains,
+                                  const AtlasOptions& atlas_options) {
+  ImpostorLevel out;
+  out.level = level;
+  out.quads = rects;
+  for (const Texture& t : textures) {
+    out.half_u.push_back(0.5f * static_cast<float>(t.width) * t.texel);
+    out.half_v.push_back(0.5f * static_cast<float>(t.height) * t.texel);
+  }
+  out.atlas = pack_atlas(textures, atlas_options);
+  std::vector<std::int64_t> quad_of(domains.count(), -1);
+  for (std::size_t k = 0; k < rects.size(); ++k) quad_of[rects[k].domain] = static_cast<std::int64_t>(k);
+  for (const auto& e : domains.edges)
+    if (quad_of[e[0]] >= 0 && quad_of[e[1]] >= 0)
+      out.edges.push_back({static_cast<std::uint32_t>(quad_of[e[0]]), static_cast<std::uint32_t>(quad_of[e[1]])});
+  return out;
+}
+
+std::vector<std::uint8_t> encode_glb(const ImpostorLevel& level, const GltfOptions& options) {
+  tinygltf::Model m;
+  m.asset.version = "2.0";
+  m.asset.generator = options.generator;
+  m.buffers.emplace_back();
+  tinygltf::Sampler sampler;  // trilinear, clamped: the atlas gutters hold each tile's own edge texels
+  sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+  sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
+  sampler.wrapS = sampler.wrapT = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
+  m.samplers.push_back(sampler);
+
+  // 1. One material per atlas image (one draw call per image in an engine).
+  const Atlas& atlas = level.atlas;
+  for (std::size_t i = 0; i < atlas.images.size(); ++i) {
+    tinygltf::Material mat;
+    mat.name = "impostor_atlas_" + std::to_string(i);
+    mat.pbrMetallicRoughness.baseColorTexture.index =
+        add_png_texture(m, atlas.images[i], atlas.widths[i], atlas.heights[i], mat.name + "_color");
+    mat.pbrMetallicRoughness.metallicFactor = 0.0;
+    mat.pbrMetallicRoughness.roughnessFactor = 1.0;
+    if (i < atlas.normal_images.size())
+      mat.normalTexture.index = add_png_texture(m, atlas.normal_images[i], atlas.widths[i], atlas.heights[i], mat.name + "_normal");
+    mat.alphaMode = options.alpha_mode;
+    if (options.alpha_mode == "MASK") mat.alphaCutoff = options.alpha_cutoff;
+    mat.doubleSided = false;
+    m.materials.push_back(mat);
+  }
+
+  // 2. The quads, grouped by atlas image into one primitive each.
+  tinygltf::Mesh mesh;
+  mesh.name = "impostor_level_" + std::to_string(level.level);
+  for (std::size_t img = 0; img < atlas.images.size(); ++img) {
+    std::vector<float> pos, nrm, tan, uv;
+    std::vector<std::uint32_t> idx;
+    for (std::size_t k = 0; k < level.quads.size(); ++k) {
+      if (atlas.tiles[k].atlas != img) continue;
+      const SupportRect& q = level.quads[k];
+      const AtlasTile& t = atlas.tiles[k];
+      const auto base = static_cast<std::uint32_t>(pos.size() / 3);
+      // Corners counter-clockwise about the normal: (-u,-v), (+u,-v), (+u,+v), (-u,+v). The
+      // texture's top row (v0) is the rectangle's +v side.
+      const float su[4] = {-1, 1, 1, -1}, sv[4] = {-1, -1, 1, 1};
+      for (int c = 0; c < 4; ++c) {
+        const Vec3f p = q.center + q.axis_u * (su[c] * level.half_u[k]) + q.axis_v * (sv[c] * level.half_v[k]);
+        pos.insert(pos.end(), {p.x, p.y, p.z});
+        nrm.insert(nrm.end(), {q.normal.x, q.normal.y, q.normal.z});
+        tan.insert(tan.end(), {q.axis_u.x, q.axis_u.y, q.axis_u.z, 1.0f});  // bitangent = normal x tangent = axis_v
+        uv.insert(uv.end(), {su[c] < 0 ? t.u0 : t.u1, sv[c] < 0 ? t.v1 : t.v0});
+      }
+      idx.insert(idx.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+    }
+    if (idx.empty()) continue;
+    tinygltf::Primitive prim;
+    prim.mode = TINYGLTF_MODE_TRIANGLES;
+    prim.material = static_cast<int>(img);
+    prim.attributes["POSITION"] = add_floats(m, pos, 3, TINYGLTF_TYPE_VEC3, true);
+    prim.attributes["NORMAL"] = add_floats(m, nrm, 3, TINYGLTF_TYPE_VEC3, false);
+    prim.attributes["TANGENT"] = add_floats(m, tan, 4, TINYGLTF_TYPE_VEC4, false);
+    prim.attributes["TEXCOORD_0"] = add_floats(m, uv, 2, TINYGLTF_TYPE_VEC2, false);
+    tinygltf::Accessor ia;
+    ia.bufferView = add_view(m, idx.data(), idx.size() * sizeof(std::uint32_t), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    ia.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+    ia.count = idx.size();
+    ia.type = TINYGLTF_TYPE_SCALAR;
+    m.accessors.push_back(ia);
+    prim.indices = static_cast<int>(m.accessors.size() - 1);
+    mesh.primitives.push_back(prim);
+  }
+  m.meshes.push_back(mesh);
+  tinygltf::Node node;
+  node.name = mesh.name;
+  node.mesh = 0;
+  m.nodes.push_back(node);
+  tinygltf::Scene scene;
+  scene.nodes.push_back(0);
+  m.scenes.push_back(scene);
+  m.defaultScene = 0;
+
+  // 3. The extension: per quad data and the neighbour graph as compressed rows. Empty arrays are
+  //    left out (tinygltf 2.7 writes them as null).
+  std::vector<std::uint32_t> domain, offsets{0}, neighbors;
+  std::vector<float> centers, normals, errors, rects;
+  std::vector<std::vector<std::uint32_t>> adj(level.quads.size());
+  for (const auto& e : level.edges) adj[e[0]].push_back(e[1]), adj[e[1]].push_back(e[0]);
+  for (std::size_t k = 0; k < level.quads.size(); ++k) {
+    const SupportRect& q = level.quads[k];
+    domain.push_back(q.domain);
+    centers.insert(centers.end(), {q.center.x, q.center.y, q.center.z});
+    normals.insert(normals.end(), {q.normal.x, q.normal.y, q.normal.z});
+    errors.push_back(static_cast<float>(q.error));
+    const AtlasTile& t = atlas.tiles[k];
+    rects.insert(rects.end(), {static_cast<float>(t.atlas), t.u0, t.v0, t.u1, t.v1});
+    std::sort(adj[k].begin(), adj[k].end());
+    neighbors.insert(neighbors.end(), adj[k].begin(), adj[k].end());
+    offsets.push_back(static_cast<std::uint32_t>(neighbors.size()));
+  }
+  Value::Object ext{{"level", Value(static_cast<int>(level.level))},
+                    {"quadCount", Value(static_cast<int>(level.quads.size()))},
+                    {"blend", Value(std::string("additive_sorted_lock_by_depth"))},
+                    {"alphaRef", Value(canonical_double(level.alpha_ref))},
+                    {"neighborOffsets", int_array(offsets)}};
+  if (!level.quads.empty()) {
+    ext["domain"] = int_array(domain);
+    ext["center"] = number_array(centers);
+    ext["normal"] = number_array(normals);
+    ext["error"] = number_array(errors);
+    ext["atlasRect"] = number_array(rects);
+  }
+  if (!neighbors.empty()) ext["neighbors"] = int_array(neighbors);
+  m.extensions[kImpostorExtension] = Value(ext);
+  m.extensionsUsed.push_back(kImpostorExtension);
+
+  tinygltf::TinyGLTF writer;
+  std::ostringstream out;
+  writer.WriteGltfSceneToStream(&m, out, /*prettyPrint=*/false, /*writeBinary=*/true);
+  const std::string s = out.str();
+  return std::vector<std::uint8_t>(s.begin(), s.end());
+}
+
+}  // namespace qf

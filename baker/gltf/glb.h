@@ -1,0 +1,46 @@
+// One impostor level as a binary glTF 2.0 file (.glb): the domain primitives as textured quads,
+// the atlas (colour + Psi as alpha, and normal maps) embedded as PNG, and the custom extension
+// QF_impostor_level with what a custom runtime needs (gltf-notes.md; schemas/).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "primitives/atlas.h"
+#include "primitives/support.h"
+
+namespace qf {
+
+constexpr const char* kImpostorExtension = "QF_impostor_level";
+
+// What a level's .glb holds. quads[k] is drawn with atlas.tiles[k], over half_u[k] x half_v[k]
+// (the texture's extent: whole texels, so a little over the support rectangle).
+struct ImpostorLevel {
+  std::size_t level = 0;                    // AMG level (0 = points)
+  std::vector<SupportRect> quads;
+  std::vector<float> half_u, half_v;
+  Atlas atlas;
+  std::vector<std::array<std::uint32_t, 2>> edges;  // neighbour graph between quads (indices into quads)
+  float alpha_ref = 0.1f;                   // the lock-by-depth alpha test (paper 4, fig. 10)
+};
+
+struct GltfOptions {
+  // Material for engines without the extension (gltf-notes 3): BLEND with straight alpha.
+  std::string alpha_mode = "BLEND";
+  float alpha_cutoff = 0.5f;  // MASK only
+  std::string generator = "quasiflat";
+};
+
+// Assembles a level from its support rectangles and textures (one per non-empty domain, in domain
+// order, as support_rectangles returns them): packs the atlas and maps the domains' neighbour
+// graph onto quad indices.
+ImpostorLevel make_impostor_level(std::size_t level, const std::vector<SupportRect>& rects,
+                                  const std::vector<Texture>& textures, const Domains& domains,
+                                  const AtlasOptions& atlas = {});
+
+// The .glb bytes: identical for identical input (sorted keys, canonical floats, no timestamps).
+std::vector<std::uint8_t> encode_glb(const ImpostorLevel& level, const GltfOptions& options = {});
+
+}  // namespace qf
