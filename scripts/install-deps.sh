@@ -26,13 +26,21 @@ for p in "${packages[@]}"; do
   [[ "$status" == "install ok installed" ]] || missing+=("$p")
 done
 
-if [[ ${#missing[@]} -eq 0 ]]; then
-  exit 0
+# Node.js runs the Khronos glTF-Validator in the tests; most machines have it already.
+command -v node >/dev/null && command -v npm >/dev/null || missing+=(nodejs npm)
+
+if [[ ${#missing[@]} -gt 0 ]]; then
+  echo "install-deps: installing ${#missing[@]} package(s): ${missing[*]}"
+  SUDO=""
+  if [[ $(id -u) -ne 0 ]]; then SUDO="sudo"; fi
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-echo "install-deps: installing ${#missing[@]} package(s): ${missing[*]}"
-SUDO=""
-if [[ $(id -u) -ne 0 ]]; then SUDO="sudo"; fi
-export DEBIAN_FRONTEND=noninteractive
-$SUDO apt-get update -qq
-$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+# npm packages, pinned by scripts/validate-gltf/package-lock.json.
+validator_dir="$(cd "$(dirname "$0")" && pwd)/validate-gltf"
+if [[ ! -f "$validator_dir/node_modules/gltf-validator/package.json" ]]; then
+  echo "install-deps: installing the glTF validator (npm ci)"
+  npm ci --prefix "$validator_dir" --no-audit --no-fund --loglevel=error
+fi

@@ -1,0 +1,38 @@
+// Writes .glb levels of the sample shapes into a folder, for the Khronos validator test
+// (validate_test.sh). usage: qf_write_test_levels OUTDIR
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+#include "amg/basis.h"
+#include "analysis/analysis.h"
+#include "domains/merge.h"
+#include "gltf/glb.h"
+#include "primitives/texture.h"
+#include "shapes/shapes.h"
+
+using namespace qf;
+
+static void write_level(const std::string& path, const PointSet& p, const AmgHierarchy& h, std::size_t level, bool merge) {
+  SparseMatrix psi = basis_at_level(h, level);
+  if (merge) psi = merge_domains(psi, p.positions);
+  const Domains d = make_domains(psi);
+  const std::vector<SupportRect> rects = support_rectangles(p.positions, p.normals, p.radii, psi, d);
+  std::vector<Texture> textures;
+  for (const SupportRect& r : rects) textures.push_back(resample_texture(p.positions, p.colors, p.normals, p.radii, psi, d, r));
+  const std::vector<std::uint8_t> glb = encode_glb(make_impostor_level(level, rects, textures, d));
+  std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(glb.data()), static_cast<std::streamsize>(glb.size()));
+}
+
+int main(int argc, char** argv) {
+  if (argc != 2) return std::fprintf(stderr, "usage: qf_write_test_levels OUTDIR\n"), 2;
+  const std::string dir = argv[1];
+  for (const char* shape : {"octahedron", "torus", "crease"}) {
+    PointSet p = generate_shape(shape, {12000, 1});
+    if (std::string(shape) == "crease") p.colors.clear();  // the uncoloured path: a constant base colour
+    const AmgHierarchy h = build_hierarchy(analyze_surface(p).stiffness);
+    write_level(dir + "/" + shape + "_200.glb", p, h, level_by_primitives(h, 200), false);
+    write_level(dir + "/" + shape + "_coarse_merged.glb", p, h, h.level_count() - 2, true);
+  }
+  return 0;
+}
