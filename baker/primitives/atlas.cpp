@@ -45,10 +45,12 @@ Atlas pack_atlas(const std::vector<Texture>& textures, const AtlasOptions& o) {
   std::vector<std::size_t> order(textures.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return ph[x] > ph[y]; });
-  // 2. Atlas width: the power of two near the square root of the area (at most max_side).
+  // 2. Atlas width: the power of two near the square root of the area (at most max_side), and at
+  //    least the widest tile.
   int width = o.block;
   while (width < o.max_side && static_cast<std::size_t>(width) * static_cast<std::size_t>(width) < area) width *= 2;
-  for (std::size_t k : order) width = std::max(width, pw[k]);
+  for (std::size_t k : order)
+    while (width < pw[k]) width *= 2;
   // 3. Shelves, left to right, top to bottom; a full atlas opens the next one.
   std::vector<int> heights;
   int x = 0, y = 0, shelf = 0;
@@ -70,7 +72,10 @@ Atlas pack_atlas(const std::vector<Texture>& textures, const AtlasOptions& o) {
       std::all_of(textures.begin(), textures.end(), [](const Texture& t) { return !t.normals.empty(); });
   for (std::size_t i = 0; i < heights.size(); ++i) {
     a.widths.push_back(width);
-    a.heights.push_back(round_up(std::max(heights[i], 1), o.block));
+    // Power-of-two sides: mipmapping everywhere (WebGL 1 needs it), no validator NPOT notices.
+    int side = o.block;
+    while (side < heights[i]) side *= 2;
+    a.heights.push_back(side);
     const std::size_t bytes = 4 * static_cast<std::size_t>(width) * static_cast<std::size_t>(a.heights.back());
     a.images.emplace_back(bytes, 0);
     if (with_normals) a.normal_images.emplace_back(bytes, 0);

@@ -15,7 +15,7 @@ struct AtlasOptions {
   // and mipmap levels up to log2(block) then only ever mix a tile with itself.
   int block = 8;
   int gutter = 2;
-  int max_side = 4096;  // an atlas never exceeds this; more tiles open another atlas
+  int max_side = 4096;  // a power of two; an atlas never exceeds it, more tiles open another atlas
 };
 
 struct AtlasTile {
@@ -28,7 +28,7 @@ struct AtlasTile {
 };
 
 struct Atlas {
-  std::vector<int> widths, heights;                // per image
+  std::vector<int> widths, heights;                // per image; powers of two
   std::vector<std::vector<std::uint8_t>> images;  // RGBA8, rows top to bottom
   std::vector<std::vector<std::uint8_t>> normal_images;  // the normal maps, same layout (when every texture has one)
   std::vector<AtlasTile> tiles;                    // per input texture, in input order
