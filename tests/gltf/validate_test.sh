@@ -10,3 +10,35 @@ trap 'rm -rf "$work"' EXIT
 files=("$work"/*.glb)
 [[ ${#files[@]} -ge 6 ]] || { echo "expected 6 .glb files, got ${#files[@]}"; exit 1; }
 node "$validator/validate.js" "${files[@]}"
+status=$?
+# The extension block of every file, and the schema's examples, against the extension's schema.
+schema_dir="$(dirname "$0")/../../schemas/QF_impostor_level/schema"
+/usr/bin/python3 - "$schema_dir" "${files[@]}" <<'PY' || exit 1
+import glob, json, os, struct, sys
+import jsonschema
+schema_dir, files = sys.argv[1], sys.argv[2:]
+schema = json.load(open(os.path.join(schema_dir, "glTF.QF_impostor_level.schema.json")))
+check = jsonschema.Draft202012Validator(schema)
+bad = 0
+for f in files:
+    data = open(f, "rb").read()
+    length = struct.unpack_from("<I", data, 12)[0]
+    doc = json.loads(data[20:20 + length])
+    ext = doc["extensions"]["QF_impostor_level"]
+    errors = list(check.iter_errors(ext))
+    n = ext["quadCount"]
+    if len(ext["neighborOffsets"]) != n + 1 or (n and len(ext["center"]) != 3 * n) or (n and len(ext["atlasRect"]) != 5 * n):
+        errors.append("array lengths do not match quadCount")
+    if "QF_impostor_level" in doc.get("extensionsRequired", []):
+        errors.append("listed in extensionsRequired")
+    for e in errors:
+        print(f, "extension:", getattr(e, "message", e)); bad = 1
+for f in sorted(glob.glob(os.path.join(schema_dir, "examples", "*.json"))):
+    valid = os.path.basename(f).startswith("valid")
+    ok = check.is_valid(json.load(open(f)))
+    if ok != valid:
+        print(f, "should be", "valid" if valid else "invalid"); bad = 1
+print("extension schema:", len(files), "files and the examples checked")
+sys.exit(bad)
+PY
+exit $status
