@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The main job on the bundled sample, on a fresh Debian 12 machine: installs what is needed,
-# builds, then describes the coloured octahedron and converts it to QSplat and back.
-# Outputs go to build/demo/.
+# builds, and bakes the coloured octahedron into impostor levels (.glb), then checks every level
+# with the Khronos glTF-Validator. Outputs go to build/demo/.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
@@ -11,6 +11,6 @@ mkdir -p "$out"
 bake=build/bin/qf-bake
 set -x
 $bake info samples/octahedron.ply
-$bake convert samples/octahedron.ply "$out/octahedron.qs"
-$bake info "$out/octahedron.qs"
-$bake convert "$out/octahedron.qs" "$out/octahedron-from-qs.ply"
+$bake samples/octahedron.ply -o "$out/octahedron" --cache "$out/cache"
+cat "$out/octahedron/manifest.json"
+node scripts/validate-gltf/validate.js "$out"/octahedron/*.glb

@@ -92,6 +92,7 @@ const std::vector<Command>& commands() {
        run_generate},
       {analyze_spec(), run_analyze},
       {decompose_spec(), run_decompose},
+      {bake_spec(), run_bake},
   };
   return table;
 }

@@ -36,5 +36,7 @@ PointSet load_points(const std::string& path, const ParsedArgs& args, const std:
 
 CommandSpec decompose_spec();
 int run_decompose(const ParsedArgs& args);
+CommandSpec bake_spec();
+int run_bake(const ParsedArgs& args);
 
 }  // namespace qf::cli

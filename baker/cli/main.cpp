@@ -16,7 +16,8 @@ namespace {
 
 void print_overview(std::ostream& out) {
   out << "qf-bake " QF_VERSION " - extreme simplification of point sets and meshes into textured quads\n\n"
-         "usage: qf-bake COMMAND [arguments] [options]\n"
+         "usage: qf-bake IN -o OUTDIR [options]   bake (the main job; see qf-bake bake --help)\n"
+         "       qf-bake COMMAND [arguments] [options]\n"
          "       qf-bake COMMAND --help      options of one command, with their defaults\n"
          "       qf-bake --version\n\ncommands:\n";
   for (const qf::cli::Command& c : qf::cli::commands()) {
@@ -50,6 +51,12 @@ int dispatch(const std::vector<std::string>& argv) {
       if (a == "--help" || a == "-h") return std::cout << qf::cli::help_text(c.spec), 0;
     }
     return c.run(qf::cli::parse_args(c.spec, rest));
+  }
+  // The main job: `qf-bake IN -o OUTDIR` is `qf-bake bake IN -o OUTDIR`.
+  if (argv[0].find('.') != std::string::npos && argv[0][0] != '-') {
+    std::vector<std::string> with_command{"bake"};
+    with_command.insert(with_command.end(), argv.begin(), argv.end());
+    return dispatch(with_command);
   }
   throw qf::UsageError("unknown command '" + argv[0] + "' (see qf-bake --help)");
 }

@@ -23,7 +23,7 @@ expect 0 "--version" -- "$bake" --version
 grep -q '^qf-bake [0-9]' "$work/out" && ok || bad "--version prints 'qf-bake X.Y.Z'"
 expect 0 "--help" -- "$bake" --help
 cp "$work/out" "$work/overview"
-for cmd in info convert generate analyze decompose; do
+for cmd in info convert generate analyze decompose bake; do
   grep -q "^  $cmd " "$work/overview" && ok || bad "--help lists $cmd"
   expect 0 "$cmd --help" -- "$bake" "$cmd" --help
   grep -q "usage: qf-bake $cmd" "$work/out" && ok || bad "$cmd --help shows usage"
@@ -171,6 +171,33 @@ expect 0 "decompose --primitives" -- "$bake" decompose "$work/oct.ply" -o "$work
 expect 2 "decompose level out of range" -- "$bake" decompose "$work/oct.ply" -o "$work/x.ply" --level 99
 expect 2 "decompose bad level" -- "$bake" decompose "$work/oct.ply" -o "$work/x.ply" --level abc
 expect 2 "decompose level and primitives" -- "$bake" decompose "$work/oct.ply" -o "$work/x.ply" --level 2 --primitives 9
+
+# --- bake (the main job): .glb per level, manifest, report; deterministic; nothing half-written ---
+expect 0 "bake" -- "$bake" "$work/oct.ply" -o "$work/out1" --primitives 200,20
+ls "$work/out1"/oct_L*.glb >/dev/null 2>&1 && [[ -f "$work/out1/manifest.json" && -f "$work/out1/report.json" ]] && ok || bad "bake outputs: $(ls "$work/out1")"
+[[ -z "$(ls -A "$work/out1" | grep -v -E '^oct_L[0-9]+\.glb$|^manifest\.json$|^report\.json$')" ]] && ok || bad "bake left other files: $(ls -A "$work/out1")"
+expect 0 "bake again, 1 thread" -- "$bake" bake "$work/oct.ply" -o "$work/out2" --primitives 200,20 --threads 1 -q
+for f in "$work/out1"/*.glb "$work/out1/manifest.json"; do
+  cmp -s "$f" "$work/out2/$(basename "$f")" && ok || bad "bake output $(basename "$f") differs between runs"
+done
+/usr/bin/python3 - "$work/out1/manifest.json" <<'PY' 2>"$work/err" && ok || bad "manifest: $(tail -2 "$work/err")"
+import json, os, sys
+m = json.load(open(sys.argv[1]))
+assert m["points"] == 16000 and len(m["levels"]) == 2
+for l in m["levels"]:
+    assert os.path.getsize(os.path.join(os.path.dirname(sys.argv[1]), l["file"])) > 1000
+    assert l["primitives"] > 0 and l["texels"] > 0 and l["error"] > 0 and l["max_screen_pixels"] > 0
+assert m["levels"][0]["primitives"] > m["levels"][1]["primitives"]
+PY
+printf "0 0 0\n1 0 0\n0 1 0\n" >"$work/tiny.xyz"
+expect 1 "bake too few points" -- "$bake" "$work/tiny.xyz" -o "$work/out3"
+grep -q "bake.too_small" "$work/err" && ok || bad "tiny input names its error"
+[[ -z "$(ls -A "$work/out3" 2>/dev/null)" ]] && ok || bad "a failed bake left files: $(ls -A "$work/out3")"
+for i in $(seq 0 99); do echo "$i $((2 * i)) 0"; done >"$work/line.xyz"
+expect 1 "bake collinear points" -- "$bake" "$work/line.xyz" -o "$work/out4"
+[[ -z "$(ls -A "$work/out4" 2>/dev/null)" ]] && ok || bad "a failed bake left files"
+expect 2 "bake bad primitives" -- "$bake" "$work/oct.ply" -o "$work/out5" --primitives 10,x
+expect 2 "bake level out of range" -- "$bake" "$work/oct.ply" -o "$work/out5" --levels 99
 unset QF_CACHE
 
 # --- every malformed file: exit 1, message names file and code, no output ---

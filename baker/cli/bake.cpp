@@ -1,0 +1,183 @@
+// The bake command (the main job): a point set in, one .glb per chosen level, a manifest and a
+// report out. Everything is written into a temporary folder inside OUTDIR and moved into place
+// at the end, the manifest last, so a failed or killed bake leaves no half-written file.
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <ostream>
+
+#include "cli/commands.h"
+#include "core/error.h"
+#include "core/file_io.h"
+#include "pipeline/bake.h"
+
+namespace qf::cli {
+namespace {
+
+std::vector<std::string> split_list(const std::string& s) {
+  std::vector<std::string> out;
+  std::size_t a = 0;
+  while (a <= s.size()) {
+    std::size_t b = s.find(',', a);
+    if (b == std::string::npos) b = s.size();
+    if (b > a) out.push_back(s.substr(a, b - a));
+    a = b + 1;
+  }
+  return out;
+}
+
+std::string default_cache_dir() {
+  const char* env = std::getenv("QF_CACHE");
+  const char* home = std::getenv("HOME");
+  return env && *env ? env : std::string(home ? home : ".") + "/.cache/quasiflat/amg";
+}
+
+void write_bytes(const std::string& path, const std::vector<std::uint8_t>& bytes) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  });
+}
+
+}  // namespace
+
+CommandSpec bake_spec() {
+  CommandSpec spec{"bake", "IN -o OUTDIR [options]   (also: qf-bake IN -o OUTDIR)",
+                   "bake a point set into impostor levels: one .glb per level, manifest.json, report.json",
+                   "Each level's .glb holds the domain primitives as textured quads (colour + basis function\n"
+                   "as alpha, normal maps when the input has normals) in one atlas, and the QF_impostor_level\n"
+                   "extension (schemas/QF_impostor_level). manifest.json lists the levels; report.json the\n"
+                   "settings, times and counts. Nothing is left half-written if the bake fails.",
+                   {{"output", 'o', "OUTDIR", "", "output folder (created if needed); required"},
+                    {"primitives", 'n', "N,N,...", "1000,300,100,30", "bake the levels nearest these numbers of primitives"},
+                    {"levels", 0, "K,K,...", "", "instead: these level numbers (0 = points, negative = from the coarsest)"},
+                    {"tau", 0, "T", "0.05", "domain threshold"},
+                    {"merge", 0, "", "", "merge overlapping flat domains facing the same way (thesis 3.4)"},
+                    {"texel", 0, "F", "1", "texel size = F x the domain's mean point radius"},
+                    {"max-texture", 0, "N", "1024", "largest texture side of one primitive, texels"},
+                    {"margin", 0, "M", "0", "extra rectangle margin, in mean point radii"},
+                    {"cache", 0, "DIR", "$QF_CACHE or ~/.cache/quasiflat/amg", "hierarchy cache"},
+                    {"no-cache", 0, "", "", "neither read nor write the hierarchy cache"},
+                    drop_nonfinite_option(),
+                    {"quiet", 'q', "", "", "print nothing on success"}},
+                   1, 1};
+  for (OptionSpec& o : analysis_option_specs()) spec.options.push_back(o);
+  return spec;
+}
+
+int run_bake(const ParsedArgs& args) {
+  const std::string& in = args.positional[0];
+  if (!args.has("output")) throw UsageError("bake needs -o OUTDIR (see qf-bake bake --help)");
+  const std::string outdir = args.get("output");
+  BakeOptions o;
+  o.analysis = read_analysis_options(args);
+  o.domains.tau = args.get_double("tau", o.domains.tau, 0.0, 1.0);
+  o.merge = args.flag("merge");
+  o.merge_options.domains = o.domains;
+  o.texture.texel_factor = static_cast<float>(args.get_double("texel", o.texture.texel_factor, 0.01, 100.0));
+  o.texture.max_side = static_cast<int>(args.get_int("max-texture", o.texture.max_side, 4, 4096 - 8));
+  o.support.margin = static_cast<float>(args.get_double("margin", o.support.margin, 0.0, 100.0));
+  if (args.has("levels") && args.has("primitives")) throw UsageError("give --levels or --primitives, not both");
+  if (args.has("levels")) {
+    for (const std::string& t : split_list(args.get("levels"))) {
+      try {
+        o.levels.push_back(std::stoll(t));
+      } catch (const std::exception&) {
+        throw UsageError("--levels expects integers separated by commas, got '" + t + "'");
+      }
+    }
+  } else if (args.has("primitives")) {
+    o.primitives.clear();
+    for (const std::string& t : split_list(args.get("primitives"))) {
+      char* end = nullptr;
+      const unsigned long long v = std::strtoull(t.c_str(), &end, 10);
+      if (!end || *end || v == 0) throw UsageError("--primitives expects positive integers separated by commas, got '" + t + "'");
+      o.primitives.push_back(static_cast<std::size_t>(v));
+    }
+  }
+  if (!args.flag("no-cache")) o.cache_dir = args.get("cache", default_cache_dir());
+
+  ReadReport read_report;
+  const PointSet points = load_points(in, args, "bake", read_report);
+  BakeResult r;
+  try {
+    r = bake(points, o, in);
+  } catch (const std::out_of_range& e) {
+    throw UsageError(std::string("--levels: ") + e.what());
+  }
+
+  // Write into a private folder inside OUTDIR, then move the files into place, manifest last.
+  std::filesystem::create_directories(outdir);
+  const std::string staging = outdir + "/.qf-bake-" + std::to_string(::getpid());
+  std::filesystem::create_directories(staging);
+  try {
+    const std::string stem = std::filesystem::path(in).stem().string();
+    nlohmann::json levels = nlohmann::json::array();
+    std::vector<std::string> files;
+    for (const BakedLevel& l : r.levels) {
+      const std::string name = stem + "_L" + std::to_string(l.level) + ".glb";
+      write_bytes(staging + "/" + name, l.glb);
+      files.push_back(name);
+      // The object may appear up to this many pixels across before the mean geometric error of the
+      // quads exceeds half a pixel.
+      const double pixels = l.error > 0 ? 0.5 * r.diagonal / l.error : 1e9;
+      levels.push_back({{"file", name},
+                        {"level", l.level},
+                        {"primitives", l.primitives},
+                        {"texels", l.texels},
+                        {"atlas_images", l.atlas_images},
+                        {"error", canonical_double(static_cast<float>(l.error))},
+                        {"relative_error", canonical_double(static_cast<float>(l.relative_error))},
+                        {"max_screen_pixels", static_cast<long long>(std::min(pixels, 1e9))}});
+    }
+    nlohmann::json manifest{{"input", in},
+                            {"points", r.points},
+                            {"bounding_box_diagonal", canonical_double(r.diagonal)},
+                            {"levels", levels},
+                            {"generator", "quasiflat qf-bake"}};
+    nlohmann::json stages = nlohmann::json::array();
+    for (const StageTime& t : r.times) stages.push_back({{"stage", t.stage}, {"seconds", canonical_double(static_cast<float>(t.seconds))}});
+    nlohmann::json report{{"input", in},
+                          {"format", read_report.format},
+                          {"points", r.points},
+                          {"dropped_nonfinite", read_report.dropped_nonfinite},
+                          {"hierarchy_levels", r.hierarchy_levels},
+                          {"components", r.components},
+                          {"cache", r.cache},
+                          {"settings",
+                           {{"k", o.analysis.neighborhoods.k},
+                            {"tau", o.domains.tau},
+                            {"merge", o.merge},
+                            {"texel_factor", canonical_double(o.texture.texel_factor)},
+                            {"max_texture", o.texture.max_side}}},
+                          {"levels", levels},
+                          {"stages", stages},
+                          {"warnings", r.warnings}};
+    write_file_atomically(staging + "/report.json", [&](std::ostream& out) { out << report.dump(2) << "\n"; });
+    write_file_atomically(staging + "/manifest.json", [&](std::ostream& out) { out << manifest.dump(2) << "\n"; });
+    files.push_back("report.json");
+    files.push_back("manifest.json");
+    for (const std::string& f : files) std::filesystem::rename(staging + "/" + f, outdir + "/" + f);
+    std::filesystem::remove_all(staging);
+  } catch (...) {
+    std::error_code ec;
+    std::filesystem::remove_all(staging, ec);
+    throw;
+  }
+  if (!args.flag("quiet")) {
+    std::fprintf(stderr, "qf-bake: %s (%zu points) -> %s, hierarchy of %zu levels (cache: %s)\n", in.c_str(), r.points,
+                 outdir.c_str(), r.hierarchy_levels, r.cache.c_str());
+    for (const BakedLevel& l : r.levels)
+      std::fprintf(stderr, "  level %zu: %zu primitives, %zu texels, error %.3g (%.2g of the diagonal), %zu bytes\n", l.level,
+                   l.primitives, l.texels, l.error, l.relative_error, l.glb.size());
+    double total = 0;
+    for (const StageTime& t : r.times) total += t.seconds;
+    std::fprintf(stderr, "  time: %.3f s\n", total);
+    for (const std::string& w : r.warnings) std::fprintf(stderr, "  warning: %s\n", w.c_str());
+  }
+  return 0;
+}
+
+}  // namespace qf::cli

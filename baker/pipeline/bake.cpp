@@ -1,0 +1,126 @@
+// The bake recipe.
+#include "pipeline/bake.h"
+
+#include <algorithm>
+#include <chrono>
+
+#include "amg/hierarchy_cache.h"
+#include "analysis/neighborhoods.h"
+#include "core/error.h"
+
+namespace qf {
+namespace {
+
+class Stopwatch {
+ public:
+  explicit Stopwatch(std::vector<StageTime>& out) : out_(out), t_(std::chrono::steady_clock::now()) {}
+  void lap(const std::string& stage) {
+    const auto now = std::chrono::steady_clock::now();
+    out_.push_back({stage, std::chrono::duration<double>(now - t_).count()});
+    t_ = now;
+  }
+
+ private:
+  std::vector<StageTime>& out_;
+  std::chrono::steady_clock::time_point t_;
+};
+
+// The levels to bake, coarse to fine order of the options, without repeats.
+std::vector<std::size_t> chosen_levels(const AmgHierarchy& h, const BakeOptions& o) {
+  std::vector<std::size_t> out;
+  if (!o.levels.empty())
+    for (long long k : o.levels) out.push_back(level_by_index(h, k));
+  else
+    for (std::size_t n : o.primitives) out.push_back(level_by_primitives(h, n));
+  std::vector<std::size_t> unique;
+  for (std::size_t l : out)
+    if (std::find(unique.begin(), unique.end(), l) == unique.end()) unique.push_back(l);
+  return unique;
+}
+
+}  // namespace
+
+AmgHierarchy cached_hierarchy(const PointSet& points, const AnalysisOptions& analysis, const AmgOptions& amg,
+                              const std::string& cache_dir, std::string& state) {
+  const std::string key = hierarchy_cache_key(points, analysis, amg);
+  if (!cache_dir.empty()) {
+    std::string why;
+    if (std::optional<AmgHierarchy> h = load_hierarchy(cache_dir, key, &why)) {
+      state = "hit";
+      return std::move(*h);
+    }
+    state = "miss (" + why + ")";
+  } else {
+    state = "off";
+  }
+  const SurfaceAnalysis a = analyze_surface(points, analysis);
+  AmgHierarchy h = build_hierarchy(a.stiffness, amg);
+  if (!cache_dir.empty()) save_hierarchy(cache_dir, key, h);
+  return h;
+}
+
+BakeResult bake(const PointSet& input, const BakeOptions& o, const std::string& source_name) {
+  BakeResult r;
+  Stopwatch watch(r.times);
+  r.points = input.size();
+  const std::size_t needed = static_cast<std::size_t>(std::max(4, std::min(o.analysis.neighborhoods.k, 8)));
+  if (input.size() < needed)
+    throw InputError("bake.too_small", source_name, "",
+                     "holds " + std::to_string(input.size()) + " points; a decomposition needs at least " +
+                         std::to_string(needed));
+  // 1. Complete the point set: radii from spacing where missing; normals stay as given.
+  PointSet points = input;
+  if (estimate_radii(points) && input.has_radii()) r.warnings.push_back("some radii were 0 and were estimated");
+  r.diagonal = points.bounds().diagonal();
+  watch.lap("prepare");
+  // 2. Hierarchy (analysis + AMG), cached.
+  const AmgHierarchy h = cached_hierarchy(points, o.analysis, o.amg, o.cache_dir, r.cache);
+  r.hierarchy_levels = h.level_count();
+  r.components = h.components;
+  if (h.level_count() < 2)
+    throw InputError("bake.too_small", source_name, "",
+                     "cannot be decomposed: its " + std::to_string(points.size()) +
+                         " points form no surface (all coincident, collinear, or too few)");
+  if (h.components > 1)
+    r.warnings.push_back(std::to_string(h.components) + " disconnected parts: coarse levels keep one function each");
+  watch.lap("hierarchy");
+  // Normals for orientation and normal maps: the input's (orientation falls back to outward).
+  const std::vector<Vec3f>& normals = points.normals;
+  // 3. Every chosen level: basis, domains, rectangles, textures, atlas, glb.
+  const std::vector<std::size_t> levels = chosen_levels(h, o);
+  const std::size_t deepest = *std::max_element(levels.begin(), levels.end());
+  std::vector<std::pair<std::size_t, SparseMatrix>> bases;
+  if (std::find(levels.begin(), levels.end(), std::size_t{0}) != levels.end()) bases.push_back({0, basis_at_level(h, 0)});
+  for_each_basis(h, deepest, o.basis, [&](std::size_t l, const SparseMatrix& psi) {
+    if (std::find(levels.begin(), levels.end(), l) != levels.end()) bases.push_back({l, psi});
+  });
+  watch.lap("basis");
+  for (std::size_t level : levels) {
+    SparseMatrix psi;
+    for (auto& b : bases)
+      if (b.first == level) psi = b.second;
+    if (o.merge) psi = merge_domains(psi, points.positions, o.merge_options);
+    const Domains d = make_domains(psi, o.domains);
+    const std::vector<SupportRect> rects = support_rectangles(points.positions, normals, points.radii, psi, d, o.support);
+    std::vector<Texture> textures(rects.size());
+#pragma omp parallel for schedule(dynamic, 4)
+    for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(rects.size()); ++k)
+      textures[static_cast<std::size_t>(k)] = resample_texture(points.positions, points.colors, normals, points.radii, psi, d,
+                                                               rects[static_cast<std::size_t>(k)], o.texture);
+    BakedLevel out;
+    out.level = level;
+    out.primitives = rects.size();
+    for (const Texture& t : textures) out.texels += static_cast<std::size_t>(t.width) * static_cast<std::size_t>(t.height);
+    for (const SupportRect& q : rects) out.error += q.error;
+    out.error = rects.empty() ? 0.0 : out.error / double(rects.size());
+    out.relative_error = r.diagonal > 0 ? out.error / r.diagonal : 0.0;
+    const ImpostorLevel il = make_impostor_level(level, rects, textures, d, o.atlas);
+    out.atlas_images = static_cast<int>(il.atlas.images.size());
+    out.glb = encode_glb(il, o.gltf);
+    r.levels.push_back(std::move(out));
+    watch.lap("level " + std::to_string(level));
+  }
+  return r;
+}
+
+}  // namespace qf

@@ -1,0 +1,73 @@
+// The bake, as a recipe of named, timed steps (architecture.md): point set -> analysis -> AMG
+// hierarchy (cached) -> for each chosen level: basis functions -> domains -> support rectangles
+// -> textures -> atlas -> .glb.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "amg/basis.h"
+#include "amg/hierarchy.h"
+#include "analysis/analysis.h"
+#include "domains/domains.h"
+#include "domains/merge.h"
+#include "gltf/glb.h"
+#include "primitives/atlas.h"
+#include "primitives/support.h"
+#include "primitives/texture.h"
+
+namespace qf {
+
+// The hierarchy of a point set, from the cache in `cache_dir` when the points and settings match
+// (an empty dir disables the cache), else computed and stored there. `state` says what happened:
+// "hit", "miss (<why>)" or "off".
+AmgHierarchy cached_hierarchy(const PointSet& points, const AnalysisOptions& analysis, const AmgOptions& amg,
+                              const std::string& cache_dir, std::string& state);
+
+struct BakeOptions {
+  AnalysisOptions analysis;
+  AmgOptions amg;
+  BasisOptions basis;
+  DomainOptions domains;
+  bool merge = false;
+  MergeOptions merge_options;
+  SupportOptions support;
+  TextureOptions texture;
+  AtlasOptions atlas;
+  GltfOptions gltf;
+  // Levels to bake: by number (see level_by_index) or, when empty, the levels nearest these counts
+  // of primitives (duplicates removed). The default spans far to middle distances.
+  std::vector<long long> levels;
+  std::vector<std::size_t> primitives{1000, 300, 100, 30};
+  std::string cache_dir;  // empty = no hierarchy cache
+};
+
+struct BakedLevel {
+  std::size_t level = 0;
+  std::size_t primitives = 0;
+  std::size_t texels = 0;        // texels of the quads' textures (atlas gutters not counted)
+  int atlas_images = 0;
+  double error = 0;              // mean of the quads' errors, model units
+  double relative_error = 0;     // error / bounding-box diagonal
+  std::vector<std::uint8_t> glb;
+};
+
+struct StageTime {
+  std::string stage;
+  double seconds = 0;
+};
+
+struct BakeResult {
+  std::vector<BakedLevel> levels;
+  std::size_t points = 0, hierarchy_levels = 0, components = 0;
+  float diagonal = 0;  // of the bounding box
+  std::string cache;   // hit / miss / off
+  std::vector<StageTime> times;
+  std::vector<std::string> warnings;
+};
+
+// Bakes the chosen levels. Throws InputError("bake.too_small") when the set cannot be decomposed
+// (fewer points than a neighbourhood needs, or no surface: every fan empty).
+BakeResult bake(const PointSet& points, const BakeOptions& options, const std::string& source_name);
+
+}  // namespace qf
