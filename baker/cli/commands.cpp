@@ -73,9 +73,9 @@ const std::vector<Command>& commands() {
        run_info},
       {{"convert", "IN OUT [options]", "convert a point set between .ply, .qs, .xyz and .pwn (by extension)",
         "Missing splat radii are estimated from local spacing when OUT stores radii (.ply, .qs):\n"
-        "the mean distance to the --radius-k nearest neighbours. .qs and .pwn need normals.\n"
+        "the distance to the --radius-k-th nearest neighbour. .qs and .pwn need normals.\n"
         "OUT is written to a temporary name and renamed, so it is never left half-written.",
-        {{"radius-k", 0, "K", "6", "neighbours averaged when estimating missing radii"},
+        {{"radius-k", 0, "K", "6", "missing radii reach the K-th nearest neighbour"},
          drop_nonfinite_option(),
          {"quiet", 'q', "", "", "print nothing on success"}},
         2, 2},
@@ -122,7 +122,7 @@ int run_convert(const ParsedArgs& args) {
   if (!args.flag("quiet")) {
     std::cerr << "qf-bake convert: " << in << " (" << report.format << ") -> " << out << ": " << points.size()
               << " points";
-    if (estimated) std::cerr << ", radii estimated for " << estimated << " (mean distance to " << radius.k << " neighbours)";
+    if (estimated) std::cerr << ", radii estimated for " << estimated << " (distance to neighbour " << radius.k << ")";
     if (report.dropped_nonfinite) std::cerr << ", " << report.dropped_nonfinite << " non-finite points dropped";
     std::cerr << "\n";
   }
