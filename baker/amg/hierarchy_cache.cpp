@@ -13,7 +13,7 @@ namespace qf {
 namespace {
 
 constexpr char kMagic[8] = {'Q', 'F', 'A', 'M', 'G', 'C', 'H', '\0'};
-constexpr std::uint32_t kVersion = 1;  // bump when the file layout or the algorithms change
+constexpr std::uint32_t kVersion = 2;  // bump when the file layout or the algorithms change
 
 struct Hasher {
   std::uint64_t a = 1469598103934665603ull, b = 0x9E3779B97F4A7C15ull;  // two FNV-1a streams
@@ -93,7 +93,8 @@ std::string hierarchy_cache_key(const PointSet& points, const AnalysisOptions& a
   return hex;
 }
 
-void save_hierarchy(const std::string& dir, const std::string& key, const AmgHierarchy& h) {
+void save_hierarchy(const std::string& dir, const std::string& key, const AmgHierarchy& h,
+                    const std::vector<Vec3f>& normals) {
   std::string payload;
   put(payload, static_cast<std::uint64_t>(h.components));
   put(payload, static_cast<std::uint64_t>(h.isolated));
@@ -107,6 +108,7 @@ void save_hierarchy(const std::string& dir, const std::string& key, const AmgHie
     put_array(payload, p.innerIndexPtr(), static_cast<std::size_t>(p.nonZeros()));
     put_array(payload, p.valuePtr(), static_cast<std::size_t>(p.nonZeros()));
   }
+  put_array(payload, normals.data(), normals.size());
   std::filesystem::create_directories(dir);
   write_file_atomically(path_of(dir, key), [&](std::ostream& out) {
     std::string header(kMagic, sizeof kMagic);
@@ -118,7 +120,8 @@ void save_hierarchy(const std::string& dir, const std::string& key, const AmgHie
   });
 }
 
-std::optional<AmgHierarchy> load_hierarchy(const std::string& dir, const std::string& key, std::string* why) {
+std::optional<AmgHierarchy> load_hierarchy(const std::string& dir, const std::string& key, std::string* why,
+                                           std::vector<Vec3f>* normals) {
   auto fail = [&](const char* reason) -> std::optional<AmgHierarchy> {
     if (why) *why = reason;
     return std::nullopt;
@@ -179,7 +182,10 @@ std::optional<AmgHierarchy> load_hierarchy(const std::string& dir, const std::st
       if (c < 0 || static_cast<std::uint64_t>(c) >= cols) return fail("corrupt");
     h.P.push_back(from_rows(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(cols), outer, inner, values));
   }
+  std::vector<Vec3f> stored;
+  if (!r.get_array(stored, h.levels[0].size) || (!stored.empty() && stored.size() != h.levels[0].size)) return fail("corrupt");
   if (!r.done()) return fail("corrupt");
+  if (normals) *normals = std::move(stored);
   return h;
 }
 

@@ -16,9 +16,14 @@ std::string hierarchy_cache_key(const PointSet& points, const AnalysisOptions& a
 
 // "<dir>/<key>.qfamg". A file that is missing, truncated, corrupt (checksum), of another format
 // version or for another key yields nullopt, with the reason in `why` ("missing", "corrupt", ...).
-std::optional<AmgHierarchy> load_hierarchy(const std::string& dir, const std::string& key, std::string* why = nullptr);
+// `normals`, if given, receives the normals stored with the hierarchy (empty if none were).
+std::optional<AmgHierarchy> load_hierarchy(const std::string& dir, const std::string& key, std::string* why = nullptr,
+                                           std::vector<Vec3f>* normals = nullptr);
 
-// Writes the hierarchy atomically (temporary name, then rename), creating `dir` if needed.
-void save_hierarchy(const std::string& dir, const std::string& key, const AmgHierarchy& h);
+// Writes the hierarchy atomically (temporary name, then rename), creating `dir` if needed, with
+// the analysis' estimated normals for inputs that have none (later stages orient and light with
+// them, and a cache hit must give the same output as a miss).
+void save_hierarchy(const std::string& dir, const std::string& key, const AmgHierarchy& h,
+                    const std::vector<Vec3f>& normals = {});
 
 }  // namespace qf

@@ -29,12 +29,6 @@ std::vector<std::string> split_list(const std::string& s) {
   return out;
 }
 
-std::string default_cache_dir() {
-  const char* env = std::getenv("QF_CACHE");
-  const char* home = std::getenv("HOME");
-  return env && *env ? env : std::string(home ? home : ".") + "/.cache/quasiflat/amg";
-}
-
 void write_bytes(const std::string& path, const std::vector<std::uint8_t>& bytes) {
   write_file_atomically(path, [&](std::ostream& out) {
     out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));

@@ -3,6 +3,7 @@
 
 #include <omp.h>
 
+#include <cstdlib>
 #include <iostream>
 
 #include "analysis/neighborhoods.h"
@@ -51,6 +52,12 @@ PointSet load_points(const std::string& path, const ParsedArgs& args, const std:
                      "is a triangle mesh; " + command + " takes point sets (.ply without faces, .qs, .xyz, .pwn)");
   if (model.points.size() == 0) throw InputError(command + ".empty", path, "", "holds no points");
   return std::move(model.points);
+}
+
+std::string default_cache_dir() {
+  const char* env = std::getenv("QF_CACHE");
+  const char* home = std::getenv("HOME");
+  return env && *env ? env : std::string(home ? home : ".") + "/.cache/quasiflat/amg";
 }
 
 static std::string shape_list() {

@@ -34,6 +34,9 @@ AnalysisOptions read_analysis_options(const ParsedArgs& args);
 // Reads a point set for the analysis: rejects meshes and empty sets with InputError `command`.*.
 PointSet load_points(const std::string& path, const ParsedArgs& args, const std::string& command, ReadReport& report);
 
+// The hierarchy cache folder: $QF_CACHE, else ~/.cache/quasiflat/amg.
+std::string default_cache_dir();
+
 CommandSpec decompose_spec();
 int run_decompose(const ParsedArgs& args);
 CommandSpec bake_spec();

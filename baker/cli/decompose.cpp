@@ -13,12 +13,12 @@
 
 #include "amg/basis.h"
 #include "amg/hierarchy.h"
-#include "amg/hierarchy_cache.h"
 #include "cli/commands.h"
 #include "core/error.h"
 #include "core/file_io.h"
 #include "domains/domains.h"
 #include "domains/merge.h"
+#include "pipeline/bake.h"
 
 namespace qf::cli {
 namespace {
@@ -141,30 +141,10 @@ int run_decompose(const ParsedArgs& args) {
   ReadReport read_report;
   const PointSet points = load_points(in, args, "decompose", read_report);
   // The hierarchy depends only on the points and the settings: reuse it when cached.
-  std::string cache_dir;
-  if (!args.flag("no-cache")) {
-    const char* env = std::getenv("QF_CACHE");
-    const char* home = std::getenv("HOME");
-    cache_dir = args.get("cache", env && *env ? env : std::string(home ? home : ".") + "/.cache/quasiflat/amg");
-  }
-  const AmgOptions amg_options;
-  const std::string key = hierarchy_cache_key(points, ao, amg_options);
-  std::string cache_state = "off";
+  const std::string cache_dir = args.flag("no-cache") ? std::string() : args.get("cache", default_cache_dir());
+  std::string cache_state;
   const auto t0 = std::chrono::steady_clock::now();
-  std::optional<AmgHierarchy> cached;
-  if (!cache_dir.empty()) {
-    std::string why;
-    cached = load_hierarchy(cache_dir, key, &why);
-    cache_state = cached ? "hit" : "miss (" + why + ")";
-  }
-  AmgHierarchy h;
-  if (cached) {
-    h = std::move(*cached);
-  } else {
-    const SurfaceAnalysis analysis = analyze_surface(points, ao);
-    h = build_hierarchy(analysis.stiffness, amg_options);
-    if (!cache_dir.empty()) save_hierarchy(cache_dir, key, h);
-  }
+  const AmgHierarchy h = cached_hierarchy(points, ao, AmgOptions{}, cache_dir, cache_state);
   const auto t2 = std::chrono::steady_clock::now();
 
   std::size_t level;

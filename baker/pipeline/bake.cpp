@@ -41,12 +41,14 @@ std::vector<std::size_t> chosen_levels(const AmgHierarchy& h, const BakeOptions&
 }  // namespace
 
 AmgHierarchy cached_hierarchy(const PointSet& points, const AnalysisOptions& analysis, const AmgOptions& amg,
-                              const std::string& cache_dir, std::string& state) {
+                              const std::string& cache_dir, std::string& state, std::vector<Vec3f>* estimated_normals) {
   const std::string key = hierarchy_cache_key(points, analysis, amg);
   if (!cache_dir.empty()) {
     std::string why;
-    if (std::optional<AmgHierarchy> h = load_hierarchy(cache_dir, key, &why)) {
+    std::vector<Vec3f> normals;
+    if (std::optional<AmgHierarchy> h = load_hierarchy(cache_dir, key, &why, &normals)) {
       state = "hit";
+      if (estimated_normals) *estimated_normals = std::move(normals);
       return std::move(*h);
     }
     state = "miss (" + why + ")";
@@ -55,7 +57,10 @@ AmgHierarchy cached_hierarchy(const PointSet& points, const AnalysisOptions& ana
   }
   const SurfaceAnalysis a = analyze_surface(points, analysis);
   AmgHierarchy h = build_hierarchy(a.stiffness, amg);
-  if (!cache_dir.empty()) save_hierarchy(cache_dir, key, h);
+  std::vector<Vec3f> normals;
+  if (!points.has_normals()) normals = a.frames.normal;
+  if (!cache_dir.empty()) save_hierarchy(cache_dir, key, h, normals);
+  if (estimated_normals) *estimated_normals = std::move(normals);
   return h;
 }
 
@@ -74,7 +79,8 @@ BakeResult bake(const PointSet& input, const BakeOptions& o, const std::string& 
   r.diagonal = points.bounds().diagonal();
   watch.lap("prepare");
   // 2. Hierarchy (analysis + AMG), cached.
-  const AmgHierarchy h = cached_hierarchy(points, o.analysis, o.amg, o.cache_dir, r.cache);
+  std::vector<Vec3f> estimated;
+  const AmgHierarchy h = cached_hierarchy(points, o.analysis, o.amg, o.cache_dir, r.cache, &estimated);
   r.hierarchy_levels = h.level_count();
   r.components = h.components;
   if (h.level_count() < 2)
@@ -84,8 +90,8 @@ BakeResult bake(const PointSet& input, const BakeOptions& o, const std::string& 
   if (h.components > 1)
     r.warnings.push_back(std::to_string(h.components) + " disconnected parts: coarse levels keep one function each");
   watch.lap("hierarchy");
-  // Normals for orientation and normal maps: the input's (orientation falls back to outward).
-  const std::vector<Vec3f>& normals = points.normals;
+  // Normals orient the planes and make the normal maps: the input's, else the analysis' estimate.
+  const std::vector<Vec3f>& normals = points.has_normals() ? points.normals : estimated;
   // 3. Every chosen level: basis, domains, rectangles, textures, atlas, glb.
   const std::vector<std::size_t> levels = chosen_levels(h, o);
   const std::size_t deepest = *std::max_element(levels.begin(), levels.end());

@@ -20,9 +20,11 @@ namespace qf {
 
 // The hierarchy of a point set, from the cache in `cache_dir` when the points and settings match
 // (an empty dir disables the cache), else computed and stored there. `state` says what happened:
-// "hit", "miss (<why>)" or "off".
+// "hit", "miss (<why>)" or "off". For a set without normals, `estimated_normals` (if given)
+// receives the analysis' oriented normals, from the cache too.
 AmgHierarchy cached_hierarchy(const PointSet& points, const AnalysisOptions& analysis, const AmgOptions& amg,
-                              const std::string& cache_dir, std::string& state);
+                              const std::string& cache_dir, std::string& state,
+                              std::vector<Vec3f>* estimated_normals = nullptr);
 
 struct BakeOptions {
   AnalysisOptions analysis;

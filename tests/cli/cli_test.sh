@@ -189,6 +189,12 @@ for l in m["levels"]:
     assert l["primitives"] > 0 and l["texels"] > 0 and l["error"] > 0 and l["max_screen_pixels"] > 0
 assert m["levels"][0]["primitives"] > m["levels"][1]["primitives"]
 PY
+# without input normals: estimated ones light the normal maps, also after a cache hit
+expect 0 "bake without normals" -- "$bake" "$work/bare.xyz" -o "$work/nb1" --primitives 100 -q
+expect 0 "bake without normals, cached" -- "$bake" "$work/bare.xyz" -o "$work/nb2" --primitives 100
+grep -q "cache: hit" "$work/err" && ok || bad "second bake of bare.xyz hits the cache"
+cmp -s "$(ls "$work"/nb1/*.glb)" "$(ls "$work"/nb2/*.glb)" && ok || bad "cache hit and miss bake different bytes"
+grep -aq '"normalTexture"' "$(ls "$work"/nb1/*.glb)" && ok || bad "no normal map for a set without normals"
 printf "0 0 0\n1 0 0\n0 1 0\n" >"$work/tiny.xyz"
 expect 1 "bake too few points" -- "$bake" "$work/tiny.xyz" -o "$work/out3"
 grep -q "bake.too_small" "$work/err" && ok || bad "tiny input names its error"

@@ -213,9 +213,13 @@ TEST(HierarchyCache, RoundTripsExactlyAndRejectsDamage) {
   std::string why;
   EXPECT_FALSE(load_hierarchy(dir, key, &why));
   EXPECT_EQ(why, "missing");
-  save_hierarchy(dir, key, h);
-  const std::optional<AmgHierarchy> back = load_hierarchy(dir, key, &why);
+  const std::vector<Vec3f> normals(p.size(), Vec3f{0, 0.6f, 0.8f});
+  save_hierarchy(dir, key, h, normals);
+  std::vector<Vec3f> normals_back;
+  const std::optional<AmgHierarchy> back = load_hierarchy(dir, key, &why, &normals_back);
   ASSERT_TRUE(back);
+  ASSERT_EQ(normals_back.size(), normals.size());
+  EXPECT_TRUE(normals_back[5] == normals[5]);
   EXPECT_EQ(hierarchy_hash(*back), hierarchy_hash(h));
   EXPECT_EQ(back->components, h.components);
   // Other settings or other points: another key.
