@@ -43,7 +43,7 @@ void put(std::string& s, const T& v) {
 template <class T>
 void put_array(std::string& s, const T* data, std::size_t n) {
   put(s, static_cast<std::uint64_t>(n));
-  s.append(reinterpret_cast<const char*>(data), n * sizeof(T));
+  if (n) s.append(reinterpret_cast<const char*>(data), n * sizeof(T));  // an empty vector's data() may be null
 }
 
 class Reader {
@@ -61,7 +61,7 @@ class Reader {
     std::uint64_t n = 0;
     if (!get(n) || n > max_count || n * sizeof(T) > n_ - pos_) return false;
     out.resize(static_cast<std::size_t>(n));
-    std::memcpy(out.data(), p_ + pos_, static_cast<std::size_t>(n) * sizeof(T));
+    if (n) std::memcpy(out.data(), p_ + pos_, static_cast<std::size_t>(n) * sizeof(T));  // data() may be null when empty
     pos_ += static_cast<std::size_t>(n) * sizeof(T);
     return true;
   }
