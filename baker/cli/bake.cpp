@@ -48,16 +48,14 @@ CommandSpec bake_spec() {
                     {"primitives", 'n', "N,N,...", "1000,300,100,30", "bake the levels nearest these numbers of primitives"},
                     {"levels", 0, "K,K,...", "", "instead: these level numbers (0 = points, negative = from the coarsest)"},
                     {"tau", 0, "T", "0.05", "domain threshold"},
-                    {"merge", 0, "", "", "merge overlapping flat domains facing the same way (thesis 3.4)"},
                     {"texel", 0, "F", "1", "texel size = F x the domain's mean point radius"},
                     {"max-texture", 0, "N", "1024", "largest texture side of one primitive, texels"},
                     {"margin", 0, "M", "0", "extra rectangle margin, in mean point radii"},
-                    {"cache", 0, "DIR", "$QF_CACHE or ~/.cache/quasiflat/amg", "hierarchy cache"},
-                    {"no-cache", 0, "", "", "neither read nor write the hierarchy cache"},
                     drop_nonfinite_option(),
                     {"quiet", 'q', "", "", "print nothing on success"}},
                    1, 1};
-  for (OptionSpec& o : analysis_option_specs()) spec.options.push_back(o);
+  for (const auto& group : {merge_option_specs(), cache_option_specs(), analysis_option_specs()})
+    spec.options.insert(spec.options.end(), group.begin(), group.end());
   return spec;
 }
 
@@ -69,7 +67,7 @@ int run_bake(const ParsedArgs& args) {
   o.analysis = read_analysis_options(args);
   o.domains.tau = args.get_double("tau", o.domains.tau, 0.0, 1.0);
   o.merge = args.flag("merge");
-  o.merge_options.domains = o.domains;
+  o.merge_options = read_merge_options(args, o.domains);
   o.texture.texel_factor = static_cast<float>(args.get_double("texel", o.texture.texel_factor, 0.01, 100.0));
   o.texture.max_side = static_cast<int>(args.get_int("max-texture", o.texture.max_side, 4, 4096 - 8));
   o.support.margin = static_cast<float>(args.get_double("margin", o.support.margin, 0.0, 100.0));
@@ -91,7 +89,7 @@ int run_bake(const ParsedArgs& args) {
       o.primitives.push_back(static_cast<std::size_t>(v));
     }
   }
-  if (!args.flag("no-cache")) o.cache_dir = args.get("cache", default_cache_dir());
+  o.cache_dir = read_cache_dir(args);
 
   ReadReport read_report;
   const PointSet points = load_points(in, args, "bake", read_report);

@@ -54,10 +54,31 @@ PointSet load_points(const std::string& path, const ParsedArgs& args, const std:
   return std::move(model.points);
 }
 
-std::string default_cache_dir() {
+std::vector<OptionSpec> cache_option_specs() {
+  return {{"cache", 0, "DIR", "$QF_CACHE or ~/.cache/quasiflat/amg",
+           "hierarchy cache: reused when the points and settings are unchanged"},
+          {"no-cache", 0, "", "", "neither read nor write the hierarchy cache"}};
+}
+
+std::string read_cache_dir(const ParsedArgs& args) {
+  if (args.flag("no-cache")) return "";
   const char* env = std::getenv("QF_CACHE");
   const char* home = std::getenv("HOME");
-  return env && *env ? env : std::string(home ? home : ".") + "/.cache/quasiflat/amg";
+  return args.get("cache", env && *env ? env : std::string(home ? home : ".") + "/.cache/quasiflat/amg");
+}
+
+std::vector<OptionSpec> merge_option_specs() {
+  return {{"merge", 0, "", "", "merge overlapping flat domains that face the same way (thesis 3.4), biggest overlap first"},
+          {"merge-variation", 0, "V", "0.01", "--merge: a domain is flat when its surface variation is at most V"},
+          {"merge-angle", 0, "DEG", "10", "--merge: the two domains' planes differ by at most DEG degrees"}};
+}
+
+MergeOptions read_merge_options(const ParsedArgs& args, const DomainOptions& domains) {
+  MergeOptions m;
+  m.max_variation = args.get_double("merge-variation", m.max_variation, 0.0, 1.0 / 3.0);
+  m.max_angle_degrees = args.get_double("merge-angle", m.max_angle_degrees, 0.0, 90.0);
+  m.domains = domains;
+  return m;
 }
 
 static std::string shape_list() {

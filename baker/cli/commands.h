@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "analysis/analysis.h"
+#include "domains/merge.h"
 #include "cli/args.h"
 #include "io/model_io.h"
 
@@ -34,8 +35,11 @@ AnalysisOptions read_analysis_options(const ParsedArgs& args);
 // Reads a point set for the analysis: rejects meshes and empty sets with InputError `command`.*.
 PointSet load_points(const std::string& path, const ParsedArgs& args, const std::string& command, ReadReport& report);
 
-// The hierarchy cache folder: $QF_CACHE, else ~/.cache/quasiflat/amg.
-std::string default_cache_dir();
+// Shared by decompose and bake: --cache/--no-cache, and --merge with its two thresholds.
+std::vector<OptionSpec> cache_option_specs();
+std::string read_cache_dir(const ParsedArgs& args);  // "" when the cache is off
+std::vector<OptionSpec> merge_option_specs();
+MergeOptions read_merge_options(const ParsedArgs& args, const DomainOptions& domains);
 
 CommandSpec decompose_spec();
 int run_decompose(const ParsedArgs& args);

@@ -104,19 +104,15 @@ CommandSpec decompose_spec() {
                     {"primitives", 'n', "N", "200", "instead of --level: the level with the number of basis functions nearest N"},
                     {"tau", 0, "T", "0.05", "domain threshold: D = {x : Psi(x) > T} (paper; the thesis used 0.01)"},
                     {"strict", 0, "", "", "strict domains: each point only in its strongest function's domain"},
-                    {"merge", 0, "", "", "merge overlapping flat domains that face the same way (thesis 3.4), biggest overlap first"},
-                    {"merge-variation", 0, "V", "0.01", "--merge: a domain is flat when its surface variation is at most V"},
-                    {"merge-angle", 0, "DEG", "10", "--merge: the two domains' planes differ by at most DEG degrees"},
                     {"neighbor-share", 0, "S", "0.05", "domains i, j are neighbours when they share more than S of either's points"},
                     {"prune", 0, "W", "0.001", "drop basis weights below W after each product (rows renormalised); 0 = exact"},
                     {"summary", 0, "levels.json", "", "write a JSON summary of every level"},
                     {"basis-dump", 0, "FILE", "", "write every point's non-zero basis weights at the chosen level (text)"},
-                    {"cache", 0, "DIR", "$QF_CACHE or ~/.cache/quasiflat/amg", "hierarchy cache: reused when the points and settings are unchanged"},
-                    {"no-cache", 0, "", "", "neither read nor write the hierarchy cache"},
                     drop_nonfinite_option(),
                     {"quiet", 'q', "", "", "print nothing on success"}},
                    1, 1};
-  for (OptionSpec& o : analysis_option_specs()) spec.options.push_back(o);
+  for (const auto& group : {merge_option_specs(), cache_option_specs(), analysis_option_specs()})
+    spec.options.insert(spec.options.end(), group.begin(), group.end());
   return spec;
 }
 
@@ -131,17 +127,14 @@ int run_decompose(const ParsedArgs& args) {
   dopt.tau = args.get_double("tau", dopt.tau, 0.0, 1.0);
   dopt.strict = args.flag("strict");
   dopt.neighbor_share = args.get_double("neighbor-share", dopt.neighbor_share, 0.0, 1.0);
-  MergeOptions mopt;
-  mopt.max_variation = args.get_double("merge-variation", mopt.max_variation, 0.0, 1.0 / 3.0);
-  mopt.max_angle_degrees = args.get_double("merge-angle", mopt.max_angle_degrees, 0.0, 90.0);
-  mopt.domains = dopt;
+  const MergeOptions mopt = read_merge_options(args, dopt);
   BasisOptions bopt;
   bopt.prune = args.get_double("prune", bopt.prune, 0.0, 0.5);
 
   ReadReport read_report;
   const PointSet points = load_points(in, args, "decompose", read_report);
   // The hierarchy depends only on the points and the settings: reuse it when cached.
-  const std::string cache_dir = args.flag("no-cache") ? std::string() : args.get("cache", default_cache_dir());
+  const std::string cache_dir = read_cache_dir(args);
   std::string cache_state;
   const auto t0 = std::chrono::steady_clock::now();
   const AmgHierarchy h = cached_hierarchy(points, ao, AmgOptions{}, cache_dir, cache_state);
