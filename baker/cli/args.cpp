@@ -75,7 +75,7 @@ ParsedArgs parse_args(const CommandSpec& spec, const std::vector<std::string>& a
     } else if (a.size() == 2) {
       o = find_short(spec, a[1]);
     }
-    if (!o) throw UsageError("unknown option '" + a + "' for 'qf-bake " + spec.name + "' (see qf-bake " + spec.name + " --help)");
+    if (!o) throw UsageError("unknown option '" + a + "' for '" + spec.program + " " + spec.name + "' (see " + spec.program + " " + spec.name + " --help)");
     if (o->metavar.empty()) {
       if (has_inline) throw UsageError("option --" + o->name + " takes no value");
       out.values_[o->name] = "";
@@ -89,12 +89,12 @@ ParsedArgs parse_args(const CommandSpec& spec, const std::vector<std::string>& a
     }
   }
   if (out.positional.size() < spec.min_positional || out.positional.size() > spec.max_positional)
-    throw UsageError("usage: qf-bake " + spec.name + " " + spec.usage + " (see qf-bake " + spec.name + " --help)");
+    throw UsageError("usage: " + spec.program + " " + spec.name + " " + spec.usage + " (see " + spec.program + " " + spec.name + " --help)");
   return out;
 }
 
 std::string help_text(const CommandSpec& spec) {
-  std::string s = "usage: qf-bake " + spec.name + " " + spec.usage + "\n\n" + spec.summary + "\n";
+  std::string s = "usage: " + spec.program + " " + spec.name + " " + spec.usage + "\n\n" + spec.summary + "\n";
   if (!spec.details.empty()) s += "\n" + spec.details + "\n";
   if (!spec.options.empty()) s += "\noptions:\n";
   for (const OptionSpec& o : spec.options) {

@@ -23,6 +23,7 @@ struct CommandSpec {
   std::string details;  // paragraph(s) after the usage line
   std::vector<OptionSpec> options;
   std::size_t min_positional = 0, max_positional = 0;
+  std::string program = "qf-bake";  // the executable, for the usage line
 };
 
 class ParsedArgs {

@@ -62,7 +62,8 @@ void splat_radial(const std::vector<Sample>& samples, const Texture& tex, const 
         const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(tex.width) + static_cast<std::size_t>(i);
         if (acc.done[k]) continue;
         const double s = -rect.half_u + (i + 0.5) * tex.texel, t = -rect.half_v + (j + 0.5) * tex.texel;
-        const double w = profile(o.profile, std::hypot(s - p.s, t - p.t), support);
+        const double w = profile(o.method == ResampleMethod::kLinearAffine ? o.fallback_profile : o.profile,
+                                 std::hypot(s - p.s, t - p.t), support);
         if (w <= 0) continue;
         for (int c = 0; c < kChannels; ++c) acc.value[kChannels * k + static_cast<std::size_t>(c)] += w * p.value[c];
         acc.alpha[k] += w * p.alpha;

@@ -1,0 +1,39 @@
+// Cameras for runtime_gl: an orbit around a bounding sphere (azimuth/elevation/distance, or view i
+// of N spread evenly over the sphere), and its OpenGL matrices. Pure CPU, no GL.
+#pragma once
+
+#include <array>
+
+#include "core/types.h"
+
+namespace qf::render {
+
+using Mat4 = std::array<float, 16>;  // column-major, as glLoadMatrixf takes it
+
+struct Sphere {
+  Vec3f center;
+  float radius = 1;
+};
+// The sphere around a box: its centre, half its diagonal (a point box gets radius 1).
+Sphere bounding_sphere(const Bounds& b);
+
+struct Camera {
+  Vec3f eye, target, up{0, 1, 0};
+  float fovy_degrees = 30;
+  float near_plane = 0.1f, far_plane = 100;
+  int width = 512, height = 512;
+  Mat4 view() const;        // world -> eye (gluLookAt)
+  Mat4 projection() const;  // gluPerspective
+};
+
+// Unit direction from the target to the eye: azimuth about +Y from +Z, elevation above the XZ plane
+// (degrees; Y is up, as in glTF).
+Vec3f orbit_direction(float azimuth_degrees, float elevation_degrees);
+// Direction i of n spread evenly over the sphere (a Fibonacci lattice; deterministic).
+Vec3f sphere_direction(int i, int n);
+
+// Looks at the sphere from `direction` (unit, target to eye). distance <= 0 frames the sphere: it
+// just fits the smaller of the two fields of view. Near/far hug the sphere.
+Camera orbit_camera(const Sphere& s, Vec3f direction, float distance, int width, int height, float fovy_degrees = 30);
+
+}  // namespace qf::render

@@ -1,0 +1,447 @@
+// GL 1.1 fixed-function drawing (see draw_gl11.h). Each Pass of blend_order.h maps to one state
+// block below; state is switched only when the pass changes, because each switch costs ~5 us on
+// llvmpipe (gl-notes.md 2). The framebuffer object (GL 3.0) is the only post-1.1 call: it is the
+// headless render target, not part of the drawing.
+#define GL_GLEXT_PROTOTYPES
+#include "runtime_gl/draw_gl11.h"
+
+#include <GL/gl.h>
+#include <GL/glext.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace qf::render {
+namespace {
+
+// Mip chain by 2x2 box filtering (GL 1.1 has no mipmap generation). With `premultiply` the texels
+// are premultiplied by alpha first, which additive blending needs and which filters correctly.
+std::vector<Image> mip_chain(const Image& base, bool premultiply) {
+  std::vector<Image> chain{base};
+  if (premultiply)
+    for (std::size_t i = 0; i < chain[0].rgba.size(); i += 4)
+      for (int c = 0; c < 3; ++c)
+        chain[0].rgba[i + c] = static_cast<std::uint8_t>((chain[0].rgba[i + c] * chain[0].rgba[i + 3] + 127) / 255);
+  while (chain.back().width > 1 || chain.back().height > 1) {
+    const Image& a = chain.back();
+    Image b;
+    b.width = std::max(1, a.width / 2);
+    b.height = std::max(1, a.height / 2);
+    b.rgba.resize(static_cast<std::size_t>(b.width) * static_cast<std::size_t>(b.height) * 4);
+    for (int y = 0; y < b.height; ++y)
+      for (int x = 0; x < b.width; ++x)
+        for (int c = 0; c < 4; ++c) {
+          int sum = 0;
+          for (int dy = 0; dy < 2; ++dy)
+            for (int dx = 0; dx < 2; ++dx) {
+              const int sx = std::min(a.width - 1, 2 * x + dx), sy = std::min(a.height - 1, 2 * y + dy);
+              sum += a.rgba[(static_cast<std::size_t>(sy) * static_cast<std::size_t>(a.width) + static_cast<std::size_t>(sx)) * 4 + c];
+            }
+          b.rgba[(static_cast<std::size_t>(y) * static_cast<std::size_t>(b.width) + static_cast<std::size_t>(x)) * 4 + c] =
+              static_cast<std::uint8_t>((sum + 2) / 4);
+        }
+    chain.push_back(std::move(b));
+  }
+  return chain;
+}
+
+GLuint upload_texture(const Image& image, bool premultiply) {
+  GLuint t = 0;
+  glGenTextures(1, &t);
+  glBindTexture(GL_TEXTURE_2D, t);
+  const std::vector<Image> chain = mip_chain(image, premultiply);
+  for (std::size_t l = 0; l < chain.size(); ++l)
+    glTexImage2D(GL_TEXTURE_2D, static_cast<GLint>(l), GL_RGBA8, chain[l].width, chain[l].height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                 chain[l].rgba.data());
+  // The glTF sampler: trilinear, clamped (the atlas gutters keep tiles apart).
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  return t;
+}
+
+// The splat footprint: a disc in a 32x32 alpha texture, cut at alpha 0.5 by the alpha test.
+GLuint disc_texture() {
+  constexpr int kSide = 32;
+  std::vector<std::uint8_t> a(kSide * kSide);
+  for (int y = 0; y < kSide; ++y)
+    for (int x = 0; x < kSide; ++x) {
+      const float u = (x + 0.5f) / kSide * 2 - 1, v = (y + 0.5f) / kSide * 2 - 1;
+      // Linear ramp across the rim so bilinear filtering puts the 0.5 crossing at radius 1.
+      const float r = std::sqrt(u * u + v * v);
+      a[static_cast<std::size_t>(y * kSide + x)] = static_cast<std::uint8_t>(std::clamp(0.5f + (1 - r) * kSide * 0.5f, 0.0f, 1.0f) * 255);
+    }
+  GLuint t = 0;
+  glGenTextures(1, &t);
+  glBindTexture(GL_TEXTURE_2D, t);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_ALPHA8, kSide, kSide, 0, GL_ALPHA, GL_UNSIGNED_BYTE, a.data());
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  return t;
+}
+
+// Any unit vector perpendicular to n.
+Vec3f perpendicular(Vec3f n) {
+  const Vec3f a = std::fabs(n.x) < 0.9f ? Vec3f{1, 0, 0} : Vec3f{0, 1, 0};
+  return normalized(cross(n, a));
+}
+
+float median_half_diagonal(const ImpostorScene& s) {
+  std::vector<float> h;
+  for (const Item& it : s.items) {
+    float r2 = 0;
+    for (std::uint32_t v = it.first_vertex; v < it.first_vertex + it.vertex_count; ++v) {
+      const Vec3f p{s.positions[v * 3], s.positions[v * 3 + 1], s.positions[v * 3 + 2]};
+      const Vec3f d = p - it.center;
+      r2 = std::max(r2, dot(d, d));
+    }
+    h.push_back(std::sqrt(r2));
+  }
+  if (h.empty()) return 0;
+  std::nth_element(h.begin(), h.begin() + static_cast<std::ptrdiff_t>(h.size() / 2), h.end());
+  return h[h.size() / 2];
+}
+
+}  // namespace
+
+struct Renderer::Impl {
+  int width = 0, height = 0;
+  bool offscreen = true;
+  GLuint fbo = 0, color_rb = 0, depth_rb = 0;
+  // The current scene: exactly one of the three.
+  const ImpostorScene* impostor = nullptr;
+  const SplatScene* splats = nullptr;
+  const MeshScene* mesh = nullptr;
+  std::vector<GLuint> straight, premultiplied;  // per impostor texture
+  GLuint disc = 0;
+  std::vector<float> splat_pos, splat_nrm, splat_uv;  // 4 corners per splat
+  std::vector<std::uint8_t> splat_rgba;
+
+  void make_framebuffer() {
+    glGenFramebuffers(1, &fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glGenRenderbuffers(1, &color_rb);
+    glBindRenderbuffer(GL_RENDERBUFFER, color_rb);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color_rb);
+    glGenRenderbuffers(1, &depth_rb);
+    glBindRenderbuffer(GL_RENDERBUFFER, depth_rb);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH24_STENCIL8, width, height);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_STENCIL_ATTACHMENT, GL_RENDERBUFFER, depth_rb);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw std::runtime_error("the off-screen framebuffer is incomplete");
+  }
+  void free_framebuffer() {
+    if (!fbo) return;
+    glDeleteRenderbuffers(1, &color_rb);
+    glDeleteRenderbuffers(1, &depth_rb);
+    glDeleteFramebuffers(1, &fbo);
+    fbo = 0;
+  }
+  void free_textures() {
+    if (!straight.empty()) glDeleteTextures(static_cast<GLsizei>(straight.size()), straight.data());
+    if (!premultiplied.empty()) glDeleteTextures(static_cast<GLsizei>(premultiplied.size()), premultiplied.data());
+    straight.clear();
+    premultiplied.clear();
+    impostor = nullptr;
+    splats = nullptr;
+    mesh = nullptr;
+  }
+
+  void setup_camera_and_light(const Camera& c, bool lighting) {
+    glViewport(0, 0, width, height);
+    glMatrixMode(GL_PROJECTION);
+    glLoadMatrixf(c.projection().data());
+    glMatrixMode(GL_MODELVIEW);
+    glLoadIdentity();
+    // A headlight: directional, from the eye (set under the identity so it stays in eye space).
+    const GLfloat dir[4] = {0, 0, 1, 0}, diffuse[4] = {0.7f, 0.7f, 0.7f, 1}, ambient[4] = {0.3f, 0.3f, 0.3f, 1},
+                  none[4] = {0, 0, 0, 1};
+    glLightfv(GL_LIGHT0, GL_POSITION, dir);
+    glLightfv(GL_LIGHT0, GL_DIFFUSE, diffuse);
+    glLightfv(GL_LIGHT0, GL_SPECULAR, none);
+    glLightfv(GL_LIGHT0, GL_AMBIENT, none);
+    glLightModelfv(GL_LIGHT_MODEL_AMBIENT, ambient);
+    glEnable(GL_LIGHT0);
+    glColorMaterial(GL_FRONT_AND_BACK, GL_AMBIENT_AND_DIFFUSE);
+    glEnable(GL_COLOR_MATERIAL);
+    if (lighting) glEnable(GL_LIGHTING);
+    else glDisable(GL_LIGHTING);
+    glLoadMatrixf(c.view().data());
+  }
+
+  void draw_impostor(const Camera& c, const DrawSettings& s, DrawStats& stats);
+  void draw_splats();
+  void draw_mesh();
+  void composite_background(Rgb8 bg);
+};
+
+Renderer::Renderer(int width, int height, bool offscreen) : impl_(std::make_unique<Impl>()) {
+  impl_->width = width;
+  impl_->height = height;
+  impl_->offscreen = offscreen;
+  if (offscreen) impl_->make_framebuffer();
+  impl_->disc = disc_texture();
+}
+
+Renderer::~Renderer() {
+  impl_->free_textures();
+  glDeleteTextures(1, &impl_->disc);
+  impl_->free_framebuffer();
+}
+
+void Renderer::resize(int width, int height) {
+  impl_->width = width;
+  impl_->height = height;
+  if (impl_->offscreen) {
+    impl_->free_framebuffer();
+    impl_->make_framebuffer();
+  }
+}
+
+void Renderer::set_scene(const ImpostorScene& scene) {
+  impl_->free_textures();
+  impl_->impostor = &scene;
+  for (const Image& t : scene.textures) {
+    impl_->straight.push_back(upload_texture(t, false));
+    impl_->premultiplied.push_back(upload_texture(t, true));
+  }
+}
+
+void Renderer::set_scene(const SplatScene& scene) {
+  impl_->free_textures();
+  impl_->splats = &scene;
+  Impl& m = *impl_;
+  const std::size_t n = scene.positions.size();
+  m.splat_pos.resize(n * 12);
+  m.splat_nrm.resize(n * 12);
+  m.splat_uv.resize(n * 8);
+  m.splat_rgba.resize(n * 16);
+  const float su[4] = {-1, 1, 1, -1}, sv[4] = {-1, -1, 1, 1};
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3f nrm = scene.normals[i], u = perpendicular(nrm), v = cross(nrm, u);
+    const float r = scene.radii[i];
+    for (std::size_t k = 0; k < 4; ++k) {
+      const Vec3f p = scene.positions[i] + u * (su[k] * r) + v * (sv[k] * r);
+      for (int a = 0; a < 3; ++a) {
+        m.splat_pos[(i * 4 + k) * 3 + static_cast<std::size_t>(a)] = p[a];
+        m.splat_nrm[(i * 4 + k) * 3 + static_cast<std::size_t>(a)] = nrm[a];
+      }
+      m.splat_uv[(i * 4 + k) * 2] = su[k] * 0.5f + 0.5f;
+      m.splat_uv[(i * 4 + k) * 2 + 1] = sv[k] * 0.5f + 0.5f;
+      const Rgb8 col = scene.colors[i];
+      const std::uint8_t rgba[4] = {col.r, col.g, col.b, 255};
+      std::copy(rgba, rgba + 4, &m.splat_rgba[(i * 4 + k) * 4]);
+    }
+  }
+}
+
+void Renderer::set_scene(const MeshScene& scene) {
+  impl_->free_textures();
+  impl_->mesh = &scene;
+}
+
+// Oriented, depth-tested splats, as QSplat draws them: opaque discs cut by the alpha test.
+void Renderer::Impl::draw_splats() {
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glEnable(GL_TEXTURE_2D);
+  glBindTexture(GL_TEXTURE_2D, disc);
+  glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_MODULATE);
+  glEnable(GL_ALPHA_TEST);
+  glAlphaFunc(GL_GREATER, 0.5f);
+  glLightModeli(GL_LIGHT_MODEL_TWO_SIDE, GL_TRUE);
+  glEnableClientState(GL_VERTEX_ARRAY);
+  glEnableClientState(GL_NORMAL_ARRAY);
+  glEnableClientState(GL_COLOR_ARRAY);
+  glEnableClientState(GL_TEXTURE_COORD_ARRAY);
+  glVertexPointer(3, GL_FLOAT, 0, splat_pos.data());
+  glNormalPointer(GL_FLOAT, 0, splat_nrm.data());
+  glColorPointer(4, GL_UNSIGNED_BYTE, 0, splat_rgba.data());
+  glTexCoordPointer(2, GL_FLOAT, 0, splat_uv.data());
+  glDrawArrays(GL_QUADS, 0, static_cast<GLsizei>(splat_pos.size() / 3));
+  glDisableClientState(GL_COLOR_ARRAY);
+  glDisableClientState(GL_TEXTURE_COORD_ARRAY);
+  glLightModeli(GL_LIGHT_MODEL_TWO_SIDE, GL_FALSE);
+}
+
+// Triangles with smooth vertex normals and colours, lit on both sides (open meshes, soups).
+void Renderer::Impl::draw_mesh() {
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glLightModeli(GL_LIGHT_MODEL_TWO_SIDE, GL_TRUE);
+  std::vector<std::uint8_t> rgba(mesh->colors.size() * 4);
+  for (std::size_t i = 0; i < mesh->colors.size(); ++i) {
+    rgba[i * 4] = mesh->colors[i].r;
+    rgba[i * 4 + 1] = mesh->colors[i].g;
+    rgba[i * 4 + 2] = mesh->colors[i].b;
+    rgba[i * 4 + 3] = 255;
+  }
+  glEnableClientState(GL_VERTEX_ARRAY);
+  glEnableClientState(GL_NORMAL_ARRAY);
+  glEnableClientState(GL_COLOR_ARRAY);
+  glVertexPointer(3, GL_FLOAT, 0, mesh->positions.data());
+  glNormalPointer(GL_FLOAT, 0, mesh->normals.data());
+  glColorPointer(4, GL_UNSIGNED_BYTE, 0, rgba.data());
+  glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(mesh->indices.size()), GL_UNSIGNED_INT, mesh->indices.data());
+  glDisableClientState(GL_COLOR_ARRAY);
+  glLightModeli(GL_LIGHT_MODEL_TWO_SIDE, GL_FALSE);
+}
+
+void Renderer::Impl::draw_impostor(const Camera& c, const DrawSettings& s, DrawStats& stats) {
+  const ImpostorScene& sc = *impostor;
+  const float alpha_ref = s.alpha_ref >= 0 ? s.alpha_ref : sc.alpha_ref;
+  const std::string mode = s.alpha_mode ? *s.alpha_mode : sc.alpha_mode;
+  const float cutoff = s.alpha_cutoff >= 0 ? s.alpha_cutoff : sc.alpha_cutoff;
+  ImpostorScene planned_as = {};
+  const std::vector<DrawOp> ops = [&] {
+    if (s.method != Method::kEngine || mode == sc.alpha_mode) return plan_draws(s.method, sc, c.eye);
+    // The engine path with another alpha mode: only the mode differs.
+    planned_as.items = sc.items;
+    planned_as.alpha_mode = mode;
+    return plan_draws(s.method, planned_as, c.eye);
+  }();
+  const float a = std::clamp(s.transparency, 0.0f, 1.0f);
+  const float offset = s.depth_offset > 0 ? s.depth_offset : 0.5f * median_half_diagonal(sc);
+  Mat4 view_offset = c.view();
+  view_offset[14] -= offset;  // eye-space translation along -z: further from the eye
+
+  glEnableClientState(GL_VERTEX_ARRAY);
+  glEnableClientState(GL_NORMAL_ARRAY);
+  glEnableClientState(GL_TEXTURE_COORD_ARRAY);
+  glVertexPointer(3, GL_FLOAT, 0, sc.positions.data());
+  glNormalPointer(GL_FLOAT, 0, sc.normals.data());
+  glTexCoordPointer(2, GL_FLOAT, 0, sc.uvs.data());
+  glEnable(GL_TEXTURE_2D);
+  glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_MODULATE);
+  glDepthFunc(GL_LESS);
+
+  int bound_pass = -1;
+  GLuint bound_texture = 0;
+  for (const DrawOp& op : ops) {
+    const bool premult = op.pass != Pass::kOpaque && op.pass != Pass::kOver;
+    if (static_cast<int>(op.pass) != bound_pass) {
+      ++stats.state_changes;
+      bound_pass = static_cast<int>(op.pass);
+      const bool color = op.pass != Pass::kLock && op.pass != Pass::kDepthOffset;
+      const bool depth_test = op.pass != Pass::kDarkenHard && op.pass != Pass::kDarkenSoft && op.pass != Pass::kAddNoDepth;
+      const bool depth_write = op.pass == Pass::kLock || op.pass == Pass::kDepthOffset || op.pass == Pass::kOpaque || op.pass == Pass::kOver;
+      glColorMask(color, color, color, color);
+      glDepthMask(depth_write ? GL_TRUE : GL_FALSE);
+      if (depth_test) glEnable(GL_DEPTH_TEST);
+      else glDisable(GL_DEPTH_TEST);
+      glLoadMatrixf(op.pass == Pass::kDepthOffset ? view_offset.data() : c.view().data());
+      // Blending. Premultiplied texels times (a, a, a, a): colour and coverage both scale by a.
+      switch (op.pass) {
+        case Pass::kColor:
+        case Pass::kAddNoDepth: glEnable(GL_BLEND), glBlendFunc(GL_ONE, GL_ONE); break;
+        case Pass::kDarkenHard: glEnable(GL_BLEND), glBlendFunc(GL_ZERO, GL_ZERO); break;
+        case Pass::kDarkenSoft: glEnable(GL_BLEND), glBlendFunc(GL_ZERO, GL_ONE_MINUS_SRC_ALPHA); break;
+        case Pass::kOver: glEnable(GL_BLEND), glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA); break;
+        default: glDisable(GL_BLEND); break;
+      }
+      // Alpha test.
+      glEnable(GL_ALPHA_TEST);
+      switch (op.pass) {
+        case Pass::kLock: glAlphaFunc(GL_GREATER, alpha_ref); break;
+        case Pass::kDepthOffset:
+        case Pass::kDarkenHard: glAlphaFunc(GL_GREATER, 0.0f); break;
+        case Pass::kOpaque:
+          if (s.method == Method::kNoBlend) glAlphaFunc(GL_GREATER, alpha_ref);
+          else if (mode == "MASK") glAlphaFunc(GL_GEQUAL, cutoff);  // glTF: opaque where alpha >= cutoff
+          else glDisable(GL_ALPHA_TEST);
+          break;
+        default: glDisable(GL_ALPHA_TEST); break;
+      }
+      if (premult) glColor4f(a, a, a, a);
+      else glColor4f(1, 1, 1, op.pass == Pass::kOver ? a : 1.0f);
+    }
+    const Item& it = sc.items[op.item];
+    const GLuint tex = (premult ? premultiplied : straight)[it.texture];
+    if (tex != bound_texture) glBindTexture(GL_TEXTURE_2D, tex), bound_texture = tex;
+    glDrawArrays(GL_TRIANGLES, static_cast<GLint>(it.first_vertex), static_cast<GLsizei>(it.vertex_count));
+    if (op.pass == Pass::kColor || op.pass == Pass::kAddNoDepth || op.pass == Pass::kOpaque || op.pass == Pass::kOver) ++stats.color_draws;
+    else if (op.pass == Pass::kLock) ++stats.lock_draws;
+    else ++stats.other_draws;
+  }
+  glDisableClientState(GL_TEXTURE_COORD_ARRAY);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glDepthMask(GL_TRUE);
+}
+
+// Additive methods draw onto transparent black, accumulating coverage in alpha; the background
+// then fills what is left: C = C_object + (1 - coverage) * background. So the result is right over
+// any background colour, not only black.
+void Renderer::Impl::composite_background(Rgb8 bg) {
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_LIGHTING);
+  glDisable(GL_TEXTURE_2D);
+  glDisable(GL_ALPHA_TEST);
+  glDisableClientState(GL_VERTEX_ARRAY);
+  glDisableClientState(GL_NORMAL_ARRAY);
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_ONE_MINUS_DST_ALPHA, GL_ONE);
+  glMatrixMode(GL_PROJECTION);
+  glLoadIdentity();
+  glMatrixMode(GL_MODELVIEW);
+  glLoadIdentity();
+  glColor4ub(bg.r, bg.g, bg.b, 255);
+  glBegin(GL_QUADS);
+  glVertex2f(-1, -1);
+  glVertex2f(1, -1);
+  glVertex2f(1, 1);
+  glVertex2f(-1, 1);
+  glEnd();
+  glDisable(GL_BLEND);
+}
+
+DrawStats Renderer::draw(const Camera& camera, const DrawSettings& s) {
+  Impl& m = *impl_;
+  if (m.offscreen) glBindFramebuffer(GL_FRAMEBUFFER, m.fbo);
+  const bool additive = m.impostor && is_additive(s.method);
+  const float inv = 1.0f / 255;
+  if (additive) glClearColor(0, 0, 0, 0);
+  else glClearColor(s.background.r * inv, s.background.g * inv, s.background.b * inv, 1);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glDepthMask(GL_TRUE);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_BLEND);
+  glDisable(GL_ALPHA_TEST);
+  m.setup_camera_and_light(camera, s.lighting);
+  DrawStats stats;
+  if (m.impostor) m.draw_impostor(camera, s, stats);
+  else if (m.splats) m.draw_splats();
+  else if (m.mesh) m.draw_mesh();
+  glDisable(GL_TEXTURE_2D);
+  glDisable(GL_ALPHA_TEST);
+  if (additive) m.composite_background(s.background);
+  glDisableClientState(GL_VERTEX_ARRAY);
+  glDisableClientState(GL_NORMAL_ARRAY);
+  return stats;
+}
+
+Image Renderer::read_pixels() const {
+  const Impl& m = *impl_;
+  Image img;
+  img.width = m.width;
+  img.height = m.height;
+  img.rgba.resize(static_cast<std::size_t>(m.width) * static_cast<std::size_t>(m.height) * 4);
+  std::vector<std::uint8_t> raw(img.rgba.size());
+  glFinish();
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, m.width, m.height, GL_RGBA, GL_UNSIGNED_BYTE, raw.data());
+  // GL rows are bottom-up.
+  const std::size_t row = static_cast<std::size_t>(m.width) * 4;
+  for (int y = 0; y < m.height; ++y)
+    std::copy_n(&raw[static_cast<std::size_t>(m.height - 1 - y) * row], row, &img.rgba[static_cast<std::size_t>(y) * row]);
+  return img;
+}
+
+}  // namespace qf::render

@@ -1,0 +1,56 @@
+// OpenGL 1.1 fixed-function drawing of impostor levels and reference scenes: the only runtime file
+// with GL calls (plus the framebuffer object it renders into). Needs a current context
+// (egl_context.h). Pixels are deterministic for a given Mesa build (gl-notes.md 4).
+#pragma once
+
+#include <memory>
+#include <optional>
+
+#include "runtime_gl/blend_order.h"
+#include "runtime_gl/camera.h"
+#include "runtime_gl/scene.h"
+
+namespace qf::render {
+
+struct DrawSettings {
+  Method method = Method::kOverlap;
+  Rgb8 background{0, 0, 0};
+  float alpha_ref = -1;        // lock-by-depth alpha test; < 0: the file's (extension alphaRef, 0.1)
+  float transparency = 1;      // whole-object opacity a: the basis (alpha) is scaled by a (method.md 7)
+  bool lighting = true;        // fixed-function headlight, one normal per quad / per splat / per vertex
+  float depth_offset = 0;      // two-pass offset, world units; 0 = half the median quad half-diagonal
+  std::optional<std::string> alpha_mode;  // engine method: override the material's alphaMode
+  float alpha_cutoff = -1;     // engine method, MASK: < 0 = the material's alphaCutoff
+};
+
+struct DrawStats {
+  std::size_t color_draws = 0, lock_draws = 0, other_draws = 0, state_changes = 0;
+};
+
+class Renderer {
+ public:
+  // Renders into an off-screen framebuffer of width x height (RGBA8 + depth 24), or into the
+  // current window's default framebuffer when `offscreen` is false.
+  Renderer(int width, int height, bool offscreen = true);
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  // The scene to draw (textures are uploaded here, with CPU-built mipmaps). The scene must outlive
+  // the renderer's use of it.
+  void set_scene(const ImpostorScene& scene);
+  void set_scene(const SplatScene& scene);
+  void set_scene(const MeshScene& scene);
+
+  // Draws one frame (cleared first). Returns what was drawn.
+  DrawStats draw(const Camera& camera, const DrawSettings& settings);
+  // The frame as RGBA, rows top to bottom.
+  Image read_pixels() const;
+  void resize(int width, int height);  // window mode
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace qf::render

@@ -1,0 +1,45 @@
+// Image files and image arithmetic for runtime_gl, on OpenImageIO (the one runtime file that
+// includes it): PNG/EXR writing, contact sheets, and the fidelity metrics of `qf-render eval`
+// (paper section 6: render original and simplification with the same camera and compare).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "runtime_gl/scene.h"
+
+namespace qf::render {
+
+// Writes an opaque PNG (the RGB channels; alpha dropped), atomically. The same pixels give the
+// same bytes.
+void save_png(const std::string& path, const Image& image);
+
+// Tiles images (all the same size) in rows of `columns`, on `background`, with an optional
+// caption under each (rendered with DejaVu Sans when the font is installed; left out otherwise).
+Image contact_sheet(const std::vector<Image>& images, int columns, Rgb8 background,
+                    const std::vector<std::string>& captions = {});
+
+// One view's comparison. A render's coverage c is recovered from two renders over black (B) and
+// white (W): W - B = (1 - c) * 255 for every method, since each is linear in the background. The
+// colours compared are both composited over `background`.
+struct ViewMetrics {
+  double psnr = 0;         // dB, over pixels covered (c >= 0.5) by either image; 99 when identical
+  double iou = 1;          // silhouette intersection over union (c >= 0.5)
+  double mae = 0;          // mean absolute difference, 0..1, over the same pixels
+  double holes = 0;        // share of reference-covered pixels where the impostor's c < 0.5
+  double see_through = 0;  // share of reference-covered pixels where the impostor's 0.5 <= c < 0.9
+  std::size_t covered = 0; // pixels covered by the reference
+};
+struct RenderPair {
+  Image over_black, over_white;
+};
+// `diff` (if given) receives |reference - impostor| as linear floats, RGB, 0..1.
+ViewMetrics compare_renders(const RenderPair& reference, const RenderPair& impostor, Rgb8 background,
+                            std::vector<float>* diff = nullptr);
+
+// Writes a float RGB image (e.g. a difference image) as OpenEXR (half floats, zip), atomically.
+void save_exr(const std::string& path, const std::vector<float>& rgb, int width, int height);
+// A float RGB image as 8-bit, scaled by `gain` and clamped (difference images made visible).
+Image to_8bit(const std::vector<float>& rgb, int width, int height, float gain);
+
+}  // namespace qf::render

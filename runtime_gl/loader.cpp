@@ -1,0 +1,263 @@
+// Loading scenes for runtime_gl: .glb/.gltf through tinygltf (the one runtime file that includes
+// it), reference splats and meshes from the baker's readers.
+#include "runtime_gl/loader.h"
+
+#include <tiny_gltf.h>
+
+#include <cstring>
+
+#include "analysis/local_frames.h"
+#include "analysis/neighborhoods.h"
+#include "core/error.h"
+
+namespace qf::render {
+namespace {
+
+[[noreturn]] void fail(const std::string& path, const std::string& code, const std::string& detail) {
+  throw InputError("render.gltf." + code, path, "", detail);
+}
+
+// Reads an accessor as floats (`components` per element) or as indices, honouring byteStride.
+struct AccessorReader {
+  const tinygltf::Model& m;
+  const std::string& path;
+
+  const unsigned char* base(const tinygltf::Accessor& a, std::size_t elem_size, std::size_t& stride) const {
+    if (a.bufferView < 0 || a.bufferView >= static_cast<int>(m.bufferViews.size())) fail(path, "accessor", "accessor without a valid bufferView");
+    const tinygltf::BufferView& v = m.bufferViews[static_cast<std::size_t>(a.bufferView)];
+    const tinygltf::Buffer& b = m.buffers.at(static_cast<std::size_t>(v.buffer));
+    stride = v.byteStride ? v.byteStride : elem_size;
+    const std::size_t need = a.byteOffset + v.byteOffset + (a.count ? (a.count - 1) * stride + elem_size : 0);
+    if (need > b.data.size()) fail(path, "accessor", "accessor reaches past the end of its buffer");
+    return b.data.data() + v.byteOffset + a.byteOffset;
+  }
+
+  std::vector<float> floats(int index, int components) const {
+    const tinygltf::Accessor& a = m.accessors.at(static_cast<std::size_t>(index));
+    if (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || tinygltf::GetNumComponentsInType(a.type) != components)
+      fail(path, "accessor", "expected a float accessor with " + std::to_string(components) + " components");
+    std::size_t stride = 0;
+    const unsigned char* p = base(a, sizeof(float) * static_cast<std::size_t>(components), stride);
+    std::vector<float> out(a.count * static_cast<std::size_t>(components));
+    for (std::size_t i = 0; i < a.count; ++i)
+      std::memcpy(&out[i * static_cast<std::size_t>(components)], p + i * stride, sizeof(float) * static_cast<std::size_t>(components));
+    return out;
+  }
+
+  std::vector<std::uint32_t> indices(int index) const {
+    const tinygltf::Accessor& a = m.accessors.at(static_cast<std::size_t>(index));
+    const int size = tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(a.componentType));
+    if (a.type != TINYGLTF_TYPE_SCALAR || (size != 1 && size != 2 && size != 4)) fail(path, "accessor", "bad index accessor");
+    std::size_t stride = 0;
+    const unsigned char* p = base(a, static_cast<std::size_t>(size), stride);
+    std::vector<std::uint32_t> out(a.count);
+    for (std::size_t i = 0; i < a.count; ++i) {
+      std::uint32_t v = 0;
+      std::memcpy(&v, p + i * stride, static_cast<std::size_t>(size));  // little-endian host
+      out[i] = v;
+    }
+    return out;
+  }
+};
+
+template <class T>
+std::vector<T> number_array(const tinygltf::Value& ext, const char* key) {
+  std::vector<T> out;
+  if (!ext.Has(key)) return out;
+  const tinygltf::Value& a = ext.Get(key);
+  for (std::size_t i = 0; i < a.ArrayLen(); ++i) out.push_back(static_cast<T>(a.Get(static_cast<int>(i)).GetNumberAsDouble()));
+  return out;
+}
+
+Image to_image(const tinygltf::Image& img, const std::string& path) {
+  if (img.bits != 8 || (img.component != 3 && img.component != 4) || img.width <= 0 || img.height <= 0)
+    fail(path, "image", "image '" + img.name + "' is not an 8-bit RGB or RGBA image");
+  Image out;
+  out.width = img.width;
+  out.height = img.height;
+  const std::size_t n = static_cast<std::size_t>(img.width) * static_cast<std::size_t>(img.height);
+  out.rgba.resize(n * 4);
+  for (std::size_t i = 0; i < n; ++i)
+    for (int c = 0; c < 4; ++c)
+      out.rgba[i * 4 + c] = c < img.component ? img.image[i * static_cast<std::size_t>(img.component) + c] : 255;
+  return out;
+}
+
+// A 1x1 white texture for materials without a base colour texture.
+Image white_image() { return Image{1, 1, {255, 255, 255, 255}}; }
+
+}  // namespace
+
+ImpostorScene load_gltf(const std::string& path) {
+  tinygltf::Model m;
+  tinygltf::TinyGLTF loader;
+  std::string err, warn;
+  const bool binary = path.size() >= 4 && path.compare(path.size() - 4, 4, ".glb") == 0;
+  const bool ok = binary ? loader.LoadBinaryFromFile(&m, &err, &warn, path) : loader.LoadASCIIFromFile(&m, &err, &warn, path);
+  if (!ok) fail(path, "parse", err.empty() ? "not a readable glTF file" : err);
+
+  ImpostorScene s;
+  AccessorReader read{m, path};
+  // Textures: one per glTF image, plus a white one at the end for untextured materials.
+  for (const tinygltf::Image& img : m.images) s.textures.push_back(to_image(img, path));
+  const auto white = static_cast<std::uint32_t>(s.textures.size());
+  s.textures.push_back(white_image());
+  if (!m.materials.empty()) {
+    s.alpha_mode = m.materials[0].alphaMode;
+    s.alpha_cutoff = static_cast<float>(m.materials[0].alphaCutoff);
+  }
+
+  // 1. Every triangle primitive of every mesh, expanded to flat vertex arrays; `groups` lists the
+  //    items' triangles per material, in file order.
+  struct Group {
+    int material;
+    std::vector<std::uint32_t> first;  // first vertex of each triangle
+  };
+  std::vector<Group> groups;
+  for (const tinygltf::Mesh& mesh : m.meshes) {
+    for (const tinygltf::Primitive& prim : mesh.primitives) {
+      if (prim.mode != TINYGLTF_MODE_TRIANGLES) continue;
+      const auto pos_it = prim.attributes.find("POSITION");
+      if (pos_it == prim.attributes.end()) fail(path, "mesh", "a triangle primitive has no POSITION");
+      const std::vector<float> pos = read.floats(pos_it->second, 3);
+      const auto uv_it = prim.attributes.find("TEXCOORD_0");
+      const std::vector<float> uv = uv_it == prim.attributes.end() ? std::vector<float>() : read.floats(uv_it->second, 2);
+      std::vector<std::uint32_t> idx;
+      if (prim.indices >= 0) {
+        idx = read.indices(prim.indices);
+      } else {
+        for (std::uint32_t i = 0; i < pos.size() / 3; ++i) idx.push_back(i);
+      }
+      Group g{prim.material, {}};
+      for (std::size_t t = 0; t + 2 < idx.size(); t += 3) {
+        g.first.push_back(static_cast<std::uint32_t>(s.positions.size() / 3));
+        for (int c = 0; c < 3; ++c) {
+          const std::size_t v = idx[t + static_cast<std::size_t>(c)];
+          if (v * 3 + 2 >= pos.size()) fail(path, "mesh", "an index is past the end of POSITION");
+          s.positions.insert(s.positions.end(), {pos[v * 3], pos[v * 3 + 1], pos[v * 3 + 2]});
+          s.uvs.insert(s.uvs.end(), {uv.empty() ? 0.0f : uv[v * 2], uv.empty() ? 0.0f : uv[v * 2 + 1]});
+          s.bounds.add({pos[v * 3], pos[v * 3 + 1], pos[v * 3 + 2]});
+        }
+      }
+      groups.push_back(std::move(g));
+    }
+  }
+  auto texture_of = [&](int material) -> std::uint32_t {
+    if (material < 0 || material >= static_cast<int>(m.materials.size())) return white;
+    const int t = m.materials[static_cast<std::size_t>(material)].pbrMetallicRoughness.baseColorTexture.index;
+    if (t < 0 || t >= static_cast<int>(m.textures.size())) return white;
+    const int src = m.textures[static_cast<std::size_t>(t)].source;
+    return src >= 0 && src < static_cast<int>(m.images.size()) ? static_cast<std::uint32_t>(src) : white;
+  };
+
+  // 2. Items. With the extension: quad k is the next two triangles of the group of its atlas image
+  //    (the writer emits one primitive per atlas image, quads in index order).
+  const auto ext_it = m.extensions.find("QF_impostor_level");
+  if (ext_it != m.extensions.end()) {
+    const tinygltf::Value& ext = ext_it->second;
+    const std::vector<float> center = number_array<float>(ext, "center"), normal = number_array<float>(ext, "normal"),
+                             rect = number_array<float>(ext, "atlasRect");
+    const auto quads = static_cast<std::size_t>(ext.Get("quadCount").GetNumberAsInt());
+    s.offsets = number_array<std::uint32_t>(ext, "neighborOffsets");
+    s.neighbors = number_array<std::uint32_t>(ext, "neighbors");
+    if (center.size() != quads * 3 || normal.size() != quads * 3 || rect.size() != quads * 5 || s.offsets.size() != quads + 1 ||
+        s.offsets.back() != s.neighbors.size())
+      fail(path, "extension", "QF_impostor_level arrays do not match quadCount " + std::to_string(quads));
+    for (std::uint32_t nb : s.neighbors)
+      if (nb >= quads) fail(path, "extension", "a neighbour index is out of range");
+    std::vector<std::size_t> next(groups.size(), 0);
+    for (std::size_t k = 0; k < quads; ++k) {
+      const auto image = static_cast<int>(rect[k * 5]);
+      std::size_t g = 0;
+      while (g < groups.size() && !(groups[g].material == image && next[g] + 2 <= groups[g].first.size())) ++g;
+      if (g == groups.size()) fail(path, "extension", "quad " + std::to_string(k) + " has no triangles in its atlas image's primitive");
+      Item it;
+      it.first_vertex = groups[g].first[next[g]];
+      it.vertex_count = 6;
+      if (groups[g].first[next[g] + 1] != it.first_vertex + 3) fail(path, "extension", "quad triangles are not consecutive");
+      next[g] += 2;
+      it.texture = texture_of(groups[g].material);
+      it.center = {center[k * 3], center[k * 3 + 1], center[k * 3 + 2]};
+      it.normal = {normal[k * 3], normal[k * 3 + 1], normal[k * 3 + 2]};
+      s.items.push_back(it);
+    }
+    s.has_extension = true;
+    s.level = ext.Has("level") ? ext.Get("level").GetNumberAsInt() : -1;
+    if (ext.Has("alphaRef")) s.alpha_ref = static_cast<float>(ext.Get("alphaRef").GetNumberAsDouble());
+  } else {
+    // Plain glTF: consecutive triangle pairs sharing an edge are quads; others stand alone.
+    for (const Group& g : groups) {
+      for (std::size_t t = 0; t < g.first.size();) {
+        const bool pair = t + 1 < g.first.size();
+        Item it;
+        it.first_vertex = g.first[t];
+        it.vertex_count = pair ? 6 : 3;
+        it.texture = texture_of(g.material);
+        t += pair ? 2 : 1;
+        Vec3f sum, area;
+        for (std::uint32_t tri = 0; tri < it.vertex_count; tri += 3) {
+          Vec3f p[3];
+          for (int c = 0; c < 3; ++c) {
+            const std::size_t v = (it.first_vertex + tri + static_cast<std::uint32_t>(c)) * 3;
+            p[c] = {s.positions[v], s.positions[v + 1], s.positions[v + 2]};
+            sum = sum + p[c];
+          }
+          area = area + cross(p[1] - p[0], p[2] - p[0]);
+        }
+        it.center = sum * (1.0f / static_cast<float>(it.vertex_count));
+        it.normal = normalized(area);
+        s.items.push_back(it);
+      }
+    }
+  }
+  // 3. One normal per item on all its vertices.
+  s.normals.resize(s.positions.size());
+  for (const Item& it : s.items)
+    for (std::uint32_t v = it.first_vertex; v < it.first_vertex + it.vertex_count; ++v) {
+      s.normals[v * 3] = it.normal.x;
+      s.normals[v * 3 + 1] = it.normal.y;
+      s.normals[v * 3 + 2] = it.normal.z;
+    }
+  if (s.items.empty()) fail(path, "empty", "the file has no triangles to draw");
+  return s;
+}
+
+SplatScene splat_scene(PointSet points) {
+  if (points.size() == 0) throw InputError("render.points.empty", "", "", "the point set is empty");
+  estimate_radii(points);
+  SplatScene s;
+  if (!points.has_normals()) {
+    // The baker's own estimate (same neighbourhoods, same orientation), so lighting matches.
+    const Neighborhoods nb = compute_neighborhoods(points.positions);
+    s.normals = compute_local_frames(points.positions, nb).normal;
+  } else {
+    s.normals = std::move(points.normals);
+  }
+  s.bounds = points.bounds();
+  s.positions = std::move(points.positions);
+  s.radii = std::move(points.radii);
+  s.colors = points.has_colors() ? std::move(points.colors) : std::vector<Rgb8>(s.positions.size(), kBaseColor);
+  return s;
+}
+
+MeshScene mesh_scene(const TriangleMesh& mesh) {
+  MeshScene s;
+  s.positions = mesh.positions;
+  s.bounds = mesh.bounds();
+  s.colors = mesh.colors.empty() ? std::vector<Rgb8>(mesh.positions.size(), kBaseColor) : mesh.colors;
+  s.normals = mesh.normals;
+  const bool need_normals = s.normals.size() != s.positions.size();
+  if (need_normals) s.normals.assign(s.positions.size(), Vec3f{});
+  for (const Triangle& t : mesh.triangles) {
+    s.indices.insert(s.indices.end(), t.begin(), t.end());
+    if (!need_normals) continue;
+    const Vec3f n = cross(s.positions[t[1]] - s.positions[t[0]], s.positions[t[2]] - s.positions[t[0]]);  // |n| = 2 area
+    for (std::uint32_t v : t) s.normals[v] = s.normals[v] + n;
+  }
+  if (need_normals)
+    for (Vec3f& n : s.normals) n = normalized(n);
+  if (s.indices.empty()) throw InputError("render.mesh.empty", "", "", "the mesh has no triangles");
+  return s;
+}
+
+}  // namespace qf::render

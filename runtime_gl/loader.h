@@ -1,0 +1,24 @@
+// Loading what runtime_gl draws: a baked .glb (tinygltf, with the QF_impostor_level extension when
+// present) and reference scenes made from an input point set or mesh.
+#pragma once
+
+#include <string>
+
+#include "core/types.h"
+#include "runtime_gl/scene.h"
+
+namespace qf::render {
+
+// Reads a .glb or .gltf. With the extension, item k is the extension's quad k (its centre, normal
+// and neighbours); without it every pair of triangles (or lone triangle) is an item with its own
+// centroid and normal, and no neighbours. Throws InputError ("render.gltf.*") naming the file.
+ImpostorScene load_gltf(const std::string& path);
+
+// A reference scene of a point set: radii estimated from the spacing where missing (as the baker
+// does), normals estimated by the surface analysis where missing.
+SplatScene splat_scene(PointSet points);
+
+// A reference scene of a triangle mesh (normals area-weighted where missing).
+MeshScene mesh_scene(const TriangleMesh& mesh);
+
+}  // namespace qf::render

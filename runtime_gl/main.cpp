@@ -1,0 +1,480 @@
+// qf-render: draws baked levels (and reference point sets / meshes) with the GL 1.1 renderer,
+// headless to PNG or in a window, and measures an impostor's fidelity against its reference
+// (method.md 7-8; paper 4-6). Exit codes as qf-bake: 0 ok, 1 bad input, 2 bad usage, 3 internal.
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <new>
+#include <sstream>
+#include <thread>
+
+#include "cli/args.h"
+#include "core/error.h"
+#include "core/file_io.h"
+#include "core/memory.h"
+#include "io/model_io.h"
+#include "runtime_gl/draw_gl11.h"
+#include "runtime_gl/egl_context.h"
+#include "runtime_gl/image_ops.h"
+#include "runtime_gl/loader.h"
+
+#ifndef QF_VERSION
+#define QF_VERSION "0.0.0"
+#endif
+
+namespace qf::render {
+namespace {
+
+using cli::CommandSpec;
+using cli::OptionSpec;
+using cli::ParsedArgs;
+using nlohmann::ordered_json;
+
+// Whatever a file holds, ready to draw.
+struct AnyScene {
+  enum Kind { kImpostor, kSplats, kMesh } kind = kImpostor;
+  ImpostorScene impostor;
+  SplatScene splats;
+  MeshScene mesh;
+  Bounds bounds() const { return kind == kImpostor ? impostor.bounds : kind == kSplats ? splats.bounds : mesh.bounds; }
+  std::string describe() const {
+    if (kind == kImpostor) return std::to_string(impostor.items.size()) + " quads";
+    if (kind == kSplats) return std::to_string(splats.positions.size()) + " points";
+    return std::to_string(mesh.indices.size() / 3) + " triangles";
+  }
+  void attach(Renderer& r) const {
+    if (kind == kImpostor) r.set_scene(impostor);
+    else if (kind == kSplats) r.set_scene(splats);
+    else r.set_scene(mesh);
+  }
+};
+
+AnyScene load_scene(const std::string& path) {
+  AnyScene s;
+  const std::string ext = file_extension(path);
+  if (ext == "glb" || ext == "gltf") {
+    s.impostor = load_gltf(path);
+    return s;
+  }
+  Model m = read_model(path);
+  if (m.is_mesh) {
+    s.kind = AnyScene::kMesh;
+    s.mesh = mesh_scene(m.mesh);
+  } else {
+    s.kind = AnyScene::kSplats;
+    s.splats = splat_scene(std::move(m.points));
+  }
+  return s;
+}
+
+// --- option parsing ---------------------------------------------------------------------------
+
+std::pair<int, int> parse_size(const std::string& text) {
+  int w = 0, h = 0;
+  char x = 0;
+  std::istringstream in(text);
+  in >> w;
+  if (in >> x) {
+    if (x != 'x' || !(in >> h)) h = -1;
+  } else {
+    h = w;
+  }
+  if (w < 1 || h < 1 || w > 8192 || h > 8192 || in.rdbuf()->in_avail() > 0)
+    throw UsageError("--size: expected W or WxH with sides in 1..8192, got '" + text + "'");
+  return {w, h};
+}
+
+Rgb8 parse_color(const std::string& opt, const std::string& text) {
+  int c[3];
+  char comma1 = 0, comma2 = 0;
+  std::istringstream in(text);
+  if (!(in >> c[0] >> comma1 >> c[1] >> comma2 >> c[2]) || comma1 != ',' || comma2 != ',' || in.rdbuf()->in_avail() > 0 ||
+      std::min({c[0], c[1], c[2]}) < 0 || std::max({c[0], c[1], c[2]}) > 255)
+    throw UsageError("--" + opt + ": expected r,g,b with values 0..255, got '" + text + "'");
+  return {static_cast<std::uint8_t>(c[0]), static_cast<std::uint8_t>(c[1]), static_cast<std::uint8_t>(c[2])};
+}
+
+std::vector<OptionSpec> draw_option_specs() {
+  std::string methods;
+  for (const std::string& m : method_names()) methods += (methods.empty() ? "" : "|") + m;
+  return {
+      {"method", 'm', methods, "overlap",
+       "how quads blend: overlap = sorted, neighbours blended, lock by depth (the paper's); two-pass = depth "
+       "offset; backface-hard/-soft = dark back faces; blend-all; no-blend; engine = the glTF material as a "
+       "standard engine draws it"},
+      {"size", 0, "W[xH]", "512", "image size in pixels"},
+      {"background", 0, "R,G,B", "0,0,0", "background colour (results are right over any colour)"},
+      {"alpha-ref", 0, "V", "the file's (0.1)", "alpha test of the lock pass"},
+      {"transparency", 0, "A", "1", "whole-object opacity in 0..1 (scales the basis functions)"},
+      {"no-lighting", 0, "", "", "unlit: texture colours as they are (default: headlight, one normal per quad)"},
+      {"depth-offset", 0, "D", "half the median quad half-diagonal", "two-pass: depth offset in world units"},
+      {"alpha-mode", 0, "OPAQUE|MASK|BLEND", "the material's", "engine method: draw as this glTF alpha mode"},
+      {"alpha-cutoff", 0, "V", "the material's", "engine method, MASK: the cutoff"},
+      {"fov", 0, "DEG", "30", "vertical field of view"},
+  };
+}
+
+DrawSettings read_draw_settings(const ParsedArgs& a) {
+  DrawSettings s;
+  s.method = method_from_name(a.get("method", "overlap"));
+  if (a.has("background")) s.background = parse_color("background", a.get("background"));
+  s.alpha_ref = static_cast<float>(a.get_double("alpha-ref", -1, 0, 1));
+  s.transparency = static_cast<float>(a.get_double("transparency", 1, 0, 1));
+  s.lighting = !a.flag("no-lighting");
+  s.depth_offset = static_cast<float>(a.get_double("depth-offset", 0, 0, 1e30));
+  if (a.has("alpha-mode")) {
+    const std::string m = a.get("alpha-mode");
+    if (m != "OPAQUE" && m != "MASK" && m != "BLEND") throw UsageError("--alpha-mode: expected OPAQUE, MASK or BLEND, got '" + m + "'");
+    s.alpha_mode = m;
+  }
+  s.alpha_cutoff = static_cast<float>(a.get_double("alpha-cutoff", -1, 0, 1));
+  return s;
+}
+
+// --- render -------------------------------------------------------------------------------------
+
+const CommandSpec& render_spec() {
+  static const CommandSpec spec = [] {
+    CommandSpec s;
+    s.program = "qf-render";
+    s.name = "render";
+    s.usage = "FILE -o OUT.png [options]   (also: qf-render FILE -o OUT.png)";
+    s.summary = "render a baked level (.glb/.gltf), a point set (as splats) or a mesh to a PNG, headless";
+    s.details =
+        "The camera orbits the centre of FILE's bounding sphere (or --frame's): azimuth about +Y from +Z,\n"
+        "elevation above the XZ plane; the default distance frames the sphere. --view i/N picks view i of\n"
+        "N spread evenly over the sphere instead. --turntable N writes a contact sheet of N views around\n"
+        "the object at the given elevation.";
+    s.options = draw_option_specs();
+    s.options.insert(s.options.begin(),
+                     {{"output", 'o', "OUT.png", "", "the PNG to write (required)"},
+                      {"azimuth", 0, "DEG", "30", "camera azimuth"},
+                      {"elevation", 0, "DEG", "20", "camera elevation"},
+                      {"distance", 0, "D", "framing the bounding sphere", "camera distance from the centre, world units"},
+                      {"view", 0, "I/N", "", "view I (0-based) of N spread over the sphere (replaces azimuth/elevation)"},
+                      {"turntable", 0, "N", "", "N views around the object in one contact sheet"},
+                      {"frame", 0, "FILE", "", "frame the camera on this file's bounding sphere (e.g. the reference)"}});
+    s.min_positional = s.max_positional = 1;
+    return s;
+  }();
+  return spec;
+}
+
+Sphere framing_sphere(const ParsedArgs& a, const AnyScene& scene) {
+  if (!a.has("frame")) return bounding_sphere(scene.bounds());
+  return bounding_sphere(load_scene(a.get("frame")).bounds());
+}
+
+std::pair<int, int> parse_view(const std::string& text) {
+  int i = -1, n = 0;
+  char slash = 0;
+  std::istringstream in(text);
+  if (!(in >> i >> slash >> n) || slash != '/' || n < 1 || i < 0 || i >= n)
+    throw UsageError("--view: expected I/N with 0 <= I < N, got '" + text + "'");
+  return {i, n};
+}
+
+int run_render(const ParsedArgs& a) {
+  if (!a.has("output")) throw UsageError("render: -o OUT.png is required");
+  const auto [w, h] = parse_size(a.get("size", "512"));
+  const DrawSettings settings = read_draw_settings(a);
+  const float fov = static_cast<float>(a.get_double("fov", 30, 1, 170));
+  const float distance = static_cast<float>(a.get_double("distance", 0, 0, 1e30));
+  const AnyScene scene = load_scene(a.positional[0]);
+  const Sphere sphere = framing_sphere(a, scene);
+
+  HeadlessContext context;
+  Renderer renderer(w, h);
+  scene.attach(renderer);
+  std::vector<Vec3f> directions;
+  const int turntable = static_cast<int>(a.get_int("turntable", 0, 0, 1000));
+  const float elevation = static_cast<float>(a.get_double("elevation", 20, -90, 90));
+  const float azimuth = static_cast<float>(a.get_double("azimuth", 30, -1e6, 1e6));
+  if (turntable > 0) {
+    for (int i = 0; i < turntable; ++i) directions.push_back(orbit_direction(azimuth + 360.0f * i / turntable, elevation));
+  } else if (a.has("view")) {
+    const auto [i, n] = parse_view(a.get("view"));
+    directions.push_back(sphere_direction(i, n));
+  } else {
+    directions.push_back(orbit_direction(azimuth, elevation));
+  }
+  std::vector<Image> frames;
+  DrawStats stats;
+  for (const Vec3f& d : directions) {
+    stats = renderer.draw(orbit_camera(sphere, d, distance, w, h, fov), settings);
+    frames.push_back(renderer.read_pixels());
+  }
+  const Image out = frames.size() == 1 ? frames[0]
+                                       : contact_sheet(frames, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(frames.size())))), settings.background);
+  save_png(a.get("output"), out);
+  std::cerr << "qf-render: " << a.positional[0] << " (" << scene.describe() << ") -> " << a.get("output") << " (" << out.width << "x"
+            << out.height << ", " << method_name(settings.method);
+  if (scene.kind == AnyScene::kImpostor) std::cerr << ", last view: " << stats.color_draws << " colour draws, " << stats.lock_draws << " locks";
+  std::cerr << ")\n";
+  return 0;
+}
+
+// --- eval ---------------------------------------------------------------------------------------
+
+const CommandSpec& eval_spec() {
+  static const CommandSpec spec = [] {
+    CommandSpec s;
+    s.program = "qf-render";
+    s.name = "eval";
+    s.usage = "REFERENCE BAKED.glb [options]";
+    s.summary = "measure an impostor against its reference (points as splats, or a mesh) from many views";
+    s.details =
+        "Renders both with the same cameras from N viewpoints spread evenly over the sphere, framing the\n"
+        "reference's bounding sphere, once with --method and once as a standard engine draws the file\n"
+        "(its material's alpha mode, no extension). Per view and on average: PSNR over the pixels covered\n"
+        "by either image, silhouette IoU, mean absolute error, and the shares of reference pixels that are\n"
+        "holes (impostor coverage < 0.5) or see-through (0.5 <= coverage < 0.9). Coverage is measured from\n"
+        "renders over black and over white; colours are compared over --background.";
+    s.options = draw_option_specs();
+    for (OptionSpec& o : s.options) {
+      if (o.name == "size") o.default_text = "256";
+      if (o.name == "background") o.default_text = "128,128,128";
+    }
+    s.options.insert(s.options.begin(),
+                     {{"output", 'o', "REPORT.json", "", "write the report here (default: print it)"},
+                      {"views", 0, "N", "26", "number of viewpoints"},
+                      {"diff", 0, "PREFIX", "REPORT's path without .json", "write PREFIX.exr and PREFIX.png: per-view |difference| sheets (PNG x4)"},
+                      {"no-engine", 0, "", "", "skip the engine-path evaluation"}});
+    s.min_positional = s.max_positional = 2;
+    return s;
+  }();
+  return spec;
+}
+
+ordered_json metrics_json(const ViewMetrics& m) {
+  return {{"psnr", canonical_double(static_cast<float>(m.psnr))},
+          {"iou", canonical_double(static_cast<float>(m.iou))},
+          {"mae", canonical_double(static_cast<float>(m.mae))},
+          {"holes", canonical_double(static_cast<float>(m.holes))},
+          {"see_through", canonical_double(static_cast<float>(m.see_through))}};
+}
+
+ViewMetrics mean_of(const std::vector<ViewMetrics>& v) {
+  ViewMetrics m{0, 0, 0, 0, 0, 0};
+  for (const ViewMetrics& x : v) m.psnr += x.psnr, m.iou += x.iou, m.mae += x.mae, m.holes += x.holes, m.see_through += x.see_through;
+  const double n = static_cast<double>(std::max<std::size_t>(1, v.size()));
+  m.psnr /= n, m.iou /= n, m.mae /= n, m.holes /= n, m.see_through /= n;
+  return m;
+}
+
+RenderPair render_pair(Renderer& r, const Camera& c, DrawSettings s) {
+  RenderPair p;
+  s.background = {0, 0, 0};
+  r.draw(c, s);
+  p.over_black = r.read_pixels();
+  s.background = {255, 255, 255};
+  r.draw(c, s);
+  p.over_white = r.read_pixels();
+  return p;
+}
+
+int run_eval(const ParsedArgs& a) {
+  const auto [w, h] = parse_size(a.get("size", "256"));
+  DrawSettings settings = read_draw_settings(a);
+  const Rgb8 background = a.has("background") ? settings.background : Rgb8{128, 128, 128};
+  const int views = static_cast<int>(a.get_int("views", 26, 1, 10000));
+  const AnyScene reference = load_scene(a.positional[0]);
+  const AnyScene baked = load_scene(a.positional[1]);
+  if (reference.kind == AnyScene::kImpostor) throw UsageError("eval: REFERENCE must be a point set or a mesh, not a glTF file");
+  if (baked.kind != AnyScene::kImpostor) throw UsageError("eval: BAKED must be a .glb or .gltf file");
+  const Sphere sphere = bounding_sphere(reference.bounds());
+
+  HeadlessContext context;
+  Renderer ref_renderer(w, h), imp_renderer(w, h);
+  reference.attach(ref_renderer);
+  baked.attach(imp_renderer);
+  DrawSettings engine = settings;
+  engine.method = Method::kEngine;
+  const bool with_engine = !a.flag("no-engine") && settings.method != Method::kEngine;
+
+  std::vector<ViewMetrics> main_metrics, engine_metrics;
+  std::vector<Image> diff_sheet;
+  std::vector<float> exr_sheet;  // views stacked vertically
+  ordered_json per_view = ordered_json::array();
+  for (int i = 0; i < views; ++i) {
+    const Vec3f d = sphere_direction(i, views);
+    const Camera cam = orbit_camera(sphere, d, 0, w, h);
+    const RenderPair ref = render_pair(ref_renderer, cam, settings);
+    std::vector<float> diff;
+    main_metrics.push_back(compare_renders(ref, render_pair(imp_renderer, cam, settings), background, &diff));
+    ordered_json v{{"view", i}, {"direction", {canonical_double(d.x), canonical_double(d.y), canonical_double(d.z)}}};
+    v[method_name(settings.method)] = metrics_json(main_metrics.back());
+    if (with_engine) {
+      engine_metrics.push_back(compare_renders(ref, render_pair(imp_renderer, cam, engine), background));
+      v["engine"] = metrics_json(engine_metrics.back());
+    }
+    per_view.push_back(v);
+    diff_sheet.push_back(to_8bit(diff, w, h, 4));
+    exr_sheet.insert(exr_sheet.end(), diff.begin(), diff.end());
+  }
+  const ImpostorScene& s = baked.impostor;
+  ordered_json report{{"reference", a.positional[0]},
+                      {"baked", a.positional[1]},
+                      {"level", s.level},
+                      {"quads", s.items.size()},
+                      {"views", views},
+                      {"size", {w, h}},
+                      {"background", {background.r, background.g, background.b}},
+                      {"method", method_name(settings.method)},
+                      {"engine_alpha_mode", settings.alpha_mode ? *settings.alpha_mode : s.alpha_mode}};
+  report["mean"][method_name(settings.method)] = metrics_json(mean_of(main_metrics));
+  if (with_engine) report["mean"]["engine"] = metrics_json(mean_of(engine_metrics));
+  report["per_view"] = per_view;
+
+  const std::string text = report.dump(2) + "\n";
+  std::string diff_prefix = a.get("diff");
+  if (a.has("output")) {
+    write_file_atomically(a.get("output"), [&](std::ostream& out) { out << text; });
+    if (diff_prefix.empty()) {
+      diff_prefix = a.get("output");
+      if (file_extension(diff_prefix) == "json") diff_prefix.resize(diff_prefix.size() - 5);
+      diff_prefix += "_diff";
+    }
+  } else {
+    std::cout << text;
+  }
+  if (!diff_prefix.empty()) {
+    save_exr(diff_prefix + ".exr", exr_sheet, w, h * views);
+    save_png(diff_prefix + ".png", contact_sheet(diff_sheet, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(views)))), {0, 0, 0}));
+  }
+  const ViewMetrics m = mean_of(main_metrics);
+  std::cerr << "qf-render eval: " << views << " views, " << method_name(settings.method) << ": PSNR " << m.psnr << " dB, IoU " << m.iou
+            << ", holes " << 100 * m.holes << "%, see-through " << 100 * m.see_through << "%\n";
+  if (with_engine) {
+    const ViewMetrics e = mean_of(engine_metrics);
+    std::cerr << "qf-render eval: engine path (" << (settings.alpha_mode ? *settings.alpha_mode : s.alpha_mode) << "): PSNR " << e.psnr
+              << " dB, IoU " << e.iou << ", holes " << 100 * e.holes << "%, see-through " << 100 * e.see_through << "%\n";
+  }
+  return 0;
+}
+
+// --- view (window) ------------------------------------------------------------------------------
+
+const CommandSpec& view_spec() {
+  static const CommandSpec spec = [] {
+    CommandSpec s;
+    s.program = "qf-render";
+    s.name = "view";
+    s.usage = "FILE [options]";
+    s.summary = "open a window (needs DISPLAY) and orbit FILE with the mouse";
+    s.details = "Drag with the left button to orbit, wheel to zoom, q or Esc to quit.";
+    s.options = draw_option_specs();
+    s.options.insert(s.options.begin(), {{"frames", 0, "N", "0 (until closed)", "quit after N frames (scripts and tests)"},
+                                         {"output", 'o', "OUT.png", "", "save the last frame"},
+                                         {"azimuth", 0, "DEG", "30", "initial azimuth"},
+                                         {"elevation", 0, "DEG", "20", "initial elevation"}});
+    s.min_positional = s.max_positional = 1;
+    return s;
+  }();
+  return spec;
+}
+
+int run_view(const ParsedArgs& a) {
+  auto [w, h] = parse_size(a.get("size", "512"));
+  const DrawSettings settings = read_draw_settings(a);
+  const long long frames = a.get_int("frames", 0, 0, 1LL << 40);
+  const AnyScene scene = load_scene(a.positional[0]);
+  const Sphere sphere = bounding_sphere(scene.bounds());
+  WindowContext window(w, h, "qf-render: " + a.positional[0]);
+  Renderer renderer(w, h, /*offscreen=*/false);
+  scene.attach(renderer);
+  float az = static_cast<float>(a.get_double("azimuth", 30, -1e6, 1e6)), el = static_cast<float>(a.get_double("elevation", 20, -90, 90));
+  float zoom = 1;
+  Image last;
+  for (long long f = 0; frames == 0 || f < frames; ++f) {
+    const WindowEvents e = window.poll();
+    if (e.close) break;
+    if (e.width != w || e.height != h) w = e.width, h = e.height, renderer.resize(w, h);
+    az -= 0.5f * static_cast<float>(e.drag_dx);
+    el = std::clamp(el + 0.5f * static_cast<float>(e.drag_dy), -89.0f, 89.0f);
+    zoom *= std::pow(0.9f, static_cast<float>(e.wheel));
+    const Camera base = orbit_camera(sphere, orbit_direction(az, el), 0, w, h);
+    const Camera cam = orbit_camera(sphere, orbit_direction(az, el), length(base.eye - base.target) * zoom, w, h);
+    renderer.draw(cam, settings);
+    if (a.has("output") && frames > 0 && f + 1 == frames) last = renderer.read_pixels();
+    window.swap();
+    if (frames == 0) std::this_thread::sleep_for(std::chrono::milliseconds(8));
+  }
+  if (a.has("output") && !last.rgba.empty()) save_png(a.get("output"), last);
+  return 0;
+}
+
+// --- dispatch -----------------------------------------------------------------------------------
+
+struct Command {
+  const CommandSpec& (*spec)();
+  int (*run)(const ParsedArgs&);
+};
+const std::vector<Command>& commands() {
+  static const std::vector<Command> c{{render_spec, run_render}, {eval_spec, run_eval}, {view_spec, run_view}};
+  return c;
+}
+
+void print_overview(std::ostream& out) {
+  out << "qf-render " QF_VERSION " - the GL 1.1 renderer of quasiflat's baked levels (headless through EGL)\n\n"
+         "usage: qf-render FILE -o OUT.png [options]   render (see qf-render render --help)\n"
+         "       qf-render COMMAND [arguments] [options]\n"
+         "       qf-render COMMAND --help\n\ncommands:\n";
+  for (const Command& c : commands()) {
+    std::string name = "  " + c.spec().name;
+    name.resize(10, ' ');
+    out << name << c.spec().summary << "\n";
+  }
+  out << "\nexit codes: 0 ok, 1 bad input, 2 bad usage, 3 internal error (including no GL context).\n";
+}
+
+int dispatch(std::vector<std::string> argv) {
+  if (argv.empty() || argv[0] == "--help" || argv[0] == "-h") {
+    print_overview(argv.empty() ? std::cerr : std::cout);
+    return argv.empty() ? 2 : 0;
+  }
+  if (argv[0] == "--version" || argv[0] == "-V") return std::cout << "qf-render " QF_VERSION "\n", 0;
+  bool named = false;
+  for (const Command& c : commands()) named = named || c.spec().name == argv[0];
+  if (!named) argv.insert(argv.begin(), "render");  // qf-render FILE -o OUT.png
+  for (const Command& c : commands()) {
+    if (c.spec().name != argv[0]) continue;
+    const std::vector<std::string> rest(argv.begin() + 1, argv.end());
+    for (const std::string& s : rest) {
+      if (s == "--") break;
+      if (s == "--help" || s == "-h") return std::cout << cli::help_text(c.spec()), 0;
+    }
+    return c.run(cli::parse_args(c.spec(), rest));
+  }
+  return 2;
+}
+
+}  // namespace
+}  // namespace qf::render
+
+int main(int argc, char** argv) {
+  std::ios::sync_with_stdio(false);
+  // Also llvmpipe's per-frame scene memory: without it, page-fault storms (gl-notes.md 5.3).
+  qf::keep_freed_memory();
+  try {
+    return qf::render::dispatch(std::vector<std::string>(argv + 1, argv + argc));
+  } catch (const qf::InputError& e) {
+    std::cerr << "qf-render: error: " << e.what() << "\n";
+    return static_cast<int>(qf::ExitCode::kBadInput);
+  } catch (const qf::UsageError& e) {
+    std::cerr << "qf-render: " << e.what() << "\n";
+    return static_cast<int>(qf::ExitCode::kUsage);
+  } catch (const std::filesystem::filesystem_error& e) {
+    std::cerr << "qf-render: cannot write output: " << e.what() << "\n";
+    return static_cast<int>(qf::ExitCode::kUsage);
+  } catch (const std::bad_alloc&) {
+    std::cerr << "qf-render: internal error: out of memory\n";
+    return static_cast<int>(qf::ExitCode::kInternal);
+  } catch (const std::exception& e) {
+    std::cerr << "qf-render: internal error: " << e.what() << "\n";
+    return static_cast<int>(qf::ExitCode::kInternal);
+  }
+}

@@ -1,0 +1,66 @@
+// What runtime_gl draws, as plain data with no GL in it: a baked impostor level (textured quads
+// with their neighbour graph), or a reference (the input point set as splats, or a triangle mesh).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/types.h"
+
+namespace qf::render {
+
+// An 8-bit RGBA image, rows top to bottom, straight (not premultiplied) alpha.
+struct Image {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgba;
+};
+
+// One drawable of an impostor: `vertex_count` consecutive vertices from `first_vertex`, drawn as
+// triangles (a domain primitive's quad is 2 triangles = 6 vertices), with one texture.
+struct Item {
+  std::uint32_t first_vertex = 0, vertex_count = 0;
+  std::uint32_t texture = 0;  // index into ImpostorScene::textures
+  Vec3f center, normal;       // sort key and facing test (the extension's, else the triangles')
+};
+
+// A loaded .glb. Vertex arrays are flat (x,y,z / u,v per vertex); every vertex of an item carries
+// the item's normal (one normal per quad, method.md 7).
+struct ImpostorScene {
+  std::vector<float> positions, normals, uvs;
+  std::vector<Item> items;
+  std::vector<Image> textures;
+  // The neighbour graph as compressed rows over items: neighbours of item k are
+  // neighbors[offsets[k] .. offsets[k+1]). Empty offsets when the file has no extension.
+  std::vector<std::uint32_t> offsets, neighbors;
+  bool has_extension = false;
+  int level = -1;               // AMG level, from the extension
+  float alpha_ref = 0.1f;       // lock-by-depth alpha test (the extension's alphaRef)
+  std::string alpha_mode = "OPAQUE";  // the material's glTF alphaMode (first material)
+  float alpha_cutoff = 0.5f;          // the material's alphaCutoff (MASK)
+  Bounds bounds;
+};
+
+// A reference point set: oriented splats, one per point (disc of the point's radius, facing its
+// normal, in its colour).
+struct SplatScene {
+  std::vector<Vec3f> positions, normals;
+  std::vector<float> radii;
+  std::vector<Rgb8> colors;
+  Bounds bounds;
+};
+
+// A reference triangle mesh with per-vertex normals (area-weighted when the file has none) and
+// colours (the constant base colour when it has none).
+struct MeshScene {
+  std::vector<Vec3f> positions, normals;
+  std::vector<Rgb8> colors;
+  std::vector<std::uint32_t> indices;
+  Bounds bounds;
+};
+
+// The colour of uncoloured inputs: the same constant the baker puts into the textures
+// (TextureOptions::base_color), so references and impostors of such inputs match.
+constexpr Rgb8 kBaseColor{200, 200, 200};
+
+}  // namespace qf::render
