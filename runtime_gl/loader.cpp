@@ -5,6 +5,7 @@
 #include <tiny_gltf.h>
 
 #include <cstring>
+#include <filesystem>
 
 #include "analysis/local_frames.h"
 #include "analysis/neighborhoods.h"
@@ -89,12 +90,16 @@ Image white_image() { return Image{1, 1, {255, 255, 255, 255}}; }
 }  // namespace
 
 ImpostorScene load_gltf(const std::string& path) {
+  if (!std::filesystem::is_regular_file(path)) throw InputError("file.unreadable", path, "", "cannot open: no such file");
   tinygltf::Model m;
   tinygltf::TinyGLTF loader;
   std::string err, warn;
   const bool binary = path.size() >= 4 && path.compare(path.size() - 4, 4, ".glb") == 0;
   const bool ok = binary ? loader.LoadBinaryFromFile(&m, &err, &warn, path) : loader.LoadASCIIFromFile(&m, &err, &warn, path);
-  if (!ok) fail(path, "parse", err.empty() ? "not a readable glTF file" : err);
+  if (!ok) {
+    while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
+    fail(path, "parse", err.empty() ? "not a readable glTF file" : err);
+  }
 
   ImpostorScene s;
   AccessorReader read{m, path};

@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
 # Benchmarks (tables, not tests): reader throughput on 1M points; the surface analysis (k = 50)
-# on 100k and 1M synthetic points and on bunny00, with 2 threads and 1; the AMG stages.
-# usage: scripts/bench.sh [io|analysis|amg]...   (default: all)
+# on 100k and 1M synthetic points and on bunny00, with 2 threads and 1; the AMG stages; render
+# speed of every method on the baked levels of bunny00 and fandisk beside their point sets.
+# usage: scripts/bench.sh [io|analysis|amg|render]...   (default: all)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh >/dev/null
 what=("$@")
-[[ ${#what[@]} -eq 0 ]] && what=(io analysis amg)
+[[ ${#what[@]} -eq 0 ]] && what=(io analysis amg render)
 for w in "${what[@]}"; do
   case $w in
     io) build/bin/qf-bench-io ;;
@@ -29,7 +30,19 @@ for w in "${what[@]}"; do
       build/bin/qf-bench-amg "$models/bunny00.off"
       build/bin/qf-bench-amg torus 100000
       build/bin/qf-bench-amg torus 1000000 ;;
-    *) echo "unknown benchmark '$w' (io, analysis, amg)" >&2; exit 2 ;;
+    render)
+      models=$(scripts/fetch-models.sh bunny00.off | tail -1)
+      tmp=$(mktemp -d)
+      for m in bunny00 fandisk; do
+        # The meshes' vertices are the point sets (the mesh sampler is issue 7's).
+        awk 'NR == 1 { next } NR == 2 { n = $1; next } n > 0 { print $1, $2, $3; n-- }' "$models/$m.off" >"$tmp/$m.xyz"
+        build/bin/qf-bake "$tmp/$m.xyz" -o "$tmp/$m" -q
+        echo "render: $m (default LOD set)"
+        build/bin/qf-bench-render "$tmp/$m.xyz" "$tmp/$m"/*.glb
+        echo
+      done
+      rm -rf "$tmp" ;;
+    *) echo "unknown benchmark '$w' (io, analysis, amg, render)" >&2; exit 2 ;;
   esac
   echo
 done

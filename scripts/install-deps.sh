@@ -15,6 +15,8 @@ packages=(
   libpcl-dev                                      # k-nearest neighbours (KdTree)
   libcgal-dev                                     # 2D Delaunay triangulations
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libglx-mesa0  # headless OpenGL on Mesa llvmpipe
+  libx11-dev xvfb xauth                           # qf-render view's window, tested under Xvfb
+  fonts-dejavu-core                               # captions of the demo's side-by-side picture
   # tests
   libgtest-dev googletest libbenchmark-dev
   python3-jsonschema                              # validates our JSON outputs against schemas/ in tests

@@ -61,4 +61,22 @@ Domains make_domains(const SparseMatrix& psi, const DomainOptions& options) {
   return d;
 }
 
+SparseMatrix domain_partition(const SparseMatrix& psi, const Domains& domains) {
+  using Triplet = Eigen::Triplet<double, std::int32_t>;
+  std::vector<Triplet> kept;
+  kept.reserve(domains.points.size());
+  std::vector<double> sum(static_cast<std::size_t>(psi.rows()), 0.0);
+  for (std::size_t d = 0; d < domains.count(); ++d)
+    for (std::uint32_t q = domains.offsets[d]; q < domains.offsets[d + 1]; ++q) {
+      const std::uint32_t x = domains.points[q];
+      const double w = psi.coeff(x, static_cast<Eigen::Index>(d));
+      kept.emplace_back(static_cast<std::int32_t>(x), static_cast<std::int32_t>(d), w);
+      sum[x] += w;
+    }
+  for (Triplet& t : kept) t = Triplet(t.row(), t.col(), t.value() / sum[static_cast<std::size_t>(t.row())]);
+  SparseMatrix out(psi.rows(), psi.cols());
+  out.setFromTriplets(kept.begin(), kept.end());
+  return out;
+}
+
 }  // namespace qf

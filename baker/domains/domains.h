@@ -31,6 +31,12 @@ struct Domains {
 // Domains of Psi (n points x m functions) and their neighbour graph.
 Domains make_domains(const SparseMatrix& psi, const DomainOptions& options = {});
 
+// Psi restricted to the domains (entry (x, d) kept only for x in D_d) with each point's row
+// renormalised to sum 1; rows of uncovered points stay empty. The textures' alpha comes from this:
+// the weights at or below tau that the domains leave out would otherwise be missing from the
+// rendered sum (measured: ~5% of the alpha mass on a sphere at 83 domains, seen as see-through).
+SparseMatrix domain_partition(const SparseMatrix& psi, const Domains& domains);
+
 // Index of the largest weight in each row of Psi (lowest index on ties); n entries.
 std::vector<std::uint32_t> strongest_function(const SparseMatrix& psi);
 

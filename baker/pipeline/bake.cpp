@@ -108,10 +108,11 @@ BakeResult bake(const PointSet& input, const BakeOptions& o, const std::string& 
     if (o.merge) psi = merge_domains(psi, points.positions, o.merge_options);
     const Domains d = make_domains(psi, o.domains);
     const std::vector<SupportRect> rects = support_rectangles(points.positions, normals, points.radii, psi, d, o.support);
+    const SparseMatrix alpha = domain_partition(psi, d);  // what the rendered sum adds up
     std::vector<Texture> textures(rects.size());
 #pragma omp parallel for schedule(dynamic, 4)
     for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(rects.size()); ++k)
-      textures[static_cast<std::size_t>(k)] = resample_texture(points.positions, points.colors, normals, points.radii, psi, d,
+      textures[static_cast<std::size_t>(k)] = resample_texture(points.positions, points.colors, normals, points.radii, alpha, d,
                                                                rects[static_cast<std::size_t>(k)], o.texture);
     BakedLevel out;
     out.level = level;

@@ -48,7 +48,8 @@ TEST(Glb, QuadsMaterialsAndExtension) {
   for (const char* attr : {"NORMAL", "TANGENT", "TEXCOORD_0"}) EXPECT_TRUE(prim.attributes.count(attr)) << attr;
   // Colour and normal atlases, embedded as PNG.
   const tinygltf::Material& mat = m.materials[static_cast<std::size_t>(prim.material)];
-  EXPECT_EQ(mat.alphaMode, "BLEND");
+  EXPECT_EQ(mat.alphaMode, "MASK");
+  EXPECT_FLOAT_EQ(static_cast<float>(mat.alphaCutoff), 0.2f);
   ASSERT_GE(mat.pbrMetallicRoughness.baseColorTexture.index, 0);
   ASSERT_GE(mat.normalTexture.index, 0);
   const tinygltf::Image& img = m.images[static_cast<std::size_t>(m.textures[static_cast<std::size_t>(mat.pbrMetallicRoughness.baseColorTexture.index)].source)];

@@ -1,0 +1,114 @@
+#!/usr/bin/env bash
+# Headless renders of the samples (runtime_gl through EGL on Mesa llvmpipe): golden images with
+# per-case tolerances (tests/golden/cases.tsv; regenerate with scripts/update-goldens.sh and review
+# the pictures), byte-identical repeats, correctness over any background, eval's report, the
+# window under Xvfb, and clear errors.
+# usage: render_test.sh QF_BAKE QF_RENDER REPO_ROOT        (QF_UPDATE_GOLDENS=1: rewrite the goldens)
+set -u
+bake=$1 render=$2 root=$3
+golden=$root/tests/golden
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+pass=0 fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+
+# Inputs: the octahedron sample baked with its defaults and at its merged 8-domain level.
+"$bake" "$root/samples/octahedron.ply" -o "$work/oct" --cache "$work/cache" -q || bad "bake defaults"
+"$bake" "$root/samples/octahedron.ply" -o "$work/oct8" --merge --levels 8 --cache "$work/cache" -q || bad "bake merged"
+declare -A file=([points]="$root/samples/octahedron.ply" [merged]="$work/oct8/octahedron_L8.glb"
+                 [level5]="$work/oct/octahedron_L5.glb" [level8]="$work/oct/octahedron_L8.glb")
+
+# 1. Goldens. cases.tsv: name, input key, size, max channel difference, share of pixels allowed
+#    to exceed it (percent), then qf-render options.
+while IFS=$'\t' read -r name key size maxdiff share opts; do
+  [[ -z "$name" || "$name" == \#* ]] && continue
+  out="$work/$name.png"
+  # shellcheck disable=SC2086
+  if ! "$render" "${file[$key]}" -o "$out" --size "$size" --frame "${file[points]}" $opts 2>"$work/err"; then
+    bad "$name: render failed: $(cat "$work/err")"; continue
+  fi
+  if [[ "${QF_UPDATE_GOLDENS:-0}" == 1 ]]; then
+    cp "$out" "$golden/$name.png"; echo "updated $name"; ok; continue
+  fi
+  if [[ ! -f "$golden/$name.png" ]]; then bad "$name: no golden (scripts/update-goldens.sh)"; continue; fi
+  if idiff -q -fail "$maxdiff" -failpercent "$share" "$golden/$name.png" "$out" >"$work/idiff" 2>&1; then ok
+  else bad "$name: differs from its golden beyond ($maxdiff, $share%): $(tail -3 "$work/idiff" | tr '\n' ' ')"; fi
+done <"$golden/cases.tsv"
+[[ "${QF_UPDATE_GOLDENS:-0}" == 1 ]] && { echo "goldens updated: $pass"; exit 0; }
+
+# 2. Byte-identical across runs, for every method.
+for m in overlap two-pass backface-hard backface-soft blend-all no-blend engine; do
+  "$render" "${file[level5]}" -o "$work/a.png" --size 128 --method "$m" 2>/dev/null
+  "$render" "${file[level5]}" -o "$work/b.png" --size 128 --method "$m" 2>/dev/null
+  if cmp -s "$work/a.png" "$work/b.png"; then ok; else bad "method $m: two renders differ"; fi
+done
+
+# 3. Right over any background: the additive methods composite by coverage, so a render over grey
+#    equals the renders over black (B) and white (W) combined, B + (W - B) * 128/255, to 1 LSB.
+for m in overlap two-pass backface-soft; do
+  for bg in 0,0,0 255,255,255 128,128,128; do
+    "$render" "${file[merged]}" -o "$work/bg_${bg//,/_}.png" --size 128 --method "$m" --background "$bg" 2>/dev/null
+  done
+  maxerr=$(oiiotool "$work/bg_255_255_255.png" "$work/bg_0_0_0.png" --sub --mulc 0.50196 "$work/bg_0_0_0.png" --add \
+           "$work/bg_128_128_128.png" --absdiff --printstats 2>/dev/null | awk '/Stats Max/ {m=$3; for(i=4;i<=5;i++) if($i>m) m=$i; print m}')
+  # oiiotool prints 0..1 values.
+  if awk -v e="$maxerr" 'BEGIN { exit !(e != "" && e * 255 <= 1.01) }'; then ok; else bad "method $m over grey: max error $maxerr (x255)"; fi
+  # Far from the object the background shows unchanged.
+  corner=$(oiiotool "$work/bg_128_128_128.png" --cut 4x4+0+0 --printstats 2>/dev/null | awk '/Stats Avg/ {print $3}')
+  if awk -v c="$corner" 'BEGIN { exit !(c != "" && c * 255 > 127.99 && c * 255 < 128.01) }'; then ok; else bad "method $m: corner is $corner, not the background 128"; fi
+done
+
+# 4. eval: 26 views, the report's fields, the difference images; the merged octahedron's figures
+#    (measured 19.8 dB, IoU 0.958) guard against regressions.
+if "$render" eval "${file[points]}" "${file[merged]}" --size 128 -o "$work/eval.json" 2>"$work/err"; then
+  ok
+  python3 - "$work/eval.json" <<'PY' && ok || bad "eval report: see above"
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert r["views"] == 26 and len(r["per_view"]) == 26, "26 views"
+m = r["mean"]["overlap"]
+for k in ("psnr", "iou", "mae", "holes", "see_through"): assert k in m and k in r["mean"]["engine"], k
+assert m["psnr"] >= 18.5 and m["iou"] >= 0.95, f"octahedron fidelity regressed: {m}"
+e = r["mean"]["engine"]
+assert r["engine_alpha_mode"] == "MASK" and e["holes"] <= 0.02 and e["see_through"] == 0, f"engine path: {e}"
+PY
+  for f in eval_diff.exr eval_diff.png; do [[ -s "$work/$f" ]] && ok || bad "eval wrote no $f"; done
+else
+  bad "eval failed: $(cat "$work/err")"
+fi
+
+# 5. The window (Xvfb): same picture as headless, to 2 LSB (window surface vs framebuffer object).
+if command -v xvfb-run >/dev/null; then
+  if xvfb-run -a -s "-screen 0 640x480x24" "$render" view "${file[merged]}" --frames 3 --size 128 -o "$work/win.png" 2>"$work/err"; then
+    "$render" "${file[merged]}" -o "$work/head.png" --size 128 2>/dev/null
+    if idiff -q -fail 0.008 -failpercent 0.1 "$work/head.png" "$work/win.png" >/dev/null 2>&1; then ok
+    else bad "window frame differs from the headless render"; fi
+  else
+    bad "view under Xvfb failed: $(cat "$work/err")"
+  fi
+  if DISPLAY=:987 "$render" view "${file[merged]}" --frames 1 2>"$work/err"; then bad "view without a display succeeded"
+  elif grep -q "X display" "$work/err"; then ok; else bad "view without a display: unclear message: $(cat "$work/err")"; fi
+else
+  echo "xvfb-run missing (scripts/install-deps.sh installs it): window test not run"; bad "no xvfb-run"
+fi
+
+# 6. Errors: exit code, message naming the file, no output left.
+expect() {  # expect CODE PATTERN ARGS...
+  local code=$1 pattern=$2; shift 2
+  rm -f "$work/out.png"
+  "$render" "$@" 2>"$work/err"; local rc=$?
+  if [[ $rc == "$code" ]] && { [[ -z "$pattern" ]] || grep -q -- "$pattern" "$work/err"; } && [[ ! -e "$work/out.png" ]]; then ok
+  else bad "qf-render $*: exit $rc (want $code), stderr: $(cat "$work/err")"; fi
+}
+expect 1 "no such file" "$work/missing.glb" -o "$work/out.png"
+head -c 300 "${file[merged]}" >"$work/truncated.glb"
+expect 1 "truncated.glb" "$work/truncated.glb" -o "$work/out.png"
+expect 2 "unknown render method" "${file[merged]}" -o "$work/out.png" --method painter
+expect 2 "size" "${file[merged]}" -o "$work/out.png" --size 0x10
+expect 2 "background" "${file[merged]}" -o "$work/out.png" --background 1,2
+expect 2 "BAKED must be" eval "${file[points]}" "${file[points]}"
+expect 0 "" --version
+
+echo "render tests: $pass passed, $fail failed"
+[[ $fail == 0 ]]
