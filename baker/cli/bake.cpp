@@ -130,7 +130,10 @@ int run_bake(const ParsedArgs& args) {
                             {"levels", levels},
                             {"generator", "quasiflat qf-bake"}};
     nlohmann::json stages = nlohmann::json::array();
-    for (const StageTime& t : r.times) stages.push_back({{"stage", t.stage}, {"seconds", canonical_double(static_cast<float>(t.seconds))}});
+    for (const StageTime& t : r.times) stages.push_back({{"stage", t.stage},
+                                                                    {"seconds", canonical_double(static_cast<float>(t.seconds))},
+                                                                    {"resident_mb", canonical_double(static_cast<float>(t.resident_bytes / 1048576.0))},
+                                                                    {"peak_mb", canonical_double(static_cast<float>(t.peak_bytes / 1048576.0))}});
     nlohmann::json report{{"input", in},
                           {"format", read_report.format},
                           {"points", r.points},

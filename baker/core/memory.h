@@ -8,6 +8,9 @@
 #include <sys/mman.h>
 
 #include <cstdint>
+#include <cstdlib>
+#include <fstream>
+#include <string>
 #include <vector>
 
 namespace qf {
@@ -33,6 +36,16 @@ inline void keep_freed_memory() {
   ::mallopt(M_MMAP_MAX, 0);
   ::mallopt(M_TRIM_THRESHOLD, -1);
   ::mallopt(M_TOP_PAD, 64 << 20);
+}
+
+// A memory figure of this process from /proc/self/status, bytes: "VmRSS:" (resident now) or
+// "VmHWM:" (peak resident so far); 0 where /proc is not available.
+inline std::size_t process_memory(const char* key) {
+  std::ifstream in("/proc/self/status");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind(key, 0) == 0) return std::strtoull(line.c_str() + 6, nullptr, 10) * 1024;
+  return 0;
 }
 
 }  // namespace qf

@@ -7,6 +7,7 @@
 #include "amg/hierarchy_cache.h"
 #include "analysis/neighborhoods.h"
 #include "core/error.h"
+#include "core/memory.h"
 
 namespace qf {
 namespace {
@@ -16,7 +17,7 @@ class Stopwatch {
   explicit Stopwatch(std::vector<StageTime>& out) : out_(out), t_(std::chrono::steady_clock::now()) {}
   void lap(const std::string& stage) {
     const auto now = std::chrono::steady_clock::now();
-    out_.push_back({stage, std::chrono::duration<double>(now - t_).count()});
+    out_.push_back({stage, std::chrono::duration<double>(now - t_).count(), process_memory("VmRSS:"), process_memory("VmHWM:")});
     t_ = now;
   }
 

@@ -57,6 +57,8 @@ struct BakedLevel {
 struct StageTime {
   std::string stage;
   double seconds = 0;
+  std::size_t resident_bytes = 0;  // process resident memory at the stage's end (VmRSS)
+  std::size_t peak_bytes = 0;      // process peak resident memory so far (VmHWM)
 };
 
 struct BakeResult {

@@ -45,7 +45,7 @@ int main(int argc, char** argv) {
   if (argc < 2) return std::fprintf(stderr, "usage: qf-bench-amg --header | SOURCE [points]\n"), 2;
   std::string name;
   const PointSet points = bench::load_input(argv[1], argc > 2 ? std::strtoull(argv[2], nullptr, 10) : 100000, name);
-  const std::size_t base = bench::memory("VmRSS:");
+  const std::size_t base = process_memory("VmRSS:");
   auto t = std::chrono::steady_clock::now();
   AmgHierarchy h;
   double t_analysis;
@@ -55,7 +55,7 @@ int main(int argc, char** argv) {
     h = build_hierarchy(a.stiffness);
   }
   const double t_hierarchy = seconds_since(t);
-  const std::size_t peak_ah = bench::memory("VmHWM:");
+  const std::size_t peak_ah = process_memory("VmHWM:");
   // One level's domains, as a bake needs: the level nearest 200 functions.
   const std::size_t level = level_by_primitives(h, 200);
   const Domains d = make_domains(basis_at_level(h, level));
@@ -66,7 +66,7 @@ int main(int argc, char** argv) {
     max_weights = std::max(max_weights, double(psi.nonZeros()) / double(psi.rows()));
   });
   const double t_basis = seconds_since(t);
-  const std::size_t peak = bench::memory("VmHWM:");
+  const std::size_t peak = process_memory("VmHWM:");
   std::printf("| %-14s | %8zu | %6zu | %10.3f | %9.3f | %9.3f | %8.1f | %9.3f | %9.3f | %9.0f | %9.0f |\n", name.c_str(),
               points.size(), h.level_count(), t_analysis, t_hierarchy, t_basis, max_weights, t_domains,
               t_analysis + t_hierarchy + t_domains, double(peak_ah - base) / double(points.size()),

@@ -45,9 +45,9 @@ int main(int argc, char** argv) {
   o.neighborhoods.k = argc > 3 ? std::atoi(argv[3]) : 50;
   std::string name;
   const PointSet points = bench::load_input(argv[1], argc > 2 ? std::strtoull(argv[2], nullptr, 10) : 100000, name);
-  const std::size_t before = bench::memory("VmRSS:");  // libraries and the input point set
+  const std::size_t before = process_memory("VmRSS:");  // libraries and the input point set
   const SurfaceAnalysis a = analyze_surface(points, o);
-  const std::size_t peak = bench::memory("VmHWM:");
+  const std::size_t peak = process_memory("VmHWM:");
   double total = 0, t[5] = {0, 0, 0, 0, 0};
   for (std::size_t s = 0; s < a.report.times.size() && s < 5; ++s) t[s] = a.report.times[s].seconds, total += t[s];
   std::printf("| %-22s | %9zu | %3d | %7d | %7.3f | %7.3f | %7.3f | %7.3f | %7.3f | %7.3f | %9.0f | %9.0f | %6.2f |\n",
