@@ -80,7 +80,7 @@ std::string method_name(Method m) {
 
 bool is_additive(Method m) { return m != Method::kNoBlend && m != Method::kEngine; }
 
-std::vector<DrawOp> plan_draws(Method method, const ImpostorScene& s, Vec3f eye) {
+std::vector<DrawOp> plan_draws(Method method, const ImpostorScene& s, Vec3f eye, const std::string& alpha_mode) {
   const auto n = static_cast<std::uint32_t>(s.items.size());
   std::vector<DrawOp> ops;
   switch (method) {
@@ -112,7 +112,7 @@ std::vector<DrawOp> plan_draws(Method method, const ImpostorScene& s, Vec3f eye)
       return ops;
     case Method::kEngine: {
       // One mesh: engines draw its triangles in file order; single-sided materials cull back faces.
-      const Pass p = s.alpha_mode == "BLEND" ? Pass::kOver : Pass::kOpaque;
+      const Pass p = alpha_mode == "BLEND" ? Pass::kOver : Pass::kOpaque;
       for (std::uint32_t k = 0; k < n; ++k)
         if (faces(s.items[k], eye)) ops.push_back({k, p});
       return ops;

@@ -45,10 +45,10 @@ struct DrawOp {
 // coverage (so it is right over any background), rather than drawing over the background directly.
 bool is_additive(Method m);
 
-// The draw list of one frame seen from `eye`. `alpha_mode` is the material's ("OPAQUE", "MASK",
-// "BLEND"; kEngine only). Sorting is by squared distance from the eye to the item's centre, ties
+// The draw list of one frame seen from `eye`. `alpha_mode` is the glTF alpha mode the engine method
+// draws with ("OPAQUE", "MASK", "BLEND"; usually the scene's material's; ignored by other methods). Sorting is by squared distance from the eye to the item's centre, ties
 // by index (stable). An item faces the eye when dot(normal, eye - centre) > 0; every method but
 // the back-face ones culls items that do not (as GL back-face culling would).
-std::vector<DrawOp> plan_draws(Method method, const ImpostorScene& scene, Vec3f eye);
+std::vector<DrawOp> plan_draws(Method method, const ImpostorScene& scene, Vec3f eye, const std::string& alpha_mode);
 
 }  // namespace qf::render

@@ -121,7 +121,7 @@ struct Renderer::Impl {
   std::vector<GLuint> straight, premultiplied;  // per impostor texture
   GLuint disc = 0;
   std::vector<float> splat_pos, splat_nrm, splat_uv;  // 4 corners per splat
-  std::vector<std::uint8_t> splat_rgba;
+  std::vector<std::uint8_t> splat_rgba, mesh_rgba;
 
   void make_framebuffer() {
     glGenFramebuffers(1, &fbo);
@@ -245,6 +245,13 @@ void Renderer::set_scene(const SplatScene& scene) {
 void Renderer::set_scene(const MeshScene& scene) {
   impl_->free_textures();
   impl_->mesh = &scene;
+  std::vector<std::uint8_t>& rgba = impl_->mesh_rgba;
+  rgba.assign(scene.colors.size() * 4, 255);
+  for (std::size_t i = 0; i < scene.colors.size(); ++i) {
+    rgba[i * 4] = scene.colors[i].r;
+    rgba[i * 4 + 1] = scene.colors[i].g;
+    rgba[i * 4 + 2] = scene.colors[i].b;
+  }
 }
 
 // Oriented, depth-tested splats, as QSplat draws them: opaque discs cut by the alpha test.
@@ -276,19 +283,12 @@ void Renderer::Impl::draw_mesh() {
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glLightModeli(GL_LIGHT_MODEL_TWO_SIDE, GL_TRUE);
-  std::vector<std::uint8_t> rgba(mesh->colors.size() * 4);
-  for (std::size_t i = 0; i < mesh->colors.size(); ++i) {
-    rgba[i * 4] = mesh->colors[i].r;
-    rgba[i * 4 + 1] = mesh->colors[i].g;
-    rgba[i * 4 + 2] = mesh->colors[i].b;
-    rgba[i * 4 + 3] = 255;
-  }
   glEnableClientState(GL_VERTEX_ARRAY);
   glEnableClientState(GL_NORMAL_ARRAY);
   glEnableClientState(GL_COLOR_ARRAY);
   glVertexPointer(3, GL_FLOAT, 0, mesh->positions.data());
   glNormalPointer(GL_FLOAT, 0, mesh->normals.data());
-  glColorPointer(4, GL_UNSIGNED_BYTE, 0, rgba.data());
+  glColorPointer(4, GL_UNSIGNED_BYTE, 0, mesh_rgba.data());
   glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(mesh->indices.size()), GL_UNSIGNED_INT, mesh->indices.data());
   glDisableClientState(GL_COLOR_ARRAY);
   glLightModeli(GL_LIGHT_MODEL_TWO_SIDE, GL_FALSE);
@@ -299,14 +299,7 @@ void Renderer::Impl::draw_impostor(const Camera& c, const DrawSettings& s, DrawS
   const float alpha_ref = s.alpha_ref >= 0 ? s.alpha_ref : sc.alpha_ref;
   const std::string mode = s.alpha_mode ? *s.alpha_mode : sc.alpha_mode;
   const float cutoff = s.alpha_cutoff >= 0 ? s.alpha_cutoff : sc.alpha_cutoff;
-  ImpostorScene planned_as = {};
-  const std::vector<DrawOp> ops = [&] {
-    if (s.method != Method::kEngine || mode == sc.alpha_mode) return plan_draws(s.method, sc, c.eye);
-    // The engine path with another alpha mode: only the mode differs.
-    planned_as.items = sc.items;
-    planned_as.alpha_mode = mode;
-    return plan_draws(s.method, planned_as, c.eye);
-  }();
+  const std::vector<DrawOp> ops = plan_draws(s.method, sc, c.eye, mode);
   const float a = std::clamp(s.transparency, 0.0f, 1.0f);
   const float offset = s.depth_offset > 0 ? s.depth_offset : 0.5f * median_half_diagonal(sc);
   Mat4 view_offset = c.view();

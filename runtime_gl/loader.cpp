@@ -227,8 +227,8 @@ ImpostorScene load_gltf(const std::string& path) {
   return s;
 }
 
-SplatScene splat_scene(PointSet points) {
-  if (points.size() == 0) throw InputError("render.points.empty", "", "", "the point set is empty");
+SplatScene splat_scene(PointSet points, const std::string& source) {
+  if (points.size() == 0) throw InputError("render.points.empty", source, "", "the point set is empty");
   estimate_radii(points);
   SplatScene s;
   if (!points.has_normals()) {
@@ -245,7 +245,7 @@ SplatScene splat_scene(PointSet points) {
   return s;
 }
 
-MeshScene mesh_scene(const TriangleMesh& mesh) {
+MeshScene mesh_scene(const TriangleMesh& mesh, const std::string& source) {
   MeshScene s;
   s.positions = mesh.positions;
   s.bounds = mesh.bounds();
@@ -261,7 +261,7 @@ MeshScene mesh_scene(const TriangleMesh& mesh) {
   }
   if (need_normals)
     for (Vec3f& n : s.normals) n = normalized(n);
-  if (s.indices.empty()) throw InputError("render.mesh.empty", "", "", "the mesh has no triangles");
+  if (s.indices.empty()) throw InputError("render.mesh.empty", source, "", "the mesh has no triangles");
   return s;
 }
 

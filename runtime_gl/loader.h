@@ -16,9 +16,10 @@ ImpostorScene load_gltf(const std::string& path);
 
 // A reference scene of a point set: radii estimated from the spacing where missing (as the baker
 // does), normals estimated by the surface analysis where missing.
-SplatScene splat_scene(PointSet points);
+SplatScene splat_scene(PointSet points, const std::string& source = "");
 
-// A reference scene of a triangle mesh (normals area-weighted where missing).
-MeshScene mesh_scene(const TriangleMesh& mesh);
+// A reference scene of a triangle mesh (normals area-weighted where missing). `source` names the
+// file in errors (InputError "render.points.empty" / "render.mesh.empty"), here and in splat_scene.
+MeshScene mesh_scene(const TriangleMesh& mesh, const std::string& source = "");
 
 }  // namespace qf::render

@@ -5,9 +5,7 @@
 
 #include <chrono>
 #include <cmath>
-#include <filesystem>
 #include <iostream>
-#include <new>
 #include <sstream>
 #include <thread>
 
@@ -62,10 +60,10 @@ AnyScene load_scene(const std::string& path) {
   Model m = read_model(path);
   if (m.is_mesh) {
     s.kind = AnyScene::kMesh;
-    s.mesh = mesh_scene(m.mesh);
+    s.mesh = mesh_scene(m.mesh, path);
   } else {
     s.kind = AnyScene::kSplats;
-    s.splats = splat_scene(std::move(m.points));
+    s.splats = splat_scene(std::move(m.points), path);
   }
   return s;
 }
@@ -459,22 +457,6 @@ int main(int argc, char** argv) {
   std::ios::sync_with_stdio(false);
   // Also llvmpipe's per-frame scene memory: without it, page-fault storms (gl-notes.md 5.3).
   qf::keep_freed_memory();
-  try {
-    return qf::render::dispatch(std::vector<std::string>(argv + 1, argv + argc));
-  } catch (const qf::InputError& e) {
-    std::cerr << "qf-render: error: " << e.what() << "\n";
-    return static_cast<int>(qf::ExitCode::kBadInput);
-  } catch (const qf::UsageError& e) {
-    std::cerr << "qf-render: " << e.what() << "\n";
-    return static_cast<int>(qf::ExitCode::kUsage);
-  } catch (const std::filesystem::filesystem_error& e) {
-    std::cerr << "qf-render: cannot write output: " << e.what() << "\n";
-    return static_cast<int>(qf::ExitCode::kUsage);
-  } catch (const std::bad_alloc&) {
-    std::cerr << "qf-render: internal error: out of memory\n";
-    return static_cast<int>(qf::ExitCode::kInternal);
-  } catch (const std::exception& e) {
-    std::cerr << "qf-render: internal error: " << e.what() << "\n";
-    return static_cast<int>(qf::ExitCode::kInternal);
-  }
+  const std::vector<std::string> args(argv + 1, argv + argc);
+  return qf::cli::run_with_exit_codes("qf-render", [&] { return qf::render::dispatch(args); });
 }

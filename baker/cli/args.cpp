@@ -2,6 +2,9 @@
 #include "cli/args.h"
 
 #include <charconv>
+#include <filesystem>
+#include <iostream>
+#include <new>
 #include <cmath>
 
 #include "core/error.h"
@@ -110,6 +113,28 @@ std::string help_text(const CommandSpec& spec) {
   }
   s += "  -h, --help                  show this help\n";
   return s;
+}
+
+int run_with_exit_codes(const std::string& program, const std::function<int()>& body) {
+  try {
+    return body();
+  } catch (const InputError& e) {
+    std::cerr << program << ": error: " << e.what() << "\n";
+    return static_cast<int>(ExitCode::kBadInput);
+  } catch (const UsageError& e) {
+    std::cerr << program << ": " << e.what() << "\n";
+    return static_cast<int>(ExitCode::kUsage);
+  } catch (const std::filesystem::filesystem_error& e) {
+    // Output paths that cannot be written (missing folder, no permission) are a usage problem.
+    std::cerr << program << ": cannot write output: " << e.what() << "\n";
+    return static_cast<int>(ExitCode::kUsage);
+  } catch (const std::bad_alloc&) {
+    std::cerr << program << ": internal error: out of memory\n";
+    return static_cast<int>(ExitCode::kInternal);
+  } catch (const std::exception& e) {
+    std::cerr << program << ": internal error: " << e.what() << "\n";
+    return static_cast<int>(ExitCode::kInternal);
+  }
 }
 
 }  // namespace qf::cli

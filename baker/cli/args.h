@@ -2,6 +2,7 @@
 // help text, so --help always lists every option and its default.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -48,5 +49,9 @@ ParsedArgs parse_args(const CommandSpec& spec, const std::vector<std::string>& a
 
 // The --help text of a command.
 std::string help_text(const CommandSpec& spec);
+
+// Runs an executable's body and maps its errors to the exit codes (1 bad input, 2 bad usage or an
+// unwritable output, 3 internal error), printing "PROGRAM: ..." to stderr.
+int run_with_exit_codes(const std::string& program, const std::function<int()>& body);
 
 }  // namespace qf::cli

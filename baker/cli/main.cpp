@@ -1,9 +1,8 @@
 // qf-bake entry point: subcommand dispatch and the mapping of errors to exit codes
 // (0 ok, 1 bad input, 2 bad usage, 3 internal error).
-#include <filesystem>
 #include <iostream>
-#include <new>
 
+#include "cli/args.h"
 #include "cli/commands.h"
 #include "core/error.h"
 #include "core/memory.h"
@@ -67,23 +66,5 @@ int main(int argc, char** argv) {
   std::ios::sync_with_stdio(false);
   qf::keep_freed_memory();
   const std::vector<std::string> args(argv + 1, argv + argc);
-  try {
-    return dispatch(args);
-  } catch (const qf::InputError& e) {
-    std::cerr << "qf-bake: error: " << e.what() << "\n";
-    return static_cast<int>(qf::ExitCode::kBadInput);
-  } catch (const qf::UsageError& e) {
-    std::cerr << "qf-bake: " << e.what() << "\n";
-    return static_cast<int>(qf::ExitCode::kUsage);
-  } catch (const std::filesystem::filesystem_error& e) {
-    // Output paths that cannot be written (missing folder, no permission) are a usage problem.
-    std::cerr << "qf-bake: cannot write output: " << e.what() << "\n";
-    return static_cast<int>(qf::ExitCode::kUsage);
-  } catch (const std::bad_alloc&) {
-    std::cerr << "qf-bake: internal error: out of memory\n";
-    return static_cast<int>(qf::ExitCode::kInternal);
-  } catch (const std::exception& e) {
-    std::cerr << "qf-bake: internal error: " << e.what() << "\n";
-    return static_cast<int>(qf::ExitCode::kInternal);
-  }
+  return qf::cli::run_with_exit_codes("qf-bake", [&] { return dispatch(args); });
 }

@@ -48,7 +48,7 @@ int main(int argc, char** argv) {
   }
   std::string name;
   PointSet points = bench::load_input(argv[1], 0, name);
-  const SplatScene splats = splat_scene(std::move(points));
+  const SplatScene splats = splat_scene(std::move(points), argv[1]);
   const Sphere sphere = bounding_sphere(splats.bounds);
   HeadlessContext context;
   std::printf("renderer: %s\n\n", context.renderer().c_str());
