@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
 # Benchmarks (tables, not tests): reader throughput on 1M points; the surface analysis (k = 50)
 # on 100k and 1M synthetic points and on bunny00, with 2 threads and 1; the AMG stages; render
-# speed of every method on the baked levels of bunny00 and fandisk beside their point sets.
-# usage: scripts/bench.sh [io|analysis|amg|render]...   (default: all)
+# speed of every method on the baked levels of bunny00 and fandisk beside their point sets; the
+# whole bake (per stage: time, memory, resampler texels/s) on bunny00, kitten and a 1M-point torus.
+# usage: scripts/bench.sh [io|analysis|amg|render|bake]...   (default: all)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh >/dev/null
 what=("$@")
-[[ ${#what[@]} -eq 0 ]] && what=(io analysis amg render)
+[[ ${#what[@]} -eq 0 ]] && what=(io analysis amg render bake)
 for w in "${what[@]}"; do
   case $w in
     io) build/bin/qf-bench-io ;;
@@ -42,7 +43,24 @@ for w in "${what[@]}"; do
         echo
       done
       rm -rf "$tmp" ;;
-    *) echo "unknown benchmark '$w' (io, analysis, amg, render)" >&2; exit 2 ;;
+    bake)
+      models=$(scripts/fetch-models.sh bunny00.off | tail -1)
+      tmp=$(mktemp -d)
+      awk 'NR == 1 { next } NR == 2 { n = $1; next } n > 0 { print $1, $2, $3; n-- }' "$models/bunny00.off" >"$tmp/bunny00.xyz"
+      build/bin/qf-bake generate torus --points 1000000 -o "$tmp/torus1M.ply" -q
+      echo "bake: qf-bake IN -o OUT, default levels, no cache (wall clock per stage; peak = process VmHWM)"
+      for input in "$tmp/bunny00.xyz" "$models/kitten.xyz" "$tmp/torus1M.ply"; do
+        for threads in 2 1; do
+          [[ $threads == 1 && $input == *torus1M* ]] && continue  # one-thread 1M run: ~45 s, adds little
+          rm -rf "$tmp/out"
+          start=$(date +%s.%N)
+          OMP_NUM_THREADS=$threads build/bin/qf-bake "$input" -o "$tmp/out" --no-cache -q
+          end=$(date +%s.%N)
+          python3 scripts/bake_table.py "$tmp/out/report.json" "$(basename "$input")" "$threads" "$(echo "$end - $start" | bc)"
+        done
+      done
+      rm -rf "$tmp" ;;
+    *) echo "unknown benchmark '$w' (io, analysis, amg, render, bake)" >&2; exit 2 ;;
   esac
   echo
 done

@@ -51,6 +51,9 @@ CommandSpec bake_spec() {
                     {"texel", 0, "F", "1", "texel size = F x the domain's mean point radius"},
                     {"max-texture", 0, "N", "1024", "largest texture side of one primitive, texels"},
                     {"margin", 0, "M", "0", "extra rectangle margin, in mean point radii"},
+                    {"lod-file", 0, "", "", "also write STEM_lods.glb: every level in one file under MSFT_lod (finest in the scene,\n"
+                                             "the others as its lower LODs, switched by MSFT_screencoverage)"},
+                    {"lod-screen-height", 0, "PX", "1080", "screen height the MSFT_screencoverage values assume"},
                     drop_nonfinite_option(),
                     {"quiet", 'q', "", "", "print nothing on success"}},
                    1, 1};
@@ -90,6 +93,8 @@ int run_bake(const ParsedArgs& args) {
     }
   }
   o.cache_dir = read_cache_dir(args);
+  o.lod_file = args.flag("lod-file");
+  o.lod_screen_height = args.get_double("lod-screen-height", o.lod_screen_height, 1.0, 100000.0);
 
   ReadReport read_report;
   const PointSet points = load_points(in, args, "bake", read_report);
@@ -112,9 +117,6 @@ int run_bake(const ParsedArgs& args) {
       const std::string name = stem + "_L" + std::to_string(l.level) + ".glb";
       write_bytes(staging + "/" + name, l.glb);
       files.push_back(name);
-      // The object may appear up to this many pixels across before the mean geometric error of the
-      // quads exceeds half a pixel.
-      const double pixels = l.error > 0 ? 0.5 * r.diagonal / l.error : 1e9;
       levels.push_back({{"file", name},
                         {"level", l.level},
                         {"primitives", l.primitives},
@@ -122,13 +124,20 @@ int run_bake(const ParsedArgs& args) {
                         {"atlas_images", l.atlas_images},
                         {"error", canonical_double(static_cast<float>(l.error))},
                         {"relative_error", canonical_double(static_cast<float>(l.relative_error))},
-                        {"max_screen_pixels", static_cast<long long>(std::min(pixels, 1e9))}});
+                        {"max_screen_pixels", static_cast<long long>(l.max_screen_pixels)}});
+    }
+    std::string lod_name;
+    if (!r.lod_glb.empty()) {
+      lod_name = stem + "_lods.glb";
+      write_bytes(staging + "/" + lod_name, r.lod_glb);
+      files.push_back(lod_name);
     }
     nlohmann::json manifest{{"input", in},
                             {"points", r.points},
                             {"bounding_box_diagonal", canonical_double(r.diagonal)},
                             {"levels", levels},
                             {"generator", "quasiflat qf-bake"}};
+    if (!lod_name.empty()) manifest["lod_file"] = {{"file", lod_name}, {"screen_height", o.lod_screen_height}};
     nlohmann::json stages = nlohmann::json::array();
     for (const StageTime& t : r.times) stages.push_back({{"stage", t.stage},
                                                                     {"seconds", canonical_double(static_cast<float>(t.seconds))},
@@ -146,7 +155,8 @@ int run_bake(const ParsedArgs& args) {
                             {"tau", o.domains.tau},
                             {"merge", o.merge},
                             {"texel_factor", canonical_double(o.texture.texel_factor)},
-                            {"max_texture", o.texture.max_side}}},
+                            {"max_texture", o.texture.max_side},
+                            {"lod_file", o.lod_file}}},
                           {"levels", levels},
                           {"stages", stages},
                           {"warnings", r.warnings}};

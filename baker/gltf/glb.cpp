@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 #include "gltf/png.h"
 
@@ -96,7 +97,9 @@ ImpostorLevel make_impostor_level(std::size_t level, const std::vector<SupportRe
   return out;
 }
 
-std::vector<std::uint8_t> encode_glb(const ImpostorLevel& level, const GltfOptions& options) {
+namespace {
+
+tinygltf::Model new_model(const GltfOptions& options) {
   tinygltf::Model m;
   m.asset.version = "2.0";
   m.asset.generator = options.generator;
@@ -106,12 +109,17 @@ std::vector<std::uint8_t> encode_glb(const ImpostorLevel& level, const GltfOptio
   sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
   sampler.wrapS = sampler.wrapT = TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE;
   m.samplers.push_back(sampler);
+  return m;
+}
 
-  // 1. One material per atlas image (one draw call per image in an engine).
+// Adds a level's materials (one per atlas image: one draw call each in an engine), its quads as one
+// mesh and a node holding it; returns the node's index. `prefix` names the level's objects.
+int add_level(tinygltf::Model& m, const ImpostorLevel& level, const GltfOptions& options, const std::string& prefix) {
   const Atlas& atlas = level.atlas;
+  const int first_material = static_cast<int>(m.materials.size());
   for (std::size_t i = 0; i < atlas.images.size(); ++i) {
     tinygltf::Material mat;
-    mat.name = "impostor_atlas_" + std::to_string(i);
+    mat.name = prefix + "atlas_" + std::to_string(i);
     mat.pbrMetallicRoughness.baseColorTexture.index =
         add_png_texture(m, atlas.images[i], atlas.widths[i], atlas.heights[i], mat.name + "_color");
     mat.pbrMetallicRoughness.metallicFactor = 0.0;
@@ -124,7 +132,7 @@ std::vector<std::uint8_t> encode_glb(const ImpostorLevel& level, const GltfOptio
     m.materials.push_back(mat);
   }
 
-  // 2. The quads, grouped by atlas image into one primitive each.
+  // The quads, grouped by atlas image into one primitive each.
   tinygltf::Mesh mesh;
   mesh.name = "impostor_level_" + std::to_string(level.level);
   for (std::size_t img = 0; img < atlas.images.size(); ++img) {
@@ -150,7 +158,7 @@ std::vector<std::uint8_t> encode_glb(const ImpostorLevel& level, const GltfOptio
     if (idx.empty()) continue;
     tinygltf::Primitive prim;
     prim.mode = TINYGLTF_MODE_TRIANGLES;
-    prim.material = static_cast<int>(img);
+    prim.material = first_material + static_cast<int>(img);
     prim.attributes["POSITION"] = add_floats(m, pos, 3, TINYGLTF_TYPE_VEC3, true);
     prim.attributes["NORMAL"] = add_floats(m, nrm, 3, TINYGLTF_TYPE_VEC3, false);
     prim.attributes["TANGENT"] = add_floats(m, tan, 4, TINYGLTF_TYPE_VEC4, false);
@@ -167,15 +175,15 @@ std::vector<std::uint8_t> encode_glb(const ImpostorLevel& level, const GltfOptio
   m.meshes.push_back(mesh);
   tinygltf::Node node;
   node.name = mesh.name;
-  node.mesh = 0;
+  node.mesh = static_cast<int>(m.meshes.size() - 1);
   m.nodes.push_back(node);
-  tinygltf::Scene scene;
-  scene.nodes.push_back(0);
-  m.scenes.push_back(scene);
-  m.defaultScene = 0;
+  return static_cast<int>(m.nodes.size() - 1);
+}
 
-  // 3. The extension: per quad data and the neighbour graph as compressed rows. Empty arrays are
-  //    left out (tinygltf 2.7 writes them as null).
+// The extension's object: per quad data and the neighbour graph as compressed rows. Empty arrays
+// are left out (tinygltf 2.7 writes them as null).
+Value impostor_extension(const ImpostorLevel& level) {
+  const Atlas& atlas = level.atlas;
   std::vector<std::uint32_t> domain, offsets{0}, neighbors;
   std::vector<float> centers, normals, errors, rects;
   std::vector<std::vector<std::uint32_t>> adj(level.quads.size());
@@ -205,14 +213,52 @@ std::vector<std::uint8_t> encode_glb(const ImpostorLevel& level, const GltfOptio
     ext["atlasRect"] = number_array(rects);
   }
   if (!neighbors.empty()) ext["neighbors"] = int_array(neighbors);
-  m.extensions[kImpostorExtension] = Value(ext);
-  m.extensionsUsed.push_back(kImpostorExtension);
+  return Value(ext);
+}
 
+std::vector<std::uint8_t> write_glb(tinygltf::Model& m) {
   tinygltf::TinyGLTF writer;
   std::ostringstream out;
   writer.WriteGltfSceneToStream(&m, out, /*prettyPrint=*/false, /*writeBinary=*/true);
   const std::string s = out.str();
   return std::vector<std::uint8_t>(s.begin(), s.end());
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> encode_glb(const ImpostorLevel& level, const GltfOptions& options) {
+  tinygltf::Model m = new_model(options);
+  tinygltf::Scene scene;
+  scene.nodes.push_back(add_level(m, level, options, "impostor_"));
+  m.scenes.push_back(scene);
+  m.defaultScene = 0;
+  m.extensions[kImpostorExtension] = impostor_extension(level);
+  m.extensionsUsed.push_back(kImpostorExtension);
+  return write_glb(m);
+}
+
+std::vector<std::uint8_t> encode_lod_glb(const std::vector<const ImpostorLevel*>& levels,
+                                         const std::vector<double>& screen_coverage, const GltfOptions& options) {
+  if (levels.empty() || screen_coverage.size() != levels.size())
+    throw std::invalid_argument("encode_lod_glb: one screen coverage per level, at least one level");
+  tinygltf::Model m = new_model(options);
+  std::vector<int> nodes;
+  for (const ImpostorLevel* l : levels) nodes.push_back(add_level(m, *l, options, "impostor_L" + std::to_string(l->level) + "_"));
+  // Only the finest level's node is in the scene: engines without MSFT_lod draw it alone.
+  tinygltf::Node& root = m.nodes[static_cast<std::size_t>(nodes[0])];
+  if (nodes.size() > 1) {
+    Value::Array ids, coverage;
+    for (std::size_t i = 1; i < nodes.size(); ++i) ids.push_back(Value(nodes[i]));
+    for (double c : screen_coverage) coverage.push_back(Value(c));
+    root.extensions["MSFT_lod"] = Value(Value::Object{{"ids", Value(ids)}});
+    root.extras = Value(Value::Object{{"MSFT_screencoverage", Value(coverage)}});
+    m.extensionsUsed.push_back("MSFT_lod");
+  }
+  tinygltf::Scene scene;
+  scene.nodes.push_back(nodes[0]);
+  m.scenes.push_back(scene);
+  m.defaultScene = 0;
+  return write_glb(m);
 }
 
 }  // namespace qf

@@ -102,6 +102,7 @@ BakeResult bake(const PointSet& input, const BakeOptions& o, const std::string& 
     if (std::find(levels.begin(), levels.end(), l) != levels.end()) bases.push_back({l, psi});
   });
   watch.lap("basis");
+  std::vector<ImpostorLevel> kept;  // for the MSFT_lod file
   for (std::size_t level : levels) {
     SparseMatrix psi;
     for (auto& b : bases)
@@ -110,11 +111,13 @@ BakeResult bake(const PointSet& input, const BakeOptions& o, const std::string& 
     const Domains d = make_domains(psi, o.domains);
     const std::vector<SupportRect> rects = support_rectangles(points.positions, normals, points.radii, psi, d, o.support);
     const SparseMatrix alpha = domain_partition(psi, d);  // what the rendered sum adds up
+    watch.lap("level " + std::to_string(level) + " domains");
     std::vector<Texture> textures(rects.size());
 #pragma omp parallel for schedule(dynamic, 4)
     for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(rects.size()); ++k)
       textures[static_cast<std::size_t>(k)] = resample_texture(points.positions, points.colors, normals, points.radii, alpha, d,
                                                                rects[static_cast<std::size_t>(k)], o.texture);
+    watch.lap("level " + std::to_string(level) + " textures");
     BakedLevel out;
     out.level = level;
     out.primitives = rects.size();
@@ -122,11 +125,31 @@ BakeResult bake(const PointSet& input, const BakeOptions& o, const std::string& 
     for (const SupportRect& q : rects) out.error += q.error;
     out.error = rects.empty() ? 0.0 : out.error / double(rects.size());
     out.relative_error = r.diagonal > 0 ? out.error / r.diagonal : 0.0;
-    const ImpostorLevel il = make_impostor_level(level, rects, textures, d, o.atlas);
+    out.max_screen_pixels = out.error > 0 ? std::min(0.5 * r.diagonal / out.error, 1e9) : 1e9;
+    ImpostorLevel il = make_impostor_level(level, rects, textures, d, o.atlas);
     out.atlas_images = static_cast<int>(il.atlas.images.size());
     out.glb = encode_glb(il, o.gltf);
     r.levels.push_back(std::move(out));
-    watch.lap("level " + std::to_string(level));
+    if (o.lod_file) kept.push_back(std::move(il));
+    watch.lap("level " + std::to_string(level) + " atlas+glb");
+  }
+  if (o.lod_file) {
+    // Finest first. Level i is shown down to the size at which the next coarser one is accurate
+    // enough; the coarsest is never culled.
+    std::vector<std::size_t> order(kept.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return kept[a].level < kept[b].level; });
+    std::vector<const ImpostorLevel*> chain;
+    std::vector<double> coverage;
+    for (std::size_t i = 0; i < order.size(); ++i) {
+      chain.push_back(&kept[order[i]]);
+      double c = 0;
+      if (i + 1 < order.size()) c = std::min(1.0, r.levels[order[i + 1]].max_screen_pixels / o.lod_screen_height);
+      if (!coverage.empty()) c = std::min(c, coverage.back());
+      coverage.push_back(canonical_double(static_cast<float>(c)));
+    }
+    r.lod_glb = encode_lod_glb(chain, coverage, o.gltf);
+    watch.lap("lod file");
   }
   return r;
 }

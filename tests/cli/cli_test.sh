@@ -189,6 +189,11 @@ for l in m["levels"]:
     assert l["primitives"] > 0 and l["texels"] > 0 and l["error"] > 0 and l["max_screen_pixels"] > 0
 assert m["levels"][0]["primitives"] > m["levels"][1]["primitives"]
 PY
+# --lod-file: every level in one MSFT_lod file beside the level files, deterministic too
+expect 0 "bake --lod-file" -- "$bake" "$work/oct.ply" -o "$work/lod1" --primitives 200,20 --lod-file -q
+expect 0 "bake --lod-file, 1 thread" -- "$bake" "$work/oct.ply" -o "$work/lod2" --primitives 200,20 --lod-file --threads 1 -q
+cmp -s "$work/lod1/oct_lods.glb" "$work/lod2/oct_lods.glb" && ok || bad "the MSFT_lod file differs between runs"
+grep -q '"file": "oct_lods.glb"' "$work/lod1/manifest.json" && ok || bad "the manifest names the MSFT_lod file"
 # without input normals: estimated ones light the normal maps, also after a cache hit
 expect 0 "bake without normals" -- "$bake" "$work/bare.xyz" -o "$work/nb1" --primitives 100 -q
 expect 0 "bake without normals, cached" -- "$bake" "$work/bare.xyz" -o "$work/nb2" --primitives 100

@@ -8,7 +8,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 "$writer" "$work" || exit 1
 files=("$work"/*.glb)
-[[ ${#files[@]} -ge 6 ]] || { echo "expected 6 .glb files, got ${#files[@]}"; exit 1; }
+[[ ${#files[@]} -ge 7 ]] || { echo "expected 7 .glb files, got ${#files[@]}"; exit 1; }
 node "$validator/validate.js" "${files[@]}"
 status=$?
 # The extension block of every file, and the schema's examples, against the extension's schema.
@@ -24,6 +24,16 @@ for f in files:
     data = open(f, "rb").read()
     length = struct.unpack_from("<I", data, 12)[0]
     doc = json.loads(data[20:20 + length])
+    if f.endswith("_lods.glb"):
+        # Every level under MSFT_lod: only the finest node in the scene, the others as its ids,
+        # one coverage per level, decreasing; no QF extension (a runtime reads the level files).
+        root = doc["nodes"][doc["scenes"][0]["nodes"][0]]
+        ids = root["extensions"]["MSFT_lod"]["ids"]
+        cov = root["extras"]["MSFT_screencoverage"]
+        if len(doc["scenes"][0]["nodes"]) != 1 or len(ids) != 2 or len(cov) != 3 or cov != sorted(cov, reverse=True) \
+                or "extensions" in doc or doc["extensionsUsed"] != ["MSFT_lod"]:
+            print(f, "MSFT_lod structure wrong"); bad = 1
+        continue
     ext = doc["extensions"]["QF_impostor_level"]
     errors = list(check.iter_errors(ext))
     n = ext["quadCount"]

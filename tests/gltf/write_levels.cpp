@@ -13,15 +13,22 @@
 
 using namespace qf;
 
-static void write_level(const std::string& path, const PointSet& p, const AmgHierarchy& h, std::size_t level, bool merge) {
+static void write_bytes(const std::string& path, const std::vector<std::uint8_t>& glb) {
+  std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(glb.data()), static_cast<std::streamsize>(glb.size()));
+}
+
+static ImpostorLevel make_level(const PointSet& p, const AmgHierarchy& h, std::size_t level, bool merge) {
   SparseMatrix psi = basis_at_level(h, level);
   if (merge) psi = merge_domains(psi, p.positions);
   const Domains d = make_domains(psi);
   const std::vector<SupportRect> rects = support_rectangles(p.positions, p.normals, p.radii, psi, d);
   std::vector<Texture> textures;
   for (const SupportRect& r : rects) textures.push_back(resample_texture(p.positions, p.colors, p.normals, p.radii, psi, d, r));
-  const std::vector<std::uint8_t> glb = encode_glb(make_impostor_level(level, rects, textures, d));
-  std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(glb.data()), static_cast<std::streamsize>(glb.size()));
+  return make_impostor_level(level, rects, textures, d);
+}
+
+static void write_level(const std::string& path, const PointSet& p, const AmgHierarchy& h, std::size_t level, bool merge) {
+  write_bytes(path, encode_glb(make_level(p, h, level, merge)));
 }
 
 int main(int argc, char** argv) {
@@ -33,6 +40,12 @@ int main(int argc, char** argv) {
     const AmgHierarchy h = build_hierarchy(analyze_surface(p).stiffness);
     write_level(dir + "/" + shape + "_200.glb", p, h, level_by_primitives(h, 200), false);
     write_level(dir + "/" + shape + "_coarse_merged.glb", p, h, h.level_count() - 2, true);
+    if (std::string(shape) == "torus") {  // three levels in one file under MSFT_lod
+      const ImpostorLevel a = make_level(p, h, level_by_primitives(h, 300), false);
+      const ImpostorLevel b = make_level(p, h, level_by_primitives(h, 100), false);
+      const ImpostorLevel c = make_level(p, h, level_by_primitives(h, 30), false);
+      write_bytes(dir + "/torus_lods.glb", encode_lod_glb({&a, &b, &c}, {0.25, 0.1, 0}));
+    }
   }
   return 0;
 }
