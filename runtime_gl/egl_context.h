@@ -1,27 +1,13 @@
-// OpenGL contexts through EGL: the only runtime file with EGL (and X11) calls. Headless:
-// surfaceless Mesa display + compatibility context, drawing into a framebuffer object
-// (gl-notes.md 1). Window: an X11 window with an EGL window surface, for `qf-render view`.
+// The window of `qf-render view`: an X11 window with an EGL window surface, the runtime's only
+// X11 calls. Headless rendering uses qf::HeadlessContext (baker/gl/egl.h).
 #pragma once
 
 #include <memory>
 #include <string>
 
+#include "gl/egl.h"
+
 namespace qf::render {
-
-// A current GL compatibility context with no surface. Throws std::runtime_error with EGL's reason
-// when no context can be made.
-class HeadlessContext {
- public:
-  HeadlessContext();
-  ~HeadlessContext();
-  HeadlessContext(const HeadlessContext&) = delete;
-  HeadlessContext& operator=(const HeadlessContext&) = delete;
-  std::string renderer() const;  // GL_RENDERER, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
-
- private:
-  struct Impl;
-  std::unique_ptr<Impl> impl_;
-};
 
 // Mouse and keyboard since the last poll, in window pixels.
 struct WindowEvents {

@@ -22,6 +22,7 @@ CommandSpec analyze_spec() {
            {"quiet", 'q', "", "", "print nothing on success"}},
           1, 1};
   for (OptionSpec& o : analysis_option_specs()) spec.options.push_back(o);
+  for (OptionSpec& o : sample_option_specs()) spec.options.push_back(o);
   return spec;
 }
 

@@ -43,13 +43,38 @@ AnalysisOptions read_analysis_options(const ParsedArgs& args) {
   return o;
 }
 
-PointSet load_points(const std::string& path, const ParsedArgs& args, const std::string& command, ReadReport& report) {
+std::vector<OptionSpec> sample_option_specs() {
+  const SampleOptions d;
+  return {{"ldi", 0, "N", std::to_string(d.ldi_size),
+           "mesh inputs: sampling density, the layered depth image's largest side in pixels\n"
+           "(pixel side = the longest bounding-box extent / N; ~1.7 N^2 points on a sphere)"},
+          {"sampler", 0, "gl|cpu", d.backend,
+           "mesh inputs: depth peeling with OpenGL (EGL, falls back to cpu without a context) or the CPU reference"},
+          {"per-axis-triangles", 0, "", "", "mesh inputs: draw each triangle only for its own axis (fewer layers, same points)"}};
+}
+
+SampleOptions read_sample_options(const ParsedArgs& args) {
+  SampleOptions o;
+  o.ldi_size = static_cast<int>(args.get_int("ldi", o.ldi_size, 2, 16000));
+  o.backend = args.get("sampler", o.backend);
+  if (o.backend != "gl" && o.backend != "cpu") throw UsageError("--sampler must be gl or cpu, got '" + o.backend + "'");
+  o.per_axis_triangles = args.flag("per-axis-triangles");
+  return o;
+}
+
+PointSet load_points(const std::string& path, const ParsedArgs& args, const std::string& command, ReadReport& report,
+                     SampleStats* sampled) {
   ReadOptions ro;
   ro.drop_nonfinite = args.flag("drop-nonfinite");
+  const SampleOptions so = read_sample_options(args);  // usage errors before reading
   Model model = read_model(path, ro, &report);
-  if (model.is_mesh)
-    throw InputError(command + ".mesh_input", path, "",
-                     "is a triangle mesh; " + command + " takes point sets (.ply without faces, .qs, .xyz, .pwn)");
+  if (model.is_mesh) {
+    SampleStats stats;
+    PointSet points = sample_mesh(model.mesh, so, path, &stats);
+    if (!stats.fallback.empty()) std::cerr << "qf-bake " << command << ": warning: " << stats.fallback << "\n";
+    if (sampled) *sampled = stats;
+    return points;
+  }
   if (model.points.size() == 0) throw InputError(command + ".empty", path, "", "holds no points");
   return std::move(model.points);
 }
@@ -81,6 +106,11 @@ MergeOptions read_merge_options(const ParsedArgs& args, const DomainOptions& dom
   return m;
 }
 
+static std::vector<OptionSpec> with_sampling(std::vector<OptionSpec> options) {
+  for (const OptionSpec& o : sample_option_specs()) options.push_back(o);
+  return options;
+}
+
 static std::string shape_list() {
   std::string s;
   for (const ShapeInfo& i : shape_catalog()) {
@@ -99,13 +129,15 @@ const std::vector<Command>& commands() {
          drop_nonfinite_option()},
         1, 1},
        run_info},
-      {{"convert", "IN OUT [options]", "convert a point set between .ply, .qs, .xyz and .pwn (by extension)",
+      {{"convert", "IN OUT [options]", "convert a point set between .ply, .qs, .xyz and .pwn (by extension), or sample a mesh",
         "Missing splat radii are estimated from local spacing when OUT stores radii (.ply, .qs):\n"
         "the distance to the --radius-k-th nearest neighbour. .qs and .pwn need normals.\n"
+        "A mesh IN (.off, .obj, .ply with faces) is sampled by depth peeling along X, Y and Z\n"
+        "(normals, colours when the mesh has them, radii from the pixel size).\n"
         "OUT is written to a temporary name and renamed, so it is never left half-written.",
-        {{"radius-k", 0, "K", "6", "missing radii reach the K-th nearest neighbour"},
-         drop_nonfinite_option(),
-         {"quiet", 'q', "", "", "print nothing on success"}},
+        with_sampling({{"radius-k", 0, "K", "6", "missing radii reach the K-th nearest neighbour"},
+                       drop_nonfinite_option(),
+                       {"quiet", 'q', "", "", "print nothing on success"}}),
         2, 2},
        run_convert},
       {{"generate", "SHAPE -o OUT [options]", "write an analytic sample shape as a point set",
@@ -134,22 +166,18 @@ int run_convert(const ParsedArgs& args) {
   if (!known) throw UsageError("cannot write point sets as '." + out_ext + "' (" + out + "); supported: .ply .qs .xyz .pwn");
   RadiusEstimateOptions radius;
   radius.k = static_cast<int>(args.get_int("radius-k", radius.k, 1, 1000));
-  ReadOptions ro;
-  ro.drop_nonfinite = args.flag("drop-nonfinite");
-
   ReadReport report;
-  Model model = read_model(in, ro, &report);
-  if (model.is_mesh)
-    throw InputError("convert.mesh_input", in, "",
-                     "is a triangle mesh (" + std::to_string(model.mesh.triangles.size()) +
-                         " triangles); convert takes point sets: .ply without faces, .qs, .xyz, .pwn");
-  PointSet& points = model.points;
+  SampleStats sampled;
+  PointSet points = load_points(in, args, "convert", report, &sampled);
   std::size_t estimated = 0;
   if (out_ext == "ply" || out_ext == "qs") estimated = estimate_radii(points, radius);
   write_point_set(out, points);
   if (!args.flag("quiet")) {
     std::cerr << "qf-bake convert: " << in << " (" << report.format << ") -> " << out << ": " << points.size()
               << " points";
+    if (!sampled.backend.empty())
+      std::cerr << " sampled (" << sampled.backend << ", pixel " << sampled.pixel << ", layers " << sampled.layers[0] << "/"
+                << sampled.layers[1] << "/" << sampled.layers[2] << ", " << sampled.seconds << " s)";
     if (estimated) std::cerr << ", radii estimated for " << estimated << " (distance to neighbour " << radius.k << ")";
     if (report.dropped_nonfinite) std::cerr << ", " << report.dropped_nonfinite << " non-finite points dropped";
     std::cerr << "\n";

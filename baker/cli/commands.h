@@ -8,6 +8,7 @@
 #include "domains/merge.h"
 #include "cli/args.h"
 #include "io/model_io.h"
+#include "sample/sample.h"
 
 namespace qf::cli {
 
@@ -32,8 +33,16 @@ OptionSpec drop_nonfinite_option();
 std::vector<OptionSpec> analysis_option_specs();
 AnalysisOptions read_analysis_options(const ParsedArgs& args);
 
-// Reads a point set for the analysis: rejects meshes and empty sets with InputError `command`.*.
-PointSet load_points(const std::string& path, const ParsedArgs& args, const std::string& command, ReadReport& report);
+// Mesh sampling options (every command that takes a point set also takes a mesh): --ldi,
+// --sampler, --per-axis-triangles; and reading them (UsageError on bad values).
+std::vector<OptionSpec> sample_option_specs();
+SampleOptions read_sample_options(const ParsedArgs& args);
+
+// Reads a point set for the analysis; a mesh is sampled into one by depth peeling (its figures in
+// `sampled`, when given; sampled->backend stays empty for point-set inputs). Rejects empty sets
+// with InputError `command`.empty.
+PointSet load_points(const std::string& path, const ParsedArgs& args, const std::string& command, ReadReport& report,
+                     SampleStats* sampled = nullptr);
 
 // Shared by decompose and bake: --cache/--no-cache, and --merge with its two thresholds.
 std::vector<OptionSpec> cache_option_specs();

@@ -111,7 +111,7 @@ CommandSpec decompose_spec() {
                     drop_nonfinite_option(),
                     {"quiet", 'q', "", "", "print nothing on success"}},
                    1, 1};
-  for (const auto& group : {merge_option_specs(), cache_option_specs(), analysis_option_specs()})
+  for (const auto& group : {merge_option_specs(), cache_option_specs(), analysis_option_specs(), sample_option_specs()})
     spec.options.insert(spec.options.end(), group.begin(), group.end());
   return spec;
 }

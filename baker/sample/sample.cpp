@@ -1,0 +1,180 @@
+// Mesh sampling: the grid, the point of each kept layer fragment, and the entry point (sample.h).
+#include "sample/sample.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "core/error.h"
+
+namespace qf {
+namespace {
+
+struct FaceNormal {
+  double n[3] = {0, 0, 0};
+  bool ok = false;
+};
+
+FaceNormal face_normal(const TriangleMesh& mesh, std::size_t t) {
+  const Triangle& tri = mesh.triangles[t];
+  const Vec3f a = mesh.positions[tri[0]], b = mesh.positions[tri[1]], c = mesh.positions[tri[2]];
+  const double e1[3] = {double(b.x) - a.x, double(b.y) - a.y, double(b.z) - a.z};
+  const double e2[3] = {double(c.x) - a.x, double(c.y) - a.y, double(c.z) - a.z};
+  FaceNormal f;
+  f.n[0] = e1[1] * e2[2] - e1[2] * e2[1];
+  f.n[1] = e1[2] * e2[0] - e1[0] * e2[2];
+  f.n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+  const double len = std::sqrt(f.n[0] * f.n[0] + f.n[1] * f.n[1] + f.n[2] * f.n[2]);
+  if (!(len > 0)) return f;
+  for (double& x : f.n) x /= len;
+  f.ok = true;
+  return f;
+}
+
+int largest_component(const FaceNormal& f) {
+  if (!f.ok) return -1;
+  int axis = 0;
+  for (int k = 1; k < 3; ++k)
+    if (std::fabs(f.n[k]) > std::fabs(f.n[axis])) axis = k;
+  return axis;
+}
+
+}  // namespace
+
+int sampling_axis(const TriangleMesh& mesh, std::size_t triangle) { return largest_component(face_normal(mesh, triangle)); }
+
+SampleGrid sample_grid(const TriangleMesh& mesh, int ldi_size) {
+  Bounds b;
+  for (const Triangle& t : mesh.triangles)
+    for (std::uint32_t i : t) b.add(mesh.positions[i]);
+  const Vec3f size = b.size();
+  const float longest = std::max({size.x, size.y, size.z});
+  SampleGrid g;
+  g.pixel = longest > 0 ? longest / static_cast<float>(ldi_size) : 1.0f;
+  // Whole pixels plus one of margin on each side, the box centred in them.
+  for (int k = 0; k < 3; ++k) {
+    const int cells = static_cast<int>(std::ceil(size[k] / g.pixel)) + 2;
+    g.cells[static_cast<std::size_t>(k)] = cells;
+    g.origin[k] = b.center()[k] - 0.5f * static_cast<float>(cells) * g.pixel;
+  }
+  return g;
+}
+
+PointSet points_from_layers(const TriangleMesh& mesh, const SampleGrid& grid, const std::array<AxisLayers, 3>& layers,
+                            SampleStats* stats) {
+  std::vector<FaceNormal> normals(mesh.triangles.size());
+  std::vector<int> axis_of(mesh.triangles.size());
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    normals[t] = face_normal(mesh, t);
+    axis_of[t] = largest_component(normals[t]);
+  }
+  const bool smooth = mesh.normals.size() == mesh.positions.size();
+  const bool coloured = mesh.colors.size() == mesh.positions.size();
+  const double s = grid.pixel;
+  PointSet out;
+  for (const AxisLayers& L : layers) {
+    const int a = L.axis, u = (a + 1) % 3, v = (a + 2) % 3;
+    std::size_t kept = 0;
+    for (int j = 0; j < L.height; ++j)
+      for (int i = 0; i < L.width; ++i) {
+        const std::size_t p = static_cast<std::size_t>(j) * static_cast<std::size_t>(L.width) + static_cast<std::size_t>(i);
+        for (std::uint32_t f = L.offsets[p]; f < L.offsets[p + 1]; ++f) {
+          const std::uint32_t t = L.triangles[f];
+          if (axis_of[t] != a) continue;  // another axis samples this patch
+          const Triangle& tri = mesh.triangles[t];
+          const FaceNormal& n = normals[t];
+          // 1. The pixel centre on the triangle's plane.
+          const double pu = grid.origin[u] + (i + 0.5) * s, pv = grid.origin[v] + (j + 0.5) * s;
+          const Vec3f A = mesh.positions[tri[0]];
+          const double pa = A[a] - (n.n[u] * (pu - A[u]) + n.n[v] * (pv - A[v])) / n.n[a];
+          Vec3f pos;
+          pos[a] = static_cast<float>(pa), pos[u] = static_cast<float>(pu), pos[v] = static_cast<float>(pv);
+          // 2. Barycentric weights in the image plane (clamped: GL may find a triangle for a
+          //    centre a hair outside it).
+          double w[3];
+          const Vec3f B = mesh.positions[tri[1]], C = mesh.positions[tri[2]];
+          const double det = (double(B[u]) - A[u]) * (double(C[v]) - A[v]) - (double(B[v]) - A[v]) * (double(C[u]) - A[u]);
+          w[1] = ((pu - A[u]) * (double(C[v]) - A[v]) - (pv - A[v]) * (double(C[u]) - A[u])) / det;
+          w[2] = ((double(B[u]) - A[u]) * (pv - A[v]) - (double(B[v]) - A[v]) * (pu - A[u])) / det;
+          w[0] = 1 - w[1] - w[2];
+          double sum = 0;
+          for (double& x : w) sum += (x = std::clamp(x, 0.0, 1.0));
+          for (double& x : w) x /= sum;
+          out.positions.push_back(pos);
+          // 3. Normal, colour, radius.
+          Vec3f normal{static_cast<float>(n.n[0]), static_cast<float>(n.n[1]), static_cast<float>(n.n[2])};
+          if (smooth) {
+            Vec3f m{};
+            for (int k = 0; k < 3; ++k) m = m + mesh.normals[tri[static_cast<std::size_t>(k)]] * static_cast<float>(w[k]);
+            normal = normalized(m, normal);
+          }
+          out.normals.push_back(normal);
+          if (coloured) {
+            double c[3] = {0, 0, 0};
+            for (int k = 0; k < 3; ++k) {
+              const Rgb8 col = mesh.colors[tri[static_cast<std::size_t>(k)]];
+              c[0] += w[k] * col.r, c[1] += w[k] * col.g, c[2] += w[k] * col.b;
+            }
+            out.colors.push_back({static_cast<std::uint8_t>(std::lround(c[0])), static_cast<std::uint8_t>(std::lround(c[1])),
+                                  static_cast<std::uint8_t>(std::lround(c[2]))});
+          }
+          out.radii.push_back(static_cast<float>(0.5 * s * std::sqrt(1 + 1 / (n.n[a] * n.n[a]))));
+          ++kept;
+        }
+      }
+    if (stats) {
+      stats->layers[static_cast<std::size_t>(a)] = L.layers;
+      stats->points[static_cast<std::size_t>(a)] = kept;
+      stats->fragments += L.triangles.size();
+    }
+  }
+  if (stats) {
+    stats->pixel = grid.pixel;
+    stats->degenerate_triangles = static_cast<std::size_t>(std::count(axis_of.begin(), axis_of.end(), -1));
+  }
+  return out;
+}
+
+PointSet sample_mesh(const TriangleMesh& mesh, const SampleOptions& options, const std::string& source, SampleStats* stats) {
+  // 1. A mesh we can sample: triangles, indices in range, finite corners.
+  if (mesh.triangles.empty()) throw InputError("mesh.no_triangles", source, "", "is a mesh without triangles; nothing to sample");
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
+    for (std::uint32_t i : mesh.triangles[t]) {
+      if (i >= mesh.positions.size())
+        throw InputError("mesh.bad_index", source, "triangle " + std::to_string(t),
+                         "uses vertex " + std::to_string(i) + "; the mesh has " + std::to_string(mesh.positions.size()));
+      if (!is_finite(mesh.positions[i]))
+        throw InputError("mesh.nonfinite", source, "vertex " + std::to_string(i),
+                         "has a non-finite coordinate (see --drop-nonfinite)");
+    }
+  if (options.ldi_size < 2 || options.ldi_size > 16000) throw UsageError("the LDI size must be 2..16000 pixels");
+  // 2. Layers by the chosen backend (GL falls back to the CPU when no context can be made).
+  const auto start = std::chrono::steady_clock::now();
+  const SampleGrid grid = sample_grid(mesh, options.ldi_size);
+  SampleStats local;
+  SampleStats& st = stats ? *stats : local;
+  std::array<AxisLayers, 3> layers;
+  st.backend = options.backend;
+  if (options.backend == "gl") {
+    try {
+      layers = peel_layers_gl(mesh, grid, options);
+    } catch (const std::runtime_error& e) {
+      st.backend = "cpu";
+      st.fallback = std::string("GL unavailable (") + e.what() + "), sampled on the CPU";
+      layers = peel_layers_cpu(mesh, grid, options);
+    }
+  } else if (options.backend == "cpu") {
+    layers = peel_layers_cpu(mesh, grid, options);
+  } else {
+    throw UsageError("unknown sampler backend '" + options.backend + "' (gl or cpu)");
+  }
+  PointSet points = points_from_layers(mesh, grid, layers, &st);
+  st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (points.size() == 0)
+    throw InputError("mesh.no_points", source, "", "gave no points at LDI size " + std::to_string(options.ldi_size) +
+                                                       " (all triangles degenerate or smaller than a pixel?)");
+  return points;
+}
+
+}  // namespace qf
