@@ -97,7 +97,8 @@ int run_bake(const ParsedArgs& args) {
   o.lod_screen_height = args.get_double("lod-screen-height", o.lod_screen_height, 1.0, 100000.0);
 
   ReadReport read_report;
-  const PointSet points = load_points(in, args, "bake", read_report);
+  SampleStats sampled;
+  const PointSet points = load_points(in, args, "bake", read_report, &sampled);
   BakeResult r;
   try {
     r = bake(points, o, in);
@@ -143,6 +144,21 @@ int run_bake(const ParsedArgs& args) {
                                                                     {"seconds", canonical_double(static_cast<float>(t.seconds))},
                                                                     {"resident_mb", canonical_double(static_cast<float>(t.resident_bytes / 1048576.0))},
                                                                     {"peak_mb", canonical_double(static_cast<float>(t.peak_bytes / 1048576.0))}});
+    // Mesh inputs: how they were sampled (null for point sets).
+    nlohmann::json sampling;
+    if (!sampled.backend.empty()) {
+      const SampleOptions so = read_sample_options(args);
+      sampling = {{"ldi_size", so.ldi_size},
+                  {"backend_requested", so.backend},
+                  {"backend", sampled.backend},
+                  {"per_axis_triangles", so.per_axis_triangles},
+                  {"pixel", canonical_double(sampled.pixel)},
+                  {"layers", sampled.layers},
+                  {"points_per_axis", sampled.points},
+                  {"degenerate_triangles", sampled.degenerate_triangles},
+                  {"seconds", canonical_double(static_cast<float>(sampled.seconds))}};
+      if (!sampled.fallback.empty()) r.warnings.push_back(sampled.fallback);
+    }
     nlohmann::json report{{"input", in},
                           {"format", read_report.format},
                           {"points", r.points},
@@ -159,6 +175,7 @@ int run_bake(const ParsedArgs& args) {
                             {"lod_file", o.lod_file}}},
                           {"levels", levels},
                           {"stages", stages},
+                          {"sampling", sampling},
                           {"warnings", r.warnings}};
     write_file_atomically(staging + "/report.json", [&](std::ostream& out) { out << report.dump(2) << "\n"; });
     write_file_atomically(staging + "/manifest.json", [&](std::ostream& out) { out << manifest.dump(2) << "\n"; });

@@ -50,7 +50,9 @@ std::vector<OptionSpec> sample_option_specs() {
            "(pixel side = the longest bounding-box extent / N; ~1.7 N^2 points on a sphere)"},
           {"sampler", 0, "gl|cpu", d.backend,
            "mesh inputs: depth peeling with OpenGL (EGL, falls back to cpu without a context) or the CPU reference"},
-          {"per-axis-triangles", 0, "", "", "mesh inputs: draw each triangle only for its own axis (fewer layers, same points)"}};
+          {"all-triangles", 0, "", "",
+           "mesh inputs: draw every triangle on every axis (the paper's basic method; same points, more layers)\n"
+           "instead of each triangle only on the axis its normal is most parallel to"}};
 }
 
 SampleOptions read_sample_options(const ParsedArgs& args) {
@@ -58,7 +60,7 @@ SampleOptions read_sample_options(const ParsedArgs& args) {
   o.ldi_size = static_cast<int>(args.get_int("ldi", o.ldi_size, 2, 16000));
   o.backend = args.get("sampler", o.backend);
   if (o.backend != "gl" && o.backend != "cpu") throw UsageError("--sampler must be gl or cpu, got '" + o.backend + "'");
-  o.per_axis_triangles = args.flag("per-axis-triangles");
+  o.per_axis_triangles = !args.flag("all-triangles");
   return o;
 }
 
@@ -147,6 +149,8 @@ const std::vector<Command>& commands() {
         {{"output", 'o', "OUT", "", "output file (.ply, .qs, .xyz or .pwn); required"},
          {"points", 'n', "N", "16000", "number of points"},
          {"seed", 0, "S", "1", "random seed"},
+         {"mesh", 0, "", "", "write a closed triangle mesh instead (octahedron, cube, sphere; OUT must be .ply)"},
+         {"subdivisions", 0, "N", "16", "--mesh: each face split into N x N triangles"},
          {"quiet", 'q', "", "", "print nothing on success"}},
         1, 1},
        run_generate},
@@ -191,6 +195,14 @@ int run_generate(const ParsedArgs& args) {
   o.points = static_cast<std::size_t>(args.get_int("points", static_cast<long long>(o.points), 1, 100000000));
   o.seed = static_cast<std::uint64_t>(args.get_int("seed", static_cast<long long>(o.seed), 0, (1ll << 62)));
   const std::string out = args.get("output");
+  if (args.flag("mesh")) {
+    if (file_extension(out) != "ply") throw UsageError("generate --mesh writes .ply meshes, not '" + out + "'");
+    const TriangleMesh mesh = generate_mesh(args.positional[0], static_cast<int>(args.get_int("subdivisions", 16, 1, 2000)));
+    write_ply(out, mesh);
+    if (!args.flag("quiet"))
+      std::cerr << "qf-bake generate: " << args.positional[0] << " mesh -> " << out << ": " << mesh.triangles.size() << " triangles\n";
+    return 0;
+  }
   const PointSet points = generate_shape(args.positional[0], o);
   write_point_set(out, points);
   if (!args.flag("quiet"))

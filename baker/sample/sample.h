@@ -24,10 +24,11 @@ struct SampleOptions {
   // Largest side of the layered depth image, pixels: pixel side s = the bounding box's longest
   // extent / ldi_size. 256 gives 50k-200k points on typical models (bunny00 ~110k).
   int ldi_size = 256;
-  // The faster variant (paper 2.1): each axis draws only the triangles whose normal is most
-  // parallel to it. Points are selected by the triangle's normal in both variants, so this gives
-  // the same points with fewer layers.
-  bool per_axis_triangles = false;
+  // The faster variant (paper 2.1), on by default: each axis draws only the triangles whose normal
+  // is most parallel to it. Points are selected by the triangle's normal in both variants, so it
+  // gives the same points with fewer layers (bunny00 at 1000: 3/4/4 layers instead of 10/8/10,
+  // GL 0.87 s instead of 1.58 s).
+  bool per_axis_triangles = true;
   int max_layers = 64;       // a cap per axis: grazing spots can make long, sparse tails
   std::string backend = "gl";  // "gl" or "cpu"
 };

@@ -124,7 +124,62 @@ PointSet crease(const ShapeOptions& o) {
   return p;
 }
 
+// A triangle split into n x n similar ones, appended to `m` with a shared-vertex grid.
+void add_subdivided(TriangleMesh& m, Vec3f a, Vec3f b, Vec3f c, int n, Rgb8 color) {
+  const auto base = static_cast<std::uint32_t>(m.positions.size());
+  auto index = [&](int i, int j) { return base + static_cast<std::uint32_t>(i * (i + 1) / 2 + j); };  // row i has i+1 vertices
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= i; ++j) {
+      const float s = static_cast<float>(i) / static_cast<float>(n), t = i ? static_cast<float>(j) / static_cast<float>(n) : 0.f;
+      m.positions.push_back(a + (b - a) * (s - t) + (c - a) * t);
+      m.colors.push_back(color);
+    }
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j <= i; ++j) {
+      m.triangles.push_back({index(i, j), index(i + 1, j), index(i + 1, j + 1)});
+      if (j < i) m.triangles.push_back({index(i, j), index(i + 1, j + 1), index(i, j + 1)});
+    }
+}
+
 }  // namespace
+
+TriangleMesh generate_mesh(const std::string& name, int subdivisions) {
+  if (subdivisions < 1) throw UsageError("--subdivisions must be at least 1");
+  static const Rgb8 kFace[8] = {{230, 25, 75}, {60, 180, 75}, {255, 225, 25}, {0, 130, 200},
+                                {245, 130, 48}, {145, 30, 180}, {70, 240, 240}, {240, 50, 230}};
+  TriangleMesh m;
+  if (name == "octahedron" || name == "sphere") {
+    // Faces counter-clockwise seen from outside; the sphere projects the octahedron's vertices.
+    for (std::size_t f = 0; f < 8; ++f) {
+      const float sx = (f & 1) ? -1.f : 1.f, sy = (f & 2) ? -1.f : 1.f, sz = (f & 4) ? -1.f : 1.f;
+      Vec3f a{sx, 0, 0}, b{0, sy, 0}, c{0, 0, sz};
+      if (sx * sy * sz < 0) std::swap(b, c);
+      add_subdivided(m, a, b, c, subdivisions, kFace[f]);
+    }
+    if (name == "sphere")
+      for (std::size_t i = 0; i < m.positions.size(); ++i) {
+        m.positions[i] = normalized(m.positions[i]);
+        const Vec3f n = m.positions[i];
+        m.colors[i] = {static_cast<std::uint8_t>(std::lround(127.5f + 127.5f * n.x)), static_cast<std::uint8_t>(std::lround(127.5f + 127.5f * n.y)),
+                       static_cast<std::uint8_t>(std::lround(127.5f + 127.5f * n.z))};
+      }
+  } else if (name == "cube") {
+    for (int axis = 0; axis < 3; ++axis)
+      for (float side : {-1.f, 1.f}) {
+        const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+        Vec3f c[4];
+        const float cu[4] = {-1, 1, 1, -1}, cv[4] = {-1, -1, 1, 1};
+        for (int k = 0; k < 4; ++k) c[k][axis] = side, c[k][u] = cu[k], c[k][v] = cv[k];
+        const Rgb8 col = kFace[static_cast<std::size_t>(2 * axis + (side > 0))];
+        if (side > 0) add_subdivided(m, c[0], c[1], c[2], subdivisions, col), add_subdivided(m, c[0], c[2], c[3], subdivisions, col);
+        else add_subdivided(m, c[0], c[2], c[1], subdivisions, col), add_subdivided(m, c[0], c[3], c[2], subdivisions, col);
+      }
+  } else {
+    throw UsageError("unknown mesh shape '" + name + "'; choose one of octahedron, cube, sphere");
+  }
+  m.comments.push_back("quasiflat sample mesh: " + name + ", " + std::to_string(subdivisions) + " subdivisions");
+  return m;
+}
 
 const std::vector<ShapeInfo>& shape_catalog() {
   static const std::vector<ShapeInfo> c{

@@ -26,4 +26,9 @@ const std::vector<ShapeInfo>& shape_catalog();
 // local spacing). Throws UsageError for an unknown name or points == 0.
 PointSet generate_shape(const std::string& name, const ShapeOptions& options = {});
 
+// The octahedron, cube or sphere as a closed triangle mesh: each flat face (the sphere: each
+// octahedron face, projected) split into subdivisions^2 triangles, wound counter-clockwise seen
+// from outside, with vertex colours. Throws UsageError for other names or subdivisions < 1.
+TriangleMesh generate_mesh(const std::string& name, int subdivisions);
+
 }  // namespace qf

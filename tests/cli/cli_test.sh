@@ -80,9 +80,17 @@ grep -q "radii estimated for 16000" "$work/err" && ok || bad "convert reports es
 # determinism: the same command twice gives the same bytes
 "$bake" generate torus -o "$work/t1.qs" -q && "$bake" generate torus -o "$work/t2.qs" -q
 cmp -s "$work/t1.qs" "$work/t2.qs" && ok || bad "generate is byte-identical across runs"
-# a mesh is not a point set for convert
-expect 1 "convert a mesh" -- "$bake" convert "$shared/data/qsplat/pyr.ply" "$work/pyr.xyz"
-grep -q "convert.mesh_input" "$work/err" && ok || bad "mesh input to convert names its error code"
+# a mesh is sampled into a point set (depth peeling), by either backend, with the same count
+expect 0 "convert a mesh" -- "$bake" convert "$shared/data/qsplat/pyr.ply" "$work/pyr.xyz" --ldi 64
+grep -q "sampled (gl" "$work/err" && ok || bad "convert reports the GL sampling: $(cat "$work/err")"
+expect 0 "convert a mesh on the CPU" -- "$bake" convert "$shared/data/qsplat/pyr.ply" "$work/pyr_cpu.xyz" --ldi 64 --sampler cpu
+n_gl=$(wc -l <"$work/pyr.xyz") n_cpu=$(wc -l <"$work/pyr_cpu.xyz")
+(( n_gl > 5000 && n_gl - n_cpu < 20 && n_cpu - n_gl < 20 )) && ok || bad "GL and CPU sample counts: $n_gl vs $n_cpu"
+expect 2 "convert bad sampler" -- "$bake" convert "$shared/data/qsplat/pyr.ply" "$work/pyr.xyz" --sampler vulkan
+expect 0 "generate a mesh" -- "$bake" generate cube --mesh --subdivisions 2 -o "$work/cube_mesh.ply" -q
+printf "OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n" >"$work/notris.off"
+expect 1 "convert a mesh without triangles" -- "$bake" convert "$work/notris.off" "$work/x.ply"
+grep -q "mesh.no_triangles" "$work/err" && grep -q "notris.off" "$work/err" && ok || bad "mesh without triangles: $(cat "$work/err")"
 # xyz has no normals: .qs needs them
 printf "0 0 0\n1 0 0\n0 1 0\n" >"$work/p.xyz"
 expect 1 "xyz without normals -> qs" -- "$bake" convert "$work/p.xyz" "$work/x.qs"
@@ -119,7 +127,7 @@ expect 0 "analyze variation" -- "$bake" analyze "$work/oct.ply" -o "$work/anv.pl
 cut -d' ' -f1-3 "$work/oct2.xyz" >"$work/bare.xyz"
 expect 0 "analyze xyz without normals" -- "$bake" analyze "$work/bare.xyz" -o "$work/anx.ply"
 grep -q "normals: estimated (PCA)" "$work/err" && ok || bad "analyze reports estimated normals"
-expect 1 "analyze a mesh" -- "$bake" analyze "$shared/data/qsplat/pyr.ply" -o "$work/m.ply"
+expect 0 "analyze a mesh" -- "$bake" analyze "$shared/data/qsplat/pyr.ply" -o "$work/m.ply" --ldi 32 -q
 expect 2 "analyze bad classifier" -- "$bake" analyze "$work/oct.ply" -o "$work/x.ply" --classifier magic
 expect 2 "analyze k out of range" -- "$bake" analyze "$work/oct.ply" -o "$work/x.ply" -k 1
 printf "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\nproperty float z\nend_header\n" >"$work/empty.ply"
@@ -189,6 +197,10 @@ for l in m["levels"]:
     assert l["primitives"] > 0 and l["texels"] > 0 and l["error"] > 0 and l["max_screen_pixels"] > 0
 assert m["levels"][0]["primitives"] > m["levels"][1]["primitives"]
 PY
+# a mesh input: sampled, then baked; the report carries the sampling
+expect 0 "bake a mesh" -- "$bake" "$work/cube_mesh.ply" -o "$work/meshbake" --primitives 50 --ldi 64 -q
+/usr/bin/python3 -c 'import json,sys; s=json.load(open(sys.argv[1]))["sampling"]; assert s["ldi_size"]==64 and s["backend"]=="gl" and sum(s["points_per_axis"])>1000' \
+  "$work/meshbake/report.json" 2>"$work/err" && ok || bad "bake report sampling: $(tail -1 "$work/err")"
 # --lod-file: every level in one MSFT_lod file beside the level files, deterministic too
 expect 0 "bake --lod-file" -- "$bake" "$work/oct.ply" -o "$work/lod1" --primitives 200,20 --lod-file -q
 expect 0 "bake --lod-file, 1 thread" -- "$bake" "$work/oct.ply" -o "$work/lod2" --primitives 200,20 --lod-file --threads 1 -q

@@ -1,0 +1,246 @@
+// Depth-peeled mesh sampling (baker/sample): point counts against projected areas, points on the
+// surface, even layer counts on closed meshes, GL against the CPU reference, the per-axis variant,
+// density across axis-set borders, determinism, bad meshes.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <tuple>
+
+#include "analysis/neighborhoods.h"
+#include "core/error.h"
+#include "io/model_io.h"
+#include "sample/sample.h"
+#include "shapes/shapes.h"
+
+namespace qf {
+namespace {
+
+SampleOptions options(const std::string& backend, int ldi = 200) {
+  SampleOptions o;
+  o.backend = backend;
+  o.ldi_size = ldi;
+  return o;
+}
+
+// The expected point count: each triangle's area projected on its sampling axis, in pixels.
+double expected_points(const TriangleMesh& m, float pixel) {
+  double sum = 0;
+  for (std::size_t t = 0; t < m.triangles.size(); ++t) {
+    const int a = sampling_axis(m, t);
+    if (a < 0) continue;
+    const Vec3f p = m.positions[m.triangles[t][0]], q = m.positions[m.triangles[t][1]], r = m.positions[m.triangles[t][2]];
+    sum += 0.5 * std::fabs(double(cross(q - p, r - p)[a]));
+  }
+  return sum / (double(pixel) * pixel);
+}
+
+// Pixels with an odd number of layers (a closed surface is entered and left: always even).
+std::size_t odd_pixels(const std::array<AxisLayers, 3>& layers) {
+  std::size_t odd = 0;
+  for (const AxisLayers& L : layers)
+    for (std::size_t p = 0; p + 1 < L.offsets.size(); ++p) odd += (L.offsets[p + 1] - L.offsets[p]) % 2;
+  return odd;
+}
+
+// Fragments (axis, pixel, layer, triangle) found by one backend and not the other, over all found.
+double layer_mismatch(const std::array<AxisLayers, 3>& a, const std::array<AxisLayers, 3>& b, std::size_t* differing = nullptr) {
+  std::size_t diff = 0, total = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    const AxisLayers &A = a[static_cast<std::size_t>(axis)], &B = b[static_cast<std::size_t>(axis)];
+    for (std::size_t p = 0; p + 1 < A.offsets.size(); ++p) {
+      std::vector<std::uint32_t> x(A.triangles.begin() + A.offsets[p], A.triangles.begin() + A.offsets[p + 1]);
+      std::vector<std::uint32_t> y(B.triangles.begin() + B.offsets[p], B.triangles.begin() + B.offsets[p + 1]);
+      total += std::max(x.size(), y.size());
+      if (x != y) diff += std::max(x.size(), y.size());
+    }
+  }
+  if (differing) *differing = diff;
+  return total ? double(diff) / double(total) : 0.0;
+}
+
+// Points of `a` with no point of `b` at the same pixel centre and depth (within 1e-3 pixel): a
+// point's two image coordinates are the same floats in both backends, only its depth may differ.
+std::size_t unmatched_points(const PointSet& a, const PointSet& b, float pixel) {
+  std::multimap<std::tuple<int, float, float>, float> index;
+  for (Vec3f q : b.positions)
+    for (int axis = 0; axis < 3; ++axis) index.insert({{axis, q[(axis + 1) % 3], q[(axis + 2) % 3]}, q[axis]});
+  std::size_t missing = 0;
+  for (Vec3f q : a.positions) {
+    bool found = false;
+    for (int axis = 0; axis < 3 && !found; ++axis) {
+      auto range = index.equal_range({axis, q[(axis + 1) % 3], q[(axis + 2) % 3]});
+      for (auto it = range.first; it != range.second && !found; ++it) found = std::fabs(it->second - q[axis]) <= 1e-3f * pixel;
+    }
+    missing += !found;
+  }
+  return missing;
+}
+
+TEST(Sample, CountsMatchProjectedAreaOnAnalyticMeshes) {
+  for (const char* shape : {"octahedron", "cube", "sphere"}) {
+    const TriangleMesh m = generate_mesh(shape, 12);
+    for (const char* backend : {"cpu", "gl"}) {
+      SampleStats st;
+      const PointSet p = sample_mesh(m, options(backend), shape, &st);
+      const double expected = expected_points(m, st.pixel);
+      EXPECT_NEAR(double(p.size()) / expected, 1.0, 0.02) << shape << " " << backend << ": " << p.size() << " vs " << expected;
+      EXPECT_EQ(st.backend, backend);
+      ASSERT_EQ(p.normals.size(), p.size());
+      ASSERT_EQ(p.radii.size(), p.size());
+      ASSERT_EQ(p.colors.size(), p.size());
+    }
+  }
+}
+
+TEST(Sample, PointsLieOnTheSurface) {
+  // Exactly on the flat faces; on the sphere mesh within its chord error.
+  for (const char* backend : {"cpu", "gl"}) {
+    const PointSet oct = sample_mesh(generate_mesh("octahedron", 8), options(backend), "oct");
+    double worst = 0;
+    for (Vec3f q : oct.positions) worst = std::max(worst, std::fabs(std::fabs(q.x) + std::fabs(q.y) + std::fabs(q.z) - 1.0));
+    EXPECT_LT(worst, 2e-6) << backend;
+    const PointSet cube = sample_mesh(generate_mesh("cube", 4), options(backend), "cube");
+    worst = 0;
+    for (Vec3f q : cube.positions) {
+      const double m = std::max({std::fabs(q.x), std::fabs(q.y), std::fabs(q.z)});
+      worst = std::max(worst, std::fabs(m - 1.0));
+    }
+    EXPECT_LT(worst, 2e-6) << backend;
+    const TriangleMesh sm = generate_mesh("sphere", 16);
+    const PointSet sphere = sample_mesh(sm, options(backend), "sphere");
+    // No point of the inscribed mesh is nearer the centre than the nearest triangle plane.
+    double inner = 1;
+    for (const Triangle& t : sm.triangles) {
+      const Vec3f a = sm.positions[t[0]], n = normalized(cross(sm.positions[t[1]] - a, sm.positions[t[2]] - a));
+      inner = std::min(inner, double(std::fabs(dot(n, a))));
+    }
+    for (std::size_t i = 0; i < sphere.size(); ++i) {
+      const double r = length(sphere.positions[i]);
+      ASSERT_LE(r, 1 + 1e-6) << backend;
+      ASSERT_GE(r, inner - 1e-6) << backend;
+      ASSERT_GT(dot(sphere.normals[i], sphere.positions[i]), 0.9f) << backend << ": outward normals";
+    }
+  }
+}
+
+TEST(Sample, ClosedMeshesHaveEvenLayerCounts) {
+  for (const char* shape : {"octahedron", "cube", "sphere"}) {
+    const TriangleMesh m = generate_mesh(shape, 10);
+    const SampleGrid g = sample_grid(m, 157);  // an odd size: pixel centres off the symmetry planes
+    SampleOptions all;  // every triangle on every axis: each pixel sees the whole closed surface
+    all.per_axis_triangles = false;
+    EXPECT_EQ(odd_pixels(peel_layers_cpu(m, g, all)), 0u) << shape << " cpu";
+    EXPECT_EQ(odd_pixels(peel_layers_gl(m, g, all)), 0u) << shape << " gl";
+  }
+}
+
+TEST(Sample, GlMatchesTheCpuReference) {
+  for (const char* shape : {"octahedron", "cube", "sphere"}) {
+    const TriangleMesh m = generate_mesh(shape, 10);
+    const SampleGrid g = sample_grid(m, 157);
+    const auto cpu = peel_layers_cpu(m, g, {}), gl = peel_layers_gl(m, g, {});
+    for (int a = 0; a < 3; ++a) EXPECT_EQ(cpu[static_cast<std::size_t>(a)].layers, gl[static_cast<std::size_t>(a)].layers);
+    // Only pixel centres within GL's 1/256-pixel vertex snapping of an edge may differ.
+    EXPECT_LT(layer_mismatch(cpu, gl), 0.002) << shape;
+  }
+}
+
+TEST(Sample, PerAxisTrianglesGiveTheSamePointsWithFewerLayers) {
+  const TriangleMesh m = generate_mesh("sphere", 12);
+  SampleOptions all = options("cpu"), per_axis = options("cpu");
+  all.per_axis_triangles = false;
+  SampleStats sa, sp;
+  const PointSet a = sample_mesh(m, all, "sphere", &sa), p = sample_mesh(m, per_axis, "sphere", &sp);
+  ASSERT_EQ(a.size(), p.size());
+  EXPECT_TRUE(a.positions == p.positions);
+  EXPECT_LT(sp.fragments, sa.fragments * 6 / 10);  // the sphere: 55%
+  SampleStats gp;
+  per_axis.backend = "gl";
+  const PointSet g = sample_mesh(m, per_axis, "sphere", &gp);
+  EXPECT_NEAR(double(g.size()), double(p.size()), 0.001 * double(p.size()));
+}
+
+TEST(Sample, DensityIsContinuousAcrossAxisSetBorders) {
+  // Points near a border (two normal components within 2% of the largest) on either side have
+  // the same nearest-neighbour spacing: sampling switches axis where both axes see the patch alike.
+  const PointSet p = sample_mesh(generate_mesh("sphere", 24), options("cpu", 300), "sphere");
+  const Neighborhoods nb = k_nearest(p.positions, 1);
+  double side[3] = {0, 0, 0};
+  std::size_t count[3] = {0, 0, 0};
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Vec3f q = p.positions[i];
+    const float ax[3] = {std::fabs(q.x), std::fabs(q.y), std::fabs(q.z)};
+    const int a = static_cast<int>(std::max_element(ax, ax + 3) - ax);
+    float second = 0;
+    for (int k = 0; k < 3; ++k)
+      if (k != a) second = std::max(second, ax[k]);
+    if (ax[a] - second > 0.02f * ax[a] || ax[a] > 0.9f) continue;  // not near a border (nor a pole)
+    side[a] += double(nb.distances[nb.offsets[i]]);
+    ++count[a];
+  }
+  for (int a = 0; a < 3; ++a) ASSERT_GT(count[a], 100u);
+  const double m0 = side[0] / count[0], m1 = side[1] / count[1], m2 = side[2] / count[2];
+  EXPECT_NEAR(m0 / m1, 1.0, 0.05);
+  EXPECT_NEAR(m1 / m2, 1.0, 0.05);
+}
+
+TEST(Sample, GlIsDeterministic) {
+  const TriangleMesh m = generate_mesh("sphere", 12);
+  const PointSet a = sample_mesh(m, options("gl"), "s"), b = sample_mesh(m, options("gl"), "s");
+  EXPECT_TRUE(a.positions == b.positions);
+}
+
+TEST(Sample, BadMeshesGetClearErrors) {
+  TriangleMesh m = generate_mesh("cube", 1);
+  auto code = [](const TriangleMesh& mesh) {
+    try {
+      sample_mesh(mesh, options("cpu"), "bad.off");
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("bad.off"), std::string::npos);
+      return e.code();
+    }
+    return std::string("no error");
+  };
+  TriangleMesh empty = m;
+  empty.triangles.clear();
+  EXPECT_EQ(code(empty), "mesh.no_triangles");
+  TriangleMesh index = m;
+  index.triangles[3][1] = 999;
+  EXPECT_EQ(code(index), "mesh.bad_index");
+  TriangleMesh nan = m;
+  nan.positions[2].y = NAN;
+  EXPECT_EQ(code(nan), "mesh.nonfinite");
+  TriangleMesh flat = m;
+  for (Vec3f& p : flat.positions) p = {0, 0, 0};
+  EXPECT_EQ(code(flat), "mesh.no_points");
+}
+
+// Real meshes (scripts/fetch-models.sh): GL against the CPU, the share of differing fragments.
+TEST(SampleModels, GlMatchesCpuOnCgalMeshes) {
+  const char* env = std::getenv("QF_MODELS");
+  const std::string dir = env ? env : std::string(std::getenv("HOME") ? std::getenv("HOME") : "") + "/.cache/quasiflat/models";
+  if (!std::filesystem::exists(dir + "/bunny00.off")) GTEST_SKIP() << "models not fetched (scripts/fetch-models.sh)";
+  for (const char* name : {"bunny00.off", "elephant.off", "fandisk.off"}) {
+    const TriangleMesh m = read_model(dir + "/" + name).mesh;
+    const SampleGrid g = sample_grid(m, 400);
+    const auto cpu = peel_layers_cpu(m, g, {}), gl = peel_layers_gl(m, g, {});
+    std::size_t differing = 0;
+    const double share = layer_mismatch(cpu, gl, &differing);
+    const PointSet pc = points_from_layers(m, g, cpu), pg = points_from_layers(m, g, gl);
+    const std::size_t only_cpu = unmatched_points(pc, pg, g.pixel), only_gl = unmatched_points(pg, pc, g.pixel);
+    std::printf("%s at 400: %zu / %zu points (cpu / gl); %zu only on the CPU, %zu only on GL (%.4f%%); "
+                "fragments in pixels whose layers differ: %.3f%%\n",
+                name, pc.size(), pg.size(), only_cpu, only_gl, 100.0 * double(only_cpu + only_gl) / double(pc.size()), 100 * share);
+    // Edge ties pick the triangle on the other side of an edge: the same surface point, and the
+    // same point unless the two triangles are sampled on different axes.
+    EXPECT_LT(double(only_cpu + only_gl), 0.001 * double(pc.size())) << name;
+    EXPECT_LT(share, 0.01) << name;
+  }
+}
+
+}  // namespace
+}  // namespace qf
