@@ -118,6 +118,7 @@ struct Renderer::Impl {
   const ImpostorScene* impostor = nullptr;
   const SplatScene* splats = nullptr;
   const MeshScene* mesh = nullptr;
+  const PointImpostorScene* points = nullptr;
   std::vector<GLuint> straight, premultiplied;  // per impostor texture
   GLuint disc = 0;
   std::vector<float> splat_pos, splat_nrm, splat_uv;  // 4 corners per splat
@@ -152,6 +153,7 @@ struct Renderer::Impl {
     impostor = nullptr;
     splats = nullptr;
     mesh = nullptr;
+    points = nullptr;
   }
 
   void setup_camera_and_light(const Camera& c, bool lighting) {
@@ -179,6 +181,8 @@ struct Renderer::Impl {
   void draw_impostor(const Camera& c, const DrawSettings& s, DrawStats& stats);
   void draw_splats();
   void draw_mesh();
+  void draw_points(const Camera& c, DrawStats& stats);
+  std::vector<std::uint8_t> point_rgba;
   void composite_background(Rgb8 bg);
 };
 
@@ -252,6 +256,56 @@ void Renderer::set_scene(const MeshScene& scene) {
     rgba[i * 4 + 1] = scene.colors[i].g;
     rgba[i * 4 + 2] = scene.colors[i].b;
   }
+}
+
+void Renderer::set_scene(const PointImpostorScene& scene, const MeshScene* mesh) {
+  if (mesh) set_scene(*mesh);  // the mesh's colours, for the fade
+  else impl_->free_textures();
+  impl_->points = &scene;
+  impl_->point_rgba.assign(scene.colors.size() * 4, 255);
+  for (std::size_t i = 0; i < scene.colors.size(); ++i) {
+    impl_->point_rgba[i * 4] = scene.colors[i].r;
+    impl_->point_rgba[i * 4 + 1] = scene.colors[i].g;
+    impl_->point_rgba[i * 4 + 2] = scene.colors[i].b;
+  }
+}
+
+// The first N = N0 (s Z0 / d)^2 of the randomly ordered points, as smooth 2.5-pixel points: each
+// then stands for about one pixel of surface (paper 5), and discs of 2.5 pixels leave
+// exp(-pi 2.5^2 / 4) = 0.7% of it uncovered (2 pixels: 4%, visible specks). d is the distance to the bounding box's
+// centre. Nearer than s Z0 all N0 are drawn, fading over the mesh (when there is one) down to
+// 0.7 s Z0, where the mesh alone remains.
+void Renderer::Impl::draw_points(const Camera& c, DrawStats& stats) {
+  const PointImpostorScene& p = *points;
+  const float d = length(c.eye - p.bounds.center());
+  const double z0 = c.height / (2 * std::tan(0.5 * double(c.fovy_degrees) * 3.14159265358979323846 / 180));
+  const double d_switch = p.pixel * z0;
+  float weight = 1;
+  if (mesh) weight = static_cast<float>(std::clamp((d - 0.7 * d_switch) / (0.3 * d_switch), 0.0, 1.0));
+  stats.points_weight = weight;
+  if (weight < 1) draw_mesh();
+  if (weight <= 0) return;
+  const std::size_t n = points_to_draw(p.positions.size(), p.pixel, d, c.height, c.fovy_degrees);
+  stats.points = n;
+  const auto alpha = static_cast<std::uint8_t>(std::lround(weight * 255));
+  for (std::size_t i = 0; i < n; ++i) point_rgba[i * 4 + 3] = alpha;
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glEnable(GL_POINT_SMOOTH);
+  glPointSize(2.5f);
+  glEnable(GL_BLEND);  // smooth points are antialiased through their coverage alpha
+  glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+  glEnableClientState(GL_VERTEX_ARRAY);
+  glEnableClientState(GL_NORMAL_ARRAY);
+  glEnableClientState(GL_COLOR_ARRAY);
+  glVertexPointer(3, GL_FLOAT, 0, p.positions.data());
+  glNormalPointer(GL_FLOAT, 0, p.normals.data());
+  glColorPointer(4, GL_UNSIGNED_BYTE, 0, point_rgba.data());
+  glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(n));
+  glDisableClientState(GL_COLOR_ARRAY);
+  glDisable(GL_BLEND);
+  glDisable(GL_POINT_SMOOTH);
+  ++stats.other_draws;
 }
 
 // Oriented, depth-tested splats, as QSplat draws them: opaque discs cut by the alpha test.
@@ -410,6 +464,7 @@ DrawStats Renderer::draw(const Camera& camera, const DrawSettings& s) {
   m.setup_camera_and_light(camera, s.lighting);
   DrawStats stats;
   if (m.impostor) m.draw_impostor(camera, s, stats);
+  else if (m.points) m.draw_points(camera, stats);
   else if (m.splats) m.draw_splats();
   else if (m.mesh) m.draw_mesh();
   glDisable(GL_TEXTURE_2D);

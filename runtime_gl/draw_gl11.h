@@ -25,6 +25,8 @@ struct DrawSettings {
 
 struct DrawStats {
   std::size_t color_draws = 0, lock_draws = 0, other_draws = 0, state_changes = 0;
+  std::size_t points = 0;      // point impostor: points drawn
+  float points_weight = 0;     // point impostor: 1 = points only, 0 = mesh only, between = fading
 };
 
 class Renderer {
@@ -41,6 +43,9 @@ class Renderer {
   void set_scene(const ImpostorScene& scene);
   void set_scene(const SplatScene& scene);
   void set_scene(const MeshScene& scene);
+  // A point impostor; with `mesh`, closer than the switch distance s Z0 it fades to the mesh
+  // (from s Z0 down to 0.7 s Z0), so there is no popping.
+  void set_scene(const PointImpostorScene& scene, const MeshScene* mesh = nullptr);
 
   // Draws one frame (cleared first). Returns what was drawn.
   DrawStats draw(const Camera& camera, const DrawSettings& settings);

@@ -4,6 +4,8 @@
 
 #include <tiny_gltf.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 
@@ -87,9 +89,8 @@ Image to_image(const tinygltf::Image& img, const std::string& path) {
 // A 1x1 white texture for materials without a base colour texture.
 Image white_image() { return Image{1, 1, {255, 255, 255, 255}}; }
 
-}  // namespace
 
-ImpostorScene load_gltf(const std::string& path) {
+tinygltf::Model read_gltf(const std::string& path) {
   if (!std::filesystem::is_regular_file(path)) throw InputError("file.unreadable", path, "", "cannot open: no such file");
   tinygltf::Model m;
   tinygltf::TinyGLTF loader;
@@ -100,7 +101,61 @@ ImpostorScene load_gltf(const std::string& path) {
     while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
     fail(path, "parse", err.empty() ? "not a readable glTF file" : err);
   }
+  return m;
+}
 
+// Linear 16-bit glTF vertex colour -> the sRGB byte the fixed-function pipeline draws.
+std::uint8_t srgb_byte(std::uint16_t linear) {
+  const double l = linear / 65535.0;
+  const double v = l <= 0.0031308 ? 12.92 * l : 1.055 * std::pow(l, 1 / 2.4) - 0.055;
+  return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255));
+}
+
+}  // namespace
+
+std::optional<PointImpostorScene> load_point_impostor(const std::string& path) {
+  const tinygltf::Model m = read_gltf(path);
+  const auto ext = m.extensions.find("QF_point_impostor");
+  if (ext == m.extensions.end()) return std::nullopt;
+  PointImpostorScene s;
+  s.pixel = static_cast<float>(ext->second.Get("pixelSize").GetNumberAsDouble());
+  if (!(s.pixel > 0)) fail(path, "points", "QF_point_impostor.pixelSize must be positive");
+  AccessorReader read{m, path};
+  for (const tinygltf::Mesh& mesh : m.meshes)
+    for (const tinygltf::Primitive& prim : mesh.primitives) {
+      if (prim.mode != TINYGLTF_MODE_POINTS || !s.positions.empty()) continue;
+      const auto pos = prim.attributes.find("POSITION"), nrm = prim.attributes.find("NORMAL"), col = prim.attributes.find("COLOR_0");
+      if (pos == prim.attributes.end()) fail(path, "points", "the POINTS primitive has no POSITION");
+      const std::vector<float> p = read.floats(pos->second, 3);
+      for (std::size_t i = 0; i + 2 < p.size(); i += 3) s.positions.push_back({p[i], p[i + 1], p[i + 2]});
+      if (nrm != prim.attributes.end()) {
+        const std::vector<float> n = read.floats(nrm->second, 3);
+        for (std::size_t i = 0; i + 2 < n.size(); i += 3) s.normals.push_back({n[i], n[i + 1], n[i + 2]});
+      }
+      if (col != prim.attributes.end()) {
+        const tinygltf::Accessor& a = m.accessors.at(static_cast<std::size_t>(col->second));
+        if (a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT || a.type != TINYGLTF_TYPE_VEC4)
+          fail(path, "points", "COLOR_0 of a point impostor must be normalized unsigned short RGBA");
+        std::size_t stride = 0;
+        const unsigned char* b = read.base(a, 8, stride);
+        for (std::size_t i = 0; i < a.count; ++i) {
+          std::uint16_t c[4];
+          std::memcpy(c, b + i * stride, 8);
+          s.colors.push_back({srgb_byte(c[0]), srgb_byte(c[1]), srgb_byte(c[2])});
+        }
+      }
+    }
+  if (s.positions.empty()) fail(path, "points", "has QF_point_impostor but no POINTS primitive with points");
+  if ((!s.normals.empty() && s.normals.size() != s.positions.size()) || (!s.colors.empty() && s.colors.size() != s.positions.size()))
+    fail(path, "points", "NORMAL/COLOR_0 counts differ from POSITION's");
+  if (s.normals.empty()) s.normals.assign(s.positions.size(), Vec3f{0, 0, 1});
+  if (s.colors.empty()) s.colors.assign(s.positions.size(), kBaseColor);
+  for (Vec3f q : s.positions) s.bounds.add(q);
+  return s;
+}
+
+ImpostorScene load_gltf(const std::string& path) {
+  const tinygltf::Model m = read_gltf(path);
   ImpostorScene s;
   AccessorReader read{m, path};
   // Textures: one per glTF image, plus a white one at the end for untextured materials.

@@ -2,6 +2,7 @@
 // present) and reference scenes made from an input point set or mesh.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "core/types.h"
@@ -13,6 +14,10 @@ namespace qf::render {
 // and neighbours); without it every pair of triangles (or lone triangle) is an item with its own
 // centroid and normal, and no neighbours. Throws InputError ("render.gltf.*") naming the file.
 ImpostorScene load_gltf(const std::string& path);
+
+// A point impostor (.glb with QF_point_impostor), or nothing when the file lacks the extension.
+// Throws InputError ("render.gltf.*") for unreadable files and malformed point data.
+std::optional<PointImpostorScene> load_point_impostor(const std::string& path);
 
 // A reference scene of a point set: radii estimated from the spacing where missing (as the baker
 // does), normals estimated by the surface analysis where missing.

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <thread>
 
@@ -33,18 +34,24 @@ using nlohmann::ordered_json;
 
 // Whatever a file holds, ready to draw.
 struct AnyScene {
-  enum Kind { kImpostor, kSplats, kMesh } kind = kImpostor;
+  enum Kind { kImpostor, kSplats, kMesh, kPoints } kind = kImpostor;
   ImpostorScene impostor;
   SplatScene splats;
   MeshScene mesh;
-  Bounds bounds() const { return kind == kImpostor ? impostor.bounds : kind == kSplats ? splats.bounds : mesh.bounds; }
+  PointImpostorScene points;
+  std::optional<MeshScene> fade_mesh;  // kPoints: the mesh it fades to when near (--mesh)
+  Bounds bounds() const {
+    return kind == kImpostor ? impostor.bounds : kind == kSplats ? splats.bounds : kind == kPoints ? points.bounds : mesh.bounds;
+  }
   std::string describe() const {
     if (kind == kImpostor) return std::to_string(impostor.items.size()) + " quads";
+    if (kind == kPoints) return std::to_string(points.positions.size()) + " impostor points";
     if (kind == kSplats) return std::to_string(splats.positions.size()) + " points";
     return std::to_string(mesh.indices.size() / 3) + " triangles";
   }
   void attach(Renderer& r) const {
     if (kind == kImpostor) r.set_scene(impostor);
+    else if (kind == kPoints) r.set_scene(points, fade_mesh ? &*fade_mesh : nullptr);
     else if (kind == kSplats) r.set_scene(splats);
     else r.set_scene(mesh);
   }
@@ -54,7 +61,12 @@ AnyScene load_scene(const std::string& path) {
   AnyScene s;
   const std::string ext = file_extension(path);
   if (ext == "glb" || ext == "gltf") {
-    s.impostor = load_gltf(path);
+    if (std::optional<PointImpostorScene> p = load_point_impostor(path)) {
+      s.kind = AnyScene::kPoints;
+      s.points = std::move(*p);
+    } else {
+      s.impostor = load_gltf(path);
+    }
     return s;
   }
   Model m = read_model(path);
@@ -154,7 +166,8 @@ const CommandSpec& render_spec() {
                       {"distance", 0, "D", "framing the bounding sphere", "camera distance from the centre, world units"},
                       {"view", 0, "I/N", "", "view I (0-based) of N spread over the sphere (replaces azimuth/elevation)"},
                       {"turntable", 0, "N", "", "N views around the object in one contact sheet"},
-                      {"frame", 0, "FILE", "", "frame the camera on this file's bounding sphere (e.g. the reference)"}});
+                      {"frame", 0, "FILE", "", "frame the camera on this file's bounding sphere (e.g. the reference)"},
+                      {"mesh", 0, "MESH", "", "point impostors: the mesh they fade to nearer than s Z0 (pixel side x focal length in pixels)"}});
     s.min_positional = s.max_positional = 1;
     return s;
   }();
@@ -181,7 +194,13 @@ int run_render(const ParsedArgs& a) {
   const DrawSettings settings = read_draw_settings(a);
   const float fov = static_cast<float>(a.get_double("fov", 30, 1, 170));
   const float distance = static_cast<float>(a.get_double("distance", 0, 0, 1e30));
-  const AnyScene scene = load_scene(a.positional[0]);
+  AnyScene scene = load_scene(a.positional[0]);
+  if (a.has("mesh")) {
+    if (scene.kind != AnyScene::kPoints) throw UsageError("--mesh goes with a point impostor (.glb with QF_point_impostor)");
+    AnyScene m = load_scene(a.get("mesh"));
+    if (m.kind != AnyScene::kMesh) throw UsageError("--mesh: " + a.get("mesh") + " is not a triangle mesh");
+    scene.fade_mesh = std::move(m.mesh);
+  }
   const Sphere sphere = framing_sphere(a, scene);
 
   HeadlessContext context;
@@ -211,6 +230,8 @@ int run_render(const ParsedArgs& a) {
   std::cerr << "qf-render: " << a.positional[0] << " (" << scene.describe() << ") -> " << a.get("output") << " (" << out.width << "x"
             << out.height << ", " << method_name(settings.method);
   if (scene.kind == AnyScene::kImpostor) std::cerr << ", last view: " << stats.color_draws << " colour draws, " << stats.lock_draws << " locks";
+  if (scene.kind == AnyScene::kPoints)
+    std::cerr << ", last view: " << stats.points << " points drawn, point weight " << stats.points_weight;
   std::cerr << ")\n";
   return 0;
 }

@@ -4,6 +4,8 @@
 
 #include <cstdint>
 #include <string>
+#include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "core/types.h"
@@ -58,6 +60,23 @@ struct MeshScene {
   std::vector<std::uint32_t> indices;
   Bounds bounds;
 };
+
+// A point impostor (paper section 5): points in random order, so drawing the first N thins the
+// sampling evenly; `pixel` is the LDI pixel side s the points were sampled at.
+struct PointImpostorScene {
+  std::vector<Vec3f> positions, normals;
+  std::vector<Rgb8> colors;  // sRGB, as drawn
+  float pixel = 0;
+  Bounds bounds;
+};
+
+// How many of a point impostor's n0 points to draw at distance d (paper 5): N = N0 (s Z0 / d)^2
+// with Z0 = H / (2 tan(fov / 2)), at most N0 (closer than s Z0 the mesh takes over).
+inline std::size_t points_to_draw(std::size_t n0, float pixel, float distance, int height, float fovy_degrees) {
+  const double z0 = height / (2 * std::tan(0.5 * double(fovy_degrees) * 3.14159265358979323846 / 180));
+  const double n = double(n0) * std::pow(pixel * z0 / std::max(double(distance), 1e-30), 2);
+  return n >= double(n0) ? n0 : static_cast<std::size_t>(n);
+}
 
 // The colour of uncoloured inputs: the same constant the baker puts into the textures
 // (TextureOptions::base_color), so references and impostors of such inputs match.

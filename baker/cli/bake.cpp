@@ -54,6 +54,8 @@ CommandSpec bake_spec() {
                     {"lod-file", 0, "", "", "also write STEM_lods.glb: every level in one file under MSFT_lod (finest in the scene,\n"
                                              "the others as its lower LODs, switched by MSFT_screencoverage)"},
                     {"lod-screen-height", 0, "PX", "1080", "screen height the MSFT_screencoverage values assume"},
+                    {"point-seed", 0, "S", "1", "mesh inputs: seed of the point impostor's random order (STEM_points.glb)"},
+                    {"no-points", 0, "", "", "mesh inputs: do not write the point impostor"},
                     drop_nonfinite_option(),
                     {"quiet", 'q', "", "", "print nothing on success"}},
                    1, 1};
@@ -133,11 +135,29 @@ int run_bake(const ParsedArgs& args) {
       write_bytes(staging + "/" + lod_name, r.lod_glb);
       files.push_back(lod_name);
     }
+    // Mesh inputs: the sampled points, randomly permuted, as a point impostor.
+    nlohmann::json point_entry;
+    if (!sampled.backend.empty() && !args.flag("no-points")) {
+      PointImpostorInfo info;
+      info.pixel = sampled.pixel;
+      info.seed = static_cast<std::uint64_t>(args.get_int("point-seed", 1, 0, 1ll << 62));
+      const std::string name = stem + "_points.glb";
+      write_bytes(staging + "/" + name, encode_point_glb(permuted(points, point_permutation(points.size(), info.seed)), info));
+      files.push_back(name);
+      point_entry = {{"file", name},
+                     {"points", points.size()},
+                     {"pixel_size", canonical_double(info.pixel)},
+                     {"seed", info.seed},
+                     {"switch_distance", canonical_double(static_cast<float>(point_switch_distance(info)))},
+                     {"switch_screen_height", info.reference_height},
+                     {"switch_fov_degrees", canonical_double(info.reference_fov_degrees)}};
+    }
     nlohmann::json manifest{{"input", in},
                             {"points", r.points},
                             {"bounding_box_diagonal", canonical_double(r.diagonal)},
                             {"levels", levels},
                             {"generator", "quasiflat qf-bake"}};
+    if (!point_entry.is_null()) manifest["point_impostor"] = point_entry;
     if (!lod_name.empty()) manifest["lod_file"] = {{"file", lod_name}, {"screen_height", o.lod_screen_height}};
     nlohmann::json stages = nlohmann::json::array();
     for (const StageTime& t : r.times) stages.push_back({{"stage", t.stage},
@@ -197,6 +217,9 @@ int run_bake(const ParsedArgs& args) {
     double total = 0;
     for (const StageTime& t : r.times) total += t.seconds;
     std::fprintf(stderr, "  time: %.3f s\n", total);
+    if (!sampled.backend.empty())
+      std::fprintf(stderr, "  sampled: LDI %d (%s), pixel %.4g, layers %d/%d/%d, %.3f s\n", read_sample_options(args).ldi_size,
+                   sampled.backend.c_str(), sampled.pixel, sampled.layers[0], sampled.layers[1], sampled.layers[2], sampled.seconds);
     for (const std::string& w : r.warnings) std::fprintf(stderr, "  warning: %s\n", w.c_str());
   }
   return 0;

@@ -237,6 +237,64 @@ std::vector<std::uint8_t> encode_glb(const ImpostorLevel& level, const GltfOptio
   return write_glb(m);
 }
 
+double point_switch_distance(const PointImpostorInfo& info) {
+  const double z0 = info.reference_height / (2 * std::tan(0.5 * info.reference_fov_degrees * 3.14159265358979323846 / 180));
+  return info.pixel * z0;
+}
+
+std::vector<std::uint8_t> encode_point_glb(const PointSet& p, const PointImpostorInfo& info, const GltfOptions& options) {
+  if (p.size() == 0) throw std::invalid_argument("encode_point_glb: no points");
+  tinygltf::Model m = new_model(options);
+  m.samplers.clear();  // no textures here
+  std::vector<float> pos, nrm;
+  for (Vec3f q : p.positions) pos.insert(pos.end(), {q.x, q.y, q.z});
+  for (Vec3f q : p.normals) nrm.insert(nrm.end(), {q.x, q.y, q.z});
+  tinygltf::Primitive prim;
+  prim.mode = TINYGLTF_MODE_POINTS;
+  prim.attributes["POSITION"] = add_floats(m, pos, 3, TINYGLTF_TYPE_VEC3, true);
+  if (!nrm.empty()) prim.attributes["NORMAL"] = add_floats(m, nrm, 3, TINYGLTF_TYPE_VEC3, false);
+  if (p.has_colors()) {
+    // glTF vertex colours are linear; the sampled colours are the file's sRGB bytes, converted
+    // here to 16 bits (8 would band the darks), RGBA so elements stay 4-byte aligned.
+    std::vector<std::uint16_t> rgba;
+    auto linear = [](std::uint8_t c) {
+      const double v = c / 255.0;
+      const double l = v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
+      return static_cast<std::uint16_t>(std::lround(l * 65535));
+    };
+    for (Rgb8 c : p.colors) rgba.insert(rgba.end(), {linear(c.r), linear(c.g), linear(c.b), 65535});
+    tinygltf::Accessor a;
+    a.bufferView = add_view(m, rgba.data(), rgba.size() * sizeof(std::uint16_t), TINYGLTF_TARGET_ARRAY_BUFFER);
+    a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+    a.normalized = true;
+    a.count = p.size();
+    a.type = TINYGLTF_TYPE_VEC4;
+    m.accessors.push_back(a);
+    prim.attributes["COLOR_0"] = static_cast<int>(m.accessors.size() - 1);
+  }
+  tinygltf::Mesh mesh;
+  mesh.name = "point_impostor";
+  mesh.primitives.push_back(prim);
+  m.meshes.push_back(mesh);
+  tinygltf::Node node;
+  node.name = mesh.name;
+  node.mesh = 0;
+  m.nodes.push_back(node);
+  tinygltf::Scene scene;
+  scene.nodes.push_back(0);
+  m.scenes.push_back(scene);
+  m.defaultScene = 0;
+  m.extensions[kPointExtension] = Value(Value::Object{
+      {"pixelSize", Value(canonical_double(info.pixel))},
+      {"pointCount", Value(static_cast<int>(p.size()))},
+      {"seed", Value(static_cast<double>(info.seed))},
+      {"switchDistance", Value(canonical_double(static_cast<float>(point_switch_distance(info))))},
+      {"switchScreenHeight", Value(info.reference_height)},
+      {"switchFovDegrees", Value(canonical_double(info.reference_fov_degrees))}});
+  m.extensionsUsed.push_back(kPointExtension);
+  return write_glb(m);
+}
+
 std::vector<std::uint8_t> encode_lod_glb(const std::vector<const ImpostorLevel*>& levels,
                                          const std::vector<double>& screen_coverage, const GltfOptions& options) {
   if (levels.empty() || screen_coverage.size() != levels.size())

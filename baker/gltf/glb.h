@@ -54,4 +54,20 @@ std::vector<std::uint8_t> encode_glb(const ImpostorLevel& level, const GltfOptio
 std::vector<std::uint8_t> encode_lod_glb(const std::vector<const ImpostorLevel*>& levels,
                                          const std::vector<double>& screen_coverage, const GltfOptions& options = {});
 
+// A point impostor (paper section 5): the permuted sample points as one glTF POINTS primitive
+// (POSITION, NORMAL, COLOR_0 when coloured; the order is the permutation, so any prefix is an even
+// thinning) and the root extension QF_point_impostor: the LDI pixel side s, the point count N0,
+// the seed, and the distance at which a runtime switches to the mesh on a reference screen
+// (N = N0 (s Z0 / d)^2 points at distance d, Z0 = H / (2 tan(fov / 2)); all N0 at d = s Z0).
+constexpr const char* kPointExtension = "QF_point_impostor";
+struct PointImpostorInfo {
+  float pixel = 0;         // s, model units
+  std::uint64_t seed = 1;  // of the permutation
+  int reference_height = 1080;     // screen height, pixels, of switchDistance
+  float reference_fov_degrees = 60;  // vertical field of view of switchDistance
+};
+std::vector<std::uint8_t> encode_point_glb(const PointSet& permuted_points, const PointImpostorInfo& info,
+                                           const GltfOptions& options = {});
+double point_switch_distance(const PointImpostorInfo& info);  // s Z0 on the reference screen
+
 }  // namespace qf

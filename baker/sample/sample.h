@@ -84,6 +84,12 @@ PointSet points_from_layers(const TriangleMesh& mesh, const SampleGrid& grid, co
 PointSet sample_mesh(const TriangleMesh& mesh, const SampleOptions& options, const std::string& source,
                      SampleStats* stats = nullptr);
 
+// Point impostors (paper section 5): a random permutation of the n sampled points, the same for
+// the same seed on every platform (splitmix64 + Fisher-Yates). Drawing any prefix of the permuted
+// set gives an evenly thinned sampling.
+std::vector<std::uint32_t> point_permutation(std::size_t n, std::uint64_t seed);
+PointSet permuted(const PointSet& points, const std::vector<std::uint32_t>& order);
+
 // The axis a triangle is sampled on: the largest |normal component|, the lowest axis on ties; -1
 // for a degenerate triangle.
 int sampling_axis(const TriangleMesh& mesh, std::size_t triangle);

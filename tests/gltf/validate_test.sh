@@ -8,7 +8,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 "$writer" "$work" || exit 1
 files=("$work"/*.glb)
-[[ ${#files[@]} -ge 7 ]] || { echo "expected 7 .glb files, got ${#files[@]}"; exit 1; }
+[[ ${#files[@]} -ge 8 ]] || { echo "expected 8 .glb files, got ${#files[@]}"; exit 1; }
 node "$validator/validate.js" "${files[@]}"
 status=$?
 # The extension block of every file, and the schema's examples, against the extension's schema.
@@ -20,6 +20,11 @@ schema_dir, files = sys.argv[1], sys.argv[2:]
 schema = json.load(open(os.path.join(schema_dir, "glTF.QF_impostor_level.schema.json")))
 check = jsonschema.Draft202012Validator(schema)
 bad = 0
+point_dir = os.path.join(schema_dir, "..", "..", "QF_point_impostor", "schema")
+point_check = jsonschema.Draft202012Validator(json.load(open(os.path.join(point_dir, "glTF.QF_point_impostor.schema.json"))))
+for f in sorted(glob.glob(os.path.join(point_dir, "examples", "*.json"))):
+    if point_check.is_valid(json.load(open(f))) != os.path.basename(f).startswith("valid"):
+        print(f, "is misjudged by the schema"); bad = 1
 for f in files:
     data = open(f, "rb").read()
     length = struct.unpack_from("<I", data, 12)[0]
@@ -33,6 +38,17 @@ for f in files:
         if len(doc["scenes"][0]["nodes"]) != 1 or len(ids) != 2 or len(cov) != 3 or cov != sorted(cov, reverse=True) \
                 or "extensions" in doc or doc["extensionsUsed"] != ["MSFT_lod"]:
             print(f, "MSFT_lod structure wrong"); bad = 1
+        continue
+    if f.endswith("_points.glb"):
+        # A point impostor: one POINTS primitive, the extension's count matches the accessor's.
+        ext = doc["extensions"]["QF_point_impostor"]
+        for e in point_check.iter_errors(ext):
+            print(f, "QF_point_impostor:", e.message); bad = 1
+        prim = doc["meshes"][0]["primitives"][0]
+        count = doc["accessors"][prim["attributes"]["POSITION"]]["count"]
+        if prim.get("mode") != 0 or ext["pointCount"] != count or not ext["pixelSize"] > 0 or not ext["switchDistance"] > 0 \
+                or "QF_point_impostor" in doc.get("extensionsRequired", []):
+            print(f, "QF_point_impostor structure wrong"); bad = 1
         continue
     ext = doc["extensions"]["QF_impostor_level"]
     errors = list(check.iter_errors(ext))

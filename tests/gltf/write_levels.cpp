@@ -9,6 +9,7 @@
 #include "domains/merge.h"
 #include "gltf/glb.h"
 #include "primitives/texture.h"
+#include "sample/sample.h"
 #include "shapes/shapes.h"
 
 using namespace qf;
@@ -47,5 +48,14 @@ int main(int argc, char** argv) {
       write_bytes(dir + "/torus_lods.glb", encode_lod_glb({&a, &b, &c}, {0.25, 0.1, 0}));
     }
   }
+  // A point impostor of a sampled mesh (COLOR_0 as 16-bit linear RGBA, mode POINTS).
+  SampleOptions so;
+  so.backend = "cpu";
+  so.ldi_size = 64;
+  SampleStats st;
+  const PointSet sampled = sample_mesh(generate_mesh("sphere", 6), so, "sphere", &st);
+  PointImpostorInfo info;
+  info.pixel = st.pixel;
+  write_bytes(dir + "/sphere_points.glb", encode_point_glb(permuted(sampled, point_permutation(sampled.size(), 1)), info));
   return 0;
 }

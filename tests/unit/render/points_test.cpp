@@ -1,0 +1,129 @@
+// Point impostors (paper 5): the seeded permutation, the .glb round trip (order and colours kept),
+// the number of points drawn by distance, and renders against the mesh: the thinned points cover
+// the mesh's silhouette, and nearer than s Z0 they fade to the mesh.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+
+#include <unistd.h>
+
+#include "gl/egl.h"
+#include "gltf/glb.h"
+#include "runtime_gl/camera.h"
+#include "runtime_gl/draw_gl11.h"
+#include "runtime_gl/loader.h"
+#include "sample/sample.h"
+#include "shapes/shapes.h"
+
+namespace qf::render {
+namespace {
+
+TEST(PointImpostor, PermutationIsSeededAndComplete) {
+  const auto a = point_permutation(1000, 7), b = point_permutation(1000, 7), c = point_permutation(1000, 8);
+  EXPECT_EQ(a, b);
+  EXPECT_NE(a, c);
+  auto sorted = a;
+  std::sort(sorted.begin(), sorted.end());
+  for (std::uint32_t i = 0; i < 1000; ++i) ASSERT_EQ(sorted[i], i);
+  // Evenly thinned: the first tenth holds about a tenth of each half of the input.
+  const auto low = std::count_if(a.begin(), a.begin() + 100, [](std::uint32_t i) { return i < 500; });
+  EXPECT_NEAR(double(low), 50.0, 15.0);
+}
+
+TEST(PointImpostor, PointsToDrawFollowsTheInverseSquare) {
+  // s Z0 = 0.01 * 512 / (2 tan 15 deg) = 9.55: all points there and nearer, a quarter at twice that.
+  const float d0 = 0.01f * 512 / (2 * std::tan(15 * 3.14159265f / 180));
+  EXPECT_EQ(points_to_draw(10000, 0.01f, d0 * 0.5f, 512, 30), 10000u);
+  EXPECT_NEAR(double(points_to_draw(10000, 0.01f, d0 * 2, 512, 30)), 2500.0, 2.0);
+  EXPECT_NEAR(double(points_to_draw(10000, 0.01f, d0 * 10, 512, 30)), 100.0, 1.0);
+}
+
+struct Fixture {
+  TriangleMesh mesh = generate_mesh("sphere", 12);
+  SampleStats stats;
+  PointSet points;
+  std::string path;
+  Fixture() {
+    SampleOptions o;
+    o.backend = "cpu";
+    o.ldi_size = 256;
+    const PointSet sampled = sample_mesh(mesh, o, "sphere", &stats);
+    points = permuted(sampled, point_permutation(sampled.size(), 3));
+    PointImpostorInfo info;
+    info.pixel = stats.pixel;
+    info.seed = 3;
+    const std::vector<std::uint8_t> glb = encode_point_glb(points, info);
+    path = (std::filesystem::temp_directory_path() / ("qf_points_" + std::to_string(::getpid()) + ".glb")).string();
+    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(glb.data()), static_cast<std::streamsize>(glb.size()));
+  }
+  ~Fixture() { std::filesystem::remove(path); }
+};
+
+TEST(PointImpostor, GlbRoundTripKeepsOrderAndColours) {
+  Fixture f;
+  const std::optional<PointImpostorScene> s = load_point_impostor(f.path);
+  ASSERT_TRUE(s);
+  EXPECT_FLOAT_EQ(s->pixel, f.stats.pixel);
+  ASSERT_EQ(s->positions.size(), f.points.size());
+  EXPECT_TRUE(s->positions == f.points.positions);
+  int worst = 0;
+  for (std::size_t i = 0; i < s->colors.size(); ++i) {
+    worst = std::max(worst, std::abs(int(s->colors[i].r) - int(f.points.colors[i].r)));
+    worst = std::max(worst, std::abs(int(s->colors[i].g) - int(f.points.colors[i].g)));
+  }
+  EXPECT_LE(worst, 1);  // sRGB -> 16-bit linear -> sRGB
+}
+
+// Share of the mesh's pixels the other image covers (non-background), and of its own pixels.
+double covered_share(const Image& mesh, const Image& other) {
+  std::size_t in = 0, both = 0;
+  for (std::size_t p = 0; p < mesh.rgba.size(); p += 4) {
+    const bool m = mesh.rgba[p] | mesh.rgba[p + 1] | mesh.rgba[p + 2], o = other.rgba[p] | other.rgba[p + 1] | other.rgba[p + 2];
+    in += m;
+    both += m && o;
+  }
+  return in ? double(both) / double(in) : 0.0;
+}
+
+TEST(PointImpostor, ThinnedPointsCoverTheMeshAndFadeToItWhenNear) {
+  Fixture f;
+  const PointImpostorScene scene = *load_point_impostor(f.path);
+  const MeshScene mesh = mesh_scene(f.mesh, "sphere");
+  HeadlessContext context;
+  const int size = 256;
+  Renderer points_r(size, size), mesh_r(size, size);
+  points_r.set_scene(scene, &mesh);
+  mesh_r.set_scene(mesh);
+  const Sphere sphere = bounding_sphere(mesh.bounds);
+  const double d_switch = scene.pixel * size / (2 * std::tan(15 * 3.14159265358979323846 / 180));
+  DrawSettings s;
+  // Far: a fraction of the points, still covering the sphere's disc.
+  for (double factor : {1.5, 3.0}) {
+    const Camera c = orbit_camera(sphere, orbit_direction(30, 20), static_cast<float>(d_switch * factor), size, size, 30);
+    const DrawStats st = points_r.draw(c, s);
+    const Image pts = points_r.read_pixels();
+    mesh_r.draw(c, s);
+    const Image ref = mesh_r.read_pixels();
+    EXPECT_LT(st.points, scene.positions.size()) << factor;
+    EXPECT_NEAR(double(st.points), double(scene.positions.size()) / (factor * factor), 0.02 * double(scene.positions.size()));
+    EXPECT_GT(covered_share(ref, pts), 0.97) << "distance " << factor << " s Z0";
+    // 2.5-pixel points reach ~1.25 pixels past the silhouette: 6% of a 42-pixel disc at 3 s Z0.
+    EXPECT_GT(covered_share(pts, ref), 0.9) << "no points outside the mesh's silhouette";
+    EXPECT_EQ(st.points_weight, 1.0f);
+  }
+  // Near: the mesh alone at 0.6 s Z0, fading in between.
+  Camera c = orbit_camera(sphere, orbit_direction(30, 20), static_cast<float>(d_switch * 0.6), size, size, 30);
+  EXPECT_EQ(points_r.draw(c, s).points_weight, 0.0f);
+  const Image near_pts = points_r.read_pixels();
+  mesh_r.draw(c, s);
+  EXPECT_EQ(near_pts.rgba, mesh_r.read_pixels().rgba);
+  c = orbit_camera(sphere, orbit_direction(30, 20), static_cast<float>(d_switch * 0.85), size, size, 30);
+  const float w = points_r.draw(c, s).points_weight;
+  EXPECT_GT(w, 0.3f);
+  EXPECT_LT(w, 0.7f);
+}
+
+}  // namespace
+}  // namespace qf::render
