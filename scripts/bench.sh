@@ -3,12 +3,13 @@
 # on 100k and 1M synthetic points and on bunny00, with 2 threads and 1; the AMG stages; render
 # speed of every method on the baked levels of bunny00 and fandisk beside their point sets; the
 # whole bake (per stage: time, memory, resampler texels/s) on bunny00, kitten and a 1M-point torus.
-# usage: scripts/bench.sh [io|analysis|amg|render|bake]...   (default: all)
+# mesh sampling (GL and CPU depth peeling at LDI 100 and 1000) on cow, elephant, fandisk, bunny00.
+# usage: scripts/bench.sh [io|analysis|amg|render|bake|sample]...   (default: all)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh >/dev/null
 what=("$@")
-[[ ${#what[@]} -eq 0 ]] && what=(io analysis amg render bake)
+[[ ${#what[@]} -eq 0 ]] && what=(io analysis amg render bake sample)
 for w in "${what[@]}"; do
   case $w in
     io) build/bin/qf-bench-io ;;
@@ -60,7 +61,11 @@ for w in "${what[@]}"; do
         done
       done
       rm -rf "$tmp" ;;
-    *) echo "unknown benchmark '$w' (io, analysis, amg, render, bake)" >&2; exit 2 ;;
+    sample)
+      models=$(scripts/fetch-models.sh cow.off bunny00.off elephant.off fandisk.off | tail -1)
+      echo "mesh sampling: layers per axis, points and seconds (best of 3) per backend and variant"
+      build/bin/qf-bench-sample "$models/cow.off" "$models/elephant.off" "$models/fandisk.off" "$models/bunny00.off" ;;
+    *) echo "unknown benchmark '$w' (io, analysis, amg, render, bake, sample)" >&2; exit 2 ;;
   esac
   echo
 done

@@ -22,7 +22,8 @@ namespace qf {
 
 struct SampleOptions {
   // Largest side of the layered depth image, pixels: pixel side s = the bounding box's longest
-  // extent / ldi_size. 256 gives 50k-200k points on typical models (bunny00 ~110k).
+  // extent / ldi_size. 256 gives 50k-500k points on typical models (elephant 67k, bunny00 133k,
+  // cube 393k: about 1.7 ldi_size^2 for compact shapes).
   int ldi_size = 256;
   // The faster variant (paper 2.1), on by default: each axis draws only the triangles whose normal
   // is most parallel to it. Points are selected by the triangle's normal in both variants, so it
@@ -30,7 +31,11 @@ struct SampleOptions {
   // GL 0.87 s instead of 1.58 s).
   bool per_axis_triangles = true;
   int max_layers = 64;       // a cap per axis: grazing spots can make long, sparse tails
-  std::string backend = "gl";  // "gl" or "cpu"
+  // "cpu" (default) or "gl". On the 2-core build machines (Mesa llvmpipe, no GPU) the CPU
+  // rasterizer is faster at every size measured (bunny00 at LDI 1000: 0.29 s vs 0.56 s; at 100:
+  // 0.015 s vs 0.12 s, scripts/bench.sh sample) and its points do not depend on the Mesa version,
+  // which keeps bakes byte-identical across machines. GL gives the same points but 0.01%.
+  std::string backend = "cpu";
 };
 
 // One axis' layered depth image, as triangle ids: for pixel p (row-major, row 0 at the grid's
