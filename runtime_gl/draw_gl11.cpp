@@ -119,6 +119,7 @@ struct Renderer::Impl {
   const SplatScene* splats = nullptr;
   const MeshScene* mesh = nullptr;
   const PointImpostorScene* points = nullptr;
+  const ClusterScene* cluster = nullptr;
   std::vector<GLuint> straight, premultiplied;  // per impostor texture
   GLuint disc = 0;
   std::vector<float> splat_pos, splat_nrm, splat_uv;  // 4 corners per splat
@@ -154,6 +155,7 @@ struct Renderer::Impl {
     splats = nullptr;
     mesh = nullptr;
     points = nullptr;
+    cluster = nullptr;
   }
 
   void setup_camera_and_light(const Camera& c, bool lighting) {
@@ -182,6 +184,7 @@ struct Renderer::Impl {
   void draw_splats();
   void draw_mesh();
   void draw_points(const Camera& c, DrawStats& stats);
+  void draw_thick_lines(const Camera& c, DrawStats& stats);
   std::vector<std::uint8_t> point_rgba;
   void composite_background(Rgb8 bg);
 };
@@ -267,6 +270,47 @@ void Renderer::set_scene(const PointImpostorScene& scene, const MeshScene* mesh)
     impl_->point_rgba[i * 4] = scene.colors[i].r;
     impl_->point_rgba[i * 4 + 1] = scene.colors[i].g;
     impl_->point_rgba[i * 4 + 2] = scene.colors[i].b;
+  }
+}
+
+void Renderer::set_scene(const ClusterScene& scene) {
+  set_scene(scene.mesh);
+  impl_->cluster = &scene;
+}
+
+void Renderer::Impl::draw_thick_lines(const Camera& c, DrawStats& stats) {
+  const ClusterScene& sc = *cluster;
+  const double per_distance = 2 * std::tan(0.5 * double(c.fovy_degrees) * 3.14159265358979323846 / 180) / c.height;
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  for (std::size_t e = 0; e < sc.thickness.size(); ++e) {
+    const Vec3f a = sc.line_positions[2 * e], b = sc.line_positions[2 * e + 1];
+    const double r = length((a + b) * 0.5f - c.eye) * per_distance;  // R: model size of a pixel there
+    const float width = static_cast<float>(std::clamp(sc.thickness[e] / r, 1.0, 64.0));
+    // Perpendicular to the line, in the plane of the line and the eye, towards the eye.
+    const Vec3f n = normalized(cross(cross(a - c.eye, b - c.eye), b - a));
+    glLineWidth(width);
+    glBegin(GL_LINES);
+    glNormal3f(n.x, n.y, n.z);
+    for (int k = 0; k < 2; ++k) {
+      const Rgb8 col = sc.line_colors[2 * e + static_cast<std::size_t>(k)];
+      glColor3ub(col.r, col.g, col.b);
+      const Vec3f p = k ? b : a;
+      glVertex3f(p.x, p.y, p.z);
+    }
+    glEnd();
+    ++stats.other_draws;
+  }
+  glLineWidth(1);
+  if (!sc.points.empty()) {
+    glDisable(GL_LIGHTING);
+    glPointSize(1);
+    glBegin(GL_POINTS);
+    for (std::size_t i = 0; i < sc.points.size(); ++i) {
+      glColor3ub(sc.point_colors[i].r, sc.point_colors[i].g, sc.point_colors[i].b);
+      glVertex3f(sc.points[i].x, sc.points[i].y, sc.points[i].z);
+    }
+    glEnd();
   }
 }
 
@@ -466,7 +510,10 @@ DrawStats Renderer::draw(const Camera& camera, const DrawSettings& s) {
   if (m.impostor) m.draw_impostor(camera, s, stats);
   else if (m.points) m.draw_points(camera, stats);
   else if (m.splats) m.draw_splats();
-  else if (m.mesh) m.draw_mesh();
+  else if (m.mesh) {
+    m.draw_mesh();
+    if (m.cluster) m.draw_thick_lines(camera, stats);
+  }
   glDisable(GL_TEXTURE_2D);
   glDisable(GL_ALPHA_TEST);
   if (additive) m.composite_background(s.background);

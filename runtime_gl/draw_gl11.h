@@ -46,6 +46,10 @@ class Renderer {
   // A point impostor; with `mesh`, closer than the switch distance s Z0 it fades to the mesh
   // (from s Z0 down to 0.7 s Z0), so there is no popping.
   void set_scene(const PointImpostorScene& scene, const MeshScene* mesh = nullptr);
+  // A vertex-clustering LOD: its triangles, thick lines thickness / R pixels wide (R = the model
+  // size of a pixel at the line's distance) lit with the dynamic normal (V1 - C) x (V2 - C) x
+  // (V2 - V1) of paper 3.3.2, and its points.
+  void set_scene(const ClusterScene& scene);
 
   // Draws one frame (cleared first). Returns what was drawn.
   DrawStats draw(const Camera& camera, const DrawSettings& settings);

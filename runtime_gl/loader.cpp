@@ -154,6 +154,76 @@ std::optional<PointImpostorScene> load_point_impostor(const std::string& path) {
   return s;
 }
 
+namespace {
+
+// COLOR_0 as written by the baker (normalized 16-bit linear RGBA) -> sRGB bytes; `fallback` when absent.
+std::vector<Rgb8> read_colors(const tinygltf::Model& m, const tinygltf::Primitive& prim, const std::string& path, std::size_t n) {
+  const auto col = prim.attributes.find("COLOR_0");
+  if (col == prim.attributes.end()) return std::vector<Rgb8>(n, kBaseColor);
+  const tinygltf::Accessor& a = m.accessors.at(static_cast<std::size_t>(col->second));
+  if (a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT || a.type != TINYGLTF_TYPE_VEC4 || a.count != n)
+    fail(path, "colors", "COLOR_0 must be normalized unsigned short RGBA, one per vertex");
+  AccessorReader read{m, path};
+  std::size_t stride = 0;
+  const unsigned char* b = read.base(a, 8, stride);
+  std::vector<Rgb8> out;
+  for (std::size_t i = 0; i < a.count; ++i) {
+    std::uint16_t c[4];
+    std::memcpy(c, b + i * stride, 8);
+    out.push_back({srgb_byte(c[0]), srgb_byte(c[1]), srgb_byte(c[2])});
+  }
+  return out;
+}
+
+std::vector<Vec3f> read_vec3(const AccessorReader& read, const tinygltf::Primitive& prim, const char* name) {
+  std::vector<Vec3f> out;
+  const auto it = prim.attributes.find(name);
+  if (it == prim.attributes.end()) return out;
+  const std::vector<float> f = read.floats(it->second, 3);
+  for (std::size_t i = 0; i + 2 < f.size(); i += 3) out.push_back({f[i], f[i + 1], f[i + 2]});
+  return out;
+}
+
+}  // namespace
+
+std::optional<ClusterScene> load_cluster_lod(const std::string& path) {
+  const tinygltf::Model m = read_gltf(path);
+  if (m.nodes.empty() || !m.nodes[0].extras.Has("cellWidth")) return std::nullopt;
+  ClusterScene s;
+  s.cell = static_cast<float>(m.nodes[0].extras.Get("cellWidth").GetNumberAsDouble());
+  AccessorReader read{m, path};
+  for (const tinygltf::Mesh& mesh : m.meshes)
+    for (const tinygltf::Primitive& prim : mesh.primitives) {
+      const std::vector<Vec3f> pos = read_vec3(read, prim, "POSITION");
+      const std::vector<Rgb8> col = read_colors(m, prim, path, pos.size());
+      if (prim.mode == TINYGLTF_MODE_TRIANGLES) {
+        std::vector<Vec3f> nrm = read_vec3(read, prim, "NORMAL");
+        if (nrm.size() != pos.size()) fail(path, "mesh", "cluster LOD triangles need one NORMAL per vertex");
+        const auto base = static_cast<std::uint32_t>(s.mesh.positions.size());
+        for (std::size_t i = 0; i < pos.size(); ++i) s.mesh.indices.push_back(base + static_cast<std::uint32_t>(i));
+        s.mesh.positions.insert(s.mesh.positions.end(), pos.begin(), pos.end());
+        s.mesh.normals.insert(s.mesh.normals.end(), nrm.begin(), nrm.end());
+        s.mesh.colors.insert(s.mesh.colors.end(), col.begin(), col.end());
+      } else if (prim.mode == TINYGLTF_MODE_LINE) {
+        const auto th = prim.attributes.find("_THICKNESS");
+        if (th == prim.attributes.end()) fail(path, "lines", "cluster LOD lines need _THICKNESS");
+        const std::vector<float> t = read.floats(th->second, 1);
+        if (t.size() != pos.size() || pos.size() % 2) fail(path, "lines", "_THICKNESS needs one value per line vertex");
+        s.line_positions.insert(s.line_positions.end(), pos.begin(), pos.end());
+        s.line_colors.insert(s.line_colors.end(), col.begin(), col.end());
+        for (std::size_t i = 0; i < t.size(); i += 2) s.thickness.push_back(t[i]);
+      } else if (prim.mode == TINYGLTF_MODE_POINTS) {
+        s.points.insert(s.points.end(), pos.begin(), pos.end());
+        s.point_colors.insert(s.point_colors.end(), col.begin(), col.end());
+      }
+    }
+  for (const auto* v : {&s.mesh.positions, &s.line_positions, &s.points})
+    for (Vec3f q : *v) s.bounds.add(q);
+  s.mesh.bounds = s.bounds;
+  if (s.bounds.empty()) fail(path, "mesh", "a cluster LOD without geometry");
+  return s;
+}
+
 ImpostorScene load_gltf(const std::string& path) {
   const tinygltf::Model m = read_gltf(path);
   ImpostorScene s;

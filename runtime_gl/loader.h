@@ -19,6 +19,10 @@ ImpostorScene load_gltf(const std::string& path);
 // Throws InputError ("render.gltf.*") for unreadable files and malformed point data.
 std::optional<PointImpostorScene> load_point_impostor(const std::string& path);
 
+// A vertex-clustering LOD (.glb written by `qf-bake cluster`: node extras cellWidth), or nothing
+// for other files. Throws InputError ("render.gltf.*") for unreadable files.
+std::optional<ClusterScene> load_cluster_lod(const std::string& path);
+
 // A reference scene of a point set: radii estimated from the spacing where missing (as the baker
 // does), normals estimated by the surface analysis where missing.
 SplatScene splat_scene(PointSet points, const std::string& source = "");

@@ -34,24 +34,33 @@ using nlohmann::ordered_json;
 
 // Whatever a file holds, ready to draw.
 struct AnyScene {
-  enum Kind { kImpostor, kSplats, kMesh, kPoints } kind = kImpostor;
+  enum Kind { kImpostor, kSplats, kMesh, kPoints, kCluster } kind = kImpostor;
+  ClusterScene cluster;
   ImpostorScene impostor;
   SplatScene splats;
   MeshScene mesh;
   PointImpostorScene points;
   std::optional<MeshScene> fade_mesh;  // kPoints: the mesh it fades to when near (--mesh)
   Bounds bounds() const {
-    return kind == kImpostor ? impostor.bounds : kind == kSplats ? splats.bounds : kind == kPoints ? points.bounds : mesh.bounds;
+    return kind == kImpostor  ? impostor.bounds
+           : kind == kSplats  ? splats.bounds
+           : kind == kPoints  ? points.bounds
+           : kind == kCluster ? cluster.bounds
+                              : mesh.bounds;
   }
   std::string describe() const {
     if (kind == kImpostor) return std::to_string(impostor.items.size()) + " quads";
     if (kind == kPoints) return std::to_string(points.positions.size()) + " impostor points";
+    if (kind == kCluster)
+      return std::to_string(cluster.mesh.indices.size() / 3) + " triangles, " + std::to_string(cluster.thickness.size()) +
+             " thick edges, " + std::to_string(cluster.points.size()) + " points";
     if (kind == kSplats) return std::to_string(splats.positions.size()) + " points";
     return std::to_string(mesh.indices.size() / 3) + " triangles";
   }
   void attach(Renderer& r) const {
     if (kind == kImpostor) r.set_scene(impostor);
     else if (kind == kPoints) r.set_scene(points, fade_mesh ? &*fade_mesh : nullptr);
+    else if (kind == kCluster) r.set_scene(cluster);
     else if (kind == kSplats) r.set_scene(splats);
     else r.set_scene(mesh);
   }
@@ -64,6 +73,9 @@ AnyScene load_scene(const std::string& path) {
     if (std::optional<PointImpostorScene> p = load_point_impostor(path)) {
       s.kind = AnyScene::kPoints;
       s.points = std::move(*p);
+    } else if (std::optional<ClusterScene> c = load_cluster_lod(path)) {
+      s.kind = AnyScene::kCluster;
+      s.cluster = std::move(*c);
     } else {
       s.impostor = load_gltf(path);
     }

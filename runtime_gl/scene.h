@@ -70,6 +70,20 @@ struct PointImpostorScene {
   Bounds bounds;
 };
 
+// A vertex-clustering LOD mesh (seed 002): its triangles as a mesh, its thick edges (two vertices
+// each, thickness in model units: drawn thickness / R pixels wide, R = the model size of a pixel)
+// and its isolated points.
+struct ClusterScene {
+  MeshScene mesh;
+  std::vector<Vec3f> line_positions;  // 2 per edge
+  std::vector<Rgb8> line_colors;      // 2 per edge
+  std::vector<float> thickness;       // per edge
+  std::vector<Vec3f> points;
+  std::vector<Rgb8> point_colors;
+  float cell = 0;
+  Bounds bounds;
+};
+
 // How many of a point impostor's n0 points to draw at distance d (paper 5): N = N0 (s Z0 / d)^2
 // with Z0 = H / (2 tan(fov / 2)), at most N0 (closer than s Z0 the mesh takes over).
 inline std::size_t points_to_draw(std::size_t n0, float pixel, float distance, int height, float fovy_degrees) {

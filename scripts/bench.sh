@@ -4,12 +4,13 @@
 # speed of every method on the baked levels of bunny00 and fandisk beside their point sets; the
 # whole bake (per stage: time, memory, resampler texels/s) on bunny00, kitten and a 1M-point torus.
 # mesh sampling (GL and CPU depth peeling at LDI 100 and 1000) on cow, elephant, fandisk, bunny00.
-# usage: scripts/bench.sh [io|analysis|amg|render|bake|sample]...   (default: all)
+# vertex clustering (vertices/s per level) on bunny00, the dragon and a 1M-triangle sphere.
+# usage: scripts/bench.sh [io|analysis|amg|render|bake|sample|cluster]...   (default: all)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh >/dev/null
 what=("$@")
-[[ ${#what[@]} -eq 0 ]] && what=(io analysis amg render bake sample)
+[[ ${#what[@]} -eq 0 ]] && what=(io analysis amg render bake sample cluster)
 for w in "${what[@]}"; do
   case $w in
     io) build/bin/qf-bench-io ;;
@@ -65,7 +66,11 @@ for w in "${what[@]}"; do
       models=$(scripts/fetch-models.sh cow.off bunny00.off elephant.off fandisk.off | tail -1)
       echo "mesh sampling: layers per axis, points and seconds (best of 3) per backend and variant"
       build/bin/qf-bench-sample "$models/cow.off" "$models/elephant.off" "$models/fandisk.off" "$models/bunny00.off" ;;
-    *) echo "unknown benchmark '$w' (io, analysis, amg, render, bake, sample)" >&2; exit 2 ;;
+    cluster)
+      models=$(scripts/fetch-models.sh bunny00.off ChineseDragon-10kv.off | tail -1)
+      echo "vertex clustering: per level (cell = diagonal / 128, 32, 8), one thread; grading + sort once per mesh"
+      OMP_NUM_THREADS=1 build/bin/qf-bench-cluster "$models/bunny00.off" "$models/ChineseDragon-10kv.off" sphere ;;
+    *) echo "unknown benchmark '$w' (io, analysis, amg, render, bake, sample, cluster)" >&2; exit 2 ;;
   esac
   echo
 done

@@ -14,6 +14,18 @@
 
 namespace qf::cli {
 
+std::vector<std::string> split_list(const std::string& s) {
+  std::vector<std::string> out;
+  std::size_t a = 0;
+  while (a <= s.size()) {
+    std::size_t b = s.find(',', a);
+    if (b == std::string::npos) b = s.size();
+    if (b > a) out.push_back(s.substr(a, b - a));
+    a = b + 1;
+  }
+  return out;
+}
+
 OptionSpec drop_nonfinite_option() {
   return {"drop-nonfinite", 0, "", "",
           "drop points (or mesh vertices and their triangles) with NaN/Inf coordinates and report how many, "
@@ -158,6 +170,7 @@ const std::vector<Command>& commands() {
       {analyze_spec(), run_analyze},
       {decompose_spec(), run_decompose},
       {bake_spec(), run_bake},
+      {cluster_spec(), run_cluster},
   };
   return table;
 }

@@ -25,6 +25,9 @@ int run_generate(const ParsedArgs& args);
 int run_analyze(const ParsedArgs& args);
 CommandSpec analyze_spec();
 
+// "a,b,,c" -> {"a", "b", "c"}: the comma-separated list options.
+std::vector<std::string> split_list(const std::string& s);
+
 // Shared option: --drop-nonfinite (every command that reads input files).
 OptionSpec drop_nonfinite_option();
 
@@ -54,5 +57,7 @@ CommandSpec decompose_spec();
 int run_decompose(const ParsedArgs& args);
 CommandSpec bake_spec();
 int run_bake(const ParsedArgs& args);
+CommandSpec cluster_spec();
+int run_cluster(const ParsedArgs& args);
 
 }  // namespace qf::cli

@@ -242,6 +242,92 @@ double point_switch_distance(const PointImpostorInfo& info) {
   return info.pixel * z0;
 }
 
+// COLOR_0 as normalized 16-bit linear RGBA (glTF vertex colours are linear; ours are sRGB bytes;
+// 8 bits would band the darks; RGBA keeps elements 4-byte aligned).
+int add_colors(tinygltf::Model& m, const std::vector<Rgb8>& colors) {
+  std::vector<std::uint16_t> rgba;
+  auto linear = [](std::uint8_t c) {
+    const double v = c / 255.0;
+    const double l = v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
+    return static_cast<std::uint16_t>(std::lround(l * 65535));
+  };
+  for (Rgb8 c : colors) rgba.insert(rgba.end(), {linear(c.r), linear(c.g), linear(c.b), 65535});
+  tinygltf::Accessor a;
+  a.bufferView = add_view(m, rgba.data(), rgba.size() * sizeof(std::uint16_t), TINYGLTF_TARGET_ARRAY_BUFFER);
+  a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+  a.normalized = true;
+  a.count = colors.size();
+  a.type = TINYGLTF_TYPE_VEC4;
+  m.accessors.push_back(a);
+  return static_cast<int>(m.accessors.size() - 1);
+}
+
+std::vector<std::uint8_t> encode_cluster_glb(const LodMesh& lod, const GltfOptions& options) {
+  tinygltf::Model m = new_model(options);
+  m.samplers.clear();
+  tinygltf::Material mat;
+  mat.name = "cluster_lod";
+  mat.pbrMetallicRoughness.metallicFactor = 0.0;
+  mat.pbrMetallicRoughness.roughnessFactor = 1.0;
+  mat.doubleSided = true;
+  m.materials.push_back(mat);
+  const bool coloured = lod.colors.size() == lod.positions.size() && !lod.colors.empty();
+  tinygltf::Mesh mesh;
+  mesh.name = "cluster_lod";
+  // Each primitive gets its own vertex arrays (unshared: simple, and a reader can take any alone).
+  auto add_primitive = [&](int mode, const std::vector<std::uint32_t>& verts, const std::vector<float>* normals,
+                           const std::vector<float>* thickness) {
+    if (verts.empty()) return;
+    std::vector<float> pos;
+    std::vector<Rgb8> col;
+    for (std::uint32_t v : verts) {
+      pos.insert(pos.end(), {lod.positions[v].x, lod.positions[v].y, lod.positions[v].z});
+      if (coloured) col.push_back(lod.colors[v]);
+    }
+    tinygltf::Primitive prim;
+    prim.mode = mode;
+    prim.material = 0;
+    prim.attributes["POSITION"] = add_floats(m, pos, 3, TINYGLTF_TYPE_VEC3, true);
+    if (normals) prim.attributes["NORMAL"] = add_floats(m, *normals, 3, TINYGLTF_TYPE_VEC3, false);
+    if (coloured) prim.attributes["COLOR_0"] = add_colors(m, col);
+    if (thickness) prim.attributes["_THICKNESS"] = add_floats(m, *thickness, 1, TINYGLTF_TYPE_SCALAR, false);
+    mesh.primitives.push_back(prim);
+  };
+  // Triangles: smooth normals, area-weighted over the LOD's own triangles.
+  std::vector<Vec3f> vn(lod.positions.size());
+  for (const Triangle& t : lod.triangles) {
+    const Vec3f n = cross(lod.positions[t[1]] - lod.positions[t[0]], lod.positions[t[2]] - lod.positions[t[0]]);
+    for (std::uint32_t v : t) vn[v] = vn[v] + n;
+  }
+  std::vector<std::uint32_t> tv;
+  std::vector<float> tn;
+  for (const Triangle& t : lod.triangles)
+    for (std::uint32_t v : t) {
+      tv.push_back(v);
+      const Vec3f n = normalized(vn[v]);
+      tn.insert(tn.end(), {n.x, n.y, n.z});
+    }
+  add_primitive(TINYGLTF_MODE_TRIANGLES, tv, &tn, nullptr);
+  std::vector<std::uint32_t> ev;
+  std::vector<float> et;
+  for (std::size_t e = 0; e < lod.edges.size(); ++e)
+    for (std::uint32_t v : lod.edges[e]) ev.push_back(v), et.push_back(lod.thickness[e]);
+  add_primitive(TINYGLTF_MODE_LINE, ev, nullptr, &et);
+  add_primitive(TINYGLTF_MODE_POINTS, lod.points, nullptr, nullptr);
+  if (mesh.primitives.empty()) throw std::invalid_argument("encode_cluster_glb: an empty LOD");
+  m.meshes.push_back(mesh);
+  tinygltf::Node node;
+  node.name = mesh.name;
+  node.mesh = 0;
+  node.extras = Value(Value::Object{{"cellWidth", Value(canonical_double(lod.cell))}});
+  m.nodes.push_back(node);
+  tinygltf::Scene scene;
+  scene.nodes.push_back(0);
+  m.scenes.push_back(scene);
+  m.defaultScene = 0;
+  return write_glb(m);
+}
+
 std::vector<std::uint8_t> encode_point_glb(const PointSet& p, const PointImpostorInfo& info, const GltfOptions& options) {
   if (p.size() == 0) throw std::invalid_argument("encode_point_glb: no points");
   tinygltf::Model m = new_model(options);
@@ -254,23 +340,7 @@ std::vector<std::uint8_t> encode_point_glb(const PointSet& p, const PointImposto
   prim.attributes["POSITION"] = add_floats(m, pos, 3, TINYGLTF_TYPE_VEC3, true);
   if (!nrm.empty()) prim.attributes["NORMAL"] = add_floats(m, nrm, 3, TINYGLTF_TYPE_VEC3, false);
   if (p.has_colors()) {
-    // glTF vertex colours are linear; the sampled colours are the file's sRGB bytes, converted
-    // here to 16 bits (8 would band the darks), RGBA so elements stay 4-byte aligned.
-    std::vector<std::uint16_t> rgba;
-    auto linear = [](std::uint8_t c) {
-      const double v = c / 255.0;
-      const double l = v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
-      return static_cast<std::uint16_t>(std::lround(l * 65535));
-    };
-    for (Rgb8 c : p.colors) rgba.insert(rgba.end(), {linear(c.r), linear(c.g), linear(c.b), 65535});
-    tinygltf::Accessor a;
-    a.bufferView = add_view(m, rgba.data(), rgba.size() * sizeof(std::uint16_t), TINYGLTF_TARGET_ARRAY_BUFFER);
-    a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
-    a.normalized = true;
-    a.count = p.size();
-    a.type = TINYGLTF_TYPE_VEC4;
-    m.accessors.push_back(a);
-    prim.attributes["COLOR_0"] = static_cast<int>(m.accessors.size() - 1);
+    prim.attributes["COLOR_0"] = add_colors(m, p.colors);
   }
   tinygltf::Mesh mesh;
   mesh.name = "point_impostor";

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "clustering/clustering.h"
 #include "primitives/atlas.h"
 #include "primitives/support.h"
 
@@ -69,5 +70,12 @@ struct PointImpostorInfo {
 std::vector<std::uint8_t> encode_point_glb(const PointSet& permuted_points, const PointImpostorInfo& info,
                                            const GltfOptions& options = {});
 double point_switch_distance(const PointImpostorInfo& info);  // s Z0 on the reference screen
+
+// A vertex-clustering LOD mesh (seed 002): its triangles (smooth area-weighted normals, double
+// sided: clustering does not keep orientation), thick edges as a LINES primitive with the custom
+// per-vertex attribute _THICKNESS (model units; a runtime draws width = thickness / R pixels), and
+// isolated points as POINTS; COLOR_0 (16-bit linear) where the mesh has colours. The node's extras
+// give the cell width.
+std::vector<std::uint8_t> encode_cluster_glb(const LodMesh& lod, const GltfOptions& options = {});
 
 }  // namespace qf

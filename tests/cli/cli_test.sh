@@ -23,7 +23,7 @@ expect 0 "--version" -- "$bake" --version
 grep -q '^qf-bake [0-9]' "$work/out" && ok || bad "--version prints 'qf-bake X.Y.Z'"
 expect 0 "--help" -- "$bake" --help
 cp "$work/out" "$work/overview"
-for cmd in info convert generate analyze decompose bake; do
+for cmd in info convert generate analyze decompose bake cluster; do
   grep -q "^  $cmd " "$work/overview" && ok || bad "--help lists $cmd"
   expect 0 "$cmd --help" -- "$bake" "$cmd" --help
   grep -q "usage: qf-bake $cmd" "$work/out" && ok || bad "$cmd --help shows usage"
@@ -201,6 +201,15 @@ PY
 expect 0 "bake a mesh" -- "$bake" "$work/cube_mesh.ply" -o "$work/meshbake" --primitives 50 --ldi 64 -q
 /usr/bin/python3 -c 'import json,sys; s=json.load(open(sys.argv[1]))["sampling"]; assert s["ldi_size"]==64 and s["backend"]=="cpu" and sum(s["points_per_axis"])>1000' \
   "$work/meshbake/report.json" 2>"$work/err" && ok || bad "bake report sampling: $(tail -1 "$work/err")"
+# cluster: vertex-clustering LODs of a mesh, a manifest with cell widths, same bytes twice
+expect 0 "cluster" -- "$bake" cluster "$work/cube_mesh.ply" -o "$work/cl1" --cells 0.2,0.5,1
+expect 0 "cluster again" -- "$bake" cluster "$work/cube_mesh.ply" -o "$work/cl2" --cells 0.2,0.5,1 -q
+for f in "$work/cl1"/*.glb; do cmp -s "$f" "$work/cl2/$(basename "$f")" && ok || bad "cluster output $(basename "$f") differs between runs"; done
+/usr/bin/python3 -c 'import json,sys; m=json.load(open(sys.argv[1])); assert [l["cell_width"] for l in m["levels"]]==[0.2,0.5,1.0] and m["levels"][0]["triangles"]>=m["levels"][2]["triangles"]' \
+  "$work/cl1/manifest.json" 2>"$work/err" && ok || bad "cluster manifest: $(tail -1 "$work/err")"
+expect 1 "cluster a point set" -- "$bake" cluster "$work/oct.ply" -o "$work/cl3"
+grep -q "cluster.needs_mesh" "$work/err" && ok || bad "cluster of points names its error"
+expect 2 "cluster bad shape" -- "$bake" cluster "$work/cube_mesh.ply" -o "$work/cl3" --shape blob
 # --lod-file: every level in one MSFT_lod file beside the level files, deterministic too
 expect 0 "bake --lod-file" -- "$bake" "$work/oct.ply" -o "$work/lod1" --primitives 200,20 --lod-file -q
 expect 0 "bake --lod-file, 1 thread" -- "$bake" "$work/oct.ply" -o "$work/lod2" --primitives 200,20 --lod-file --threads 1 -q

@@ -8,7 +8,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 "$writer" "$work" || exit 1
 files=("$work"/*.glb)
-[[ ${#files[@]} -ge 8 ]] || { echo "expected 8 .glb files, got ${#files[@]}"; exit 1; }
+[[ ${#files[@]} -ge 9 ]] || { echo "expected 9 .glb files, got ${#files[@]}"; exit 1; }
 node "$validator/validate.js" "${files[@]}"
 status=$?
 # The extension block of every file, and the schema's examples, against the extension's schema.
@@ -38,6 +38,13 @@ for f in files:
         if len(doc["scenes"][0]["nodes"]) != 1 or len(ids) != 2 or len(cov) != 3 or cov != sorted(cov, reverse=True) \
                 or "extensions" in doc or doc["extensionsUsed"] != ["MSFT_lod"]:
             print(f, "MSFT_lod structure wrong"); bad = 1
+        continue
+    if f.endswith("_cluster.glb"):
+        # A clustering LOD: triangles, and thick lines carrying _THICKNESS; plain glTF otherwise.
+        modes = {p.get("mode", 4): p for p in doc["meshes"][0]["primitives"]}
+        if 4 not in modes or 1 not in modes or "_THICKNESS" not in modes[1]["attributes"] \
+                or "cellWidth" not in doc["nodes"][0].get("extras", {}) or doc.get("extensionsUsed"):
+            print(f, "cluster LOD structure wrong"); bad = 1
         continue
     if f.endswith("_points.glb"):
         # A point impostor: one POINTS primitive, the extension's count matches the accessor's.

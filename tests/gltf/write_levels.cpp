@@ -57,5 +57,18 @@ int main(int argc, char** argv) {
   PointImpostorInfo info;
   info.pixel = st.pixel;
   write_bytes(dir + "/sphere_points.glb", encode_point_glb(permuted(sampled, point_permutation(sampled.size(), 1)), info));
+  // A vertex-clustering LOD with triangles, thick lines (_THICKNESS) and colours: a sphere with a
+  // thin spike of two long triangles that collapses to an edge.
+  TriangleMesh m = generate_mesh("sphere", 8);
+  const auto base = static_cast<std::uint32_t>(m.positions.size());
+  for (Vec3f p : {Vec3f{1, 0, 0}, Vec3f{2, 0.01f, 0}, Vec3f{2, -0.01f, 0.01f}, Vec3f{1.02f, 0, 0.01f}}) {
+    m.positions.push_back(p);
+    m.colors.push_back({200, 30, 30});
+  }
+  m.triangles.push_back({base, base + 1, base + 2});
+  m.triangles.push_back({base, base + 2, base + 3});
+  ClusterOptions co;
+  co.cell = 0.3f;
+  write_bytes(dir + "/sphere_cluster.glb", encode_cluster_glb(cluster_mesh(m, grade_vertices(m), co)));
   return 0;
 }

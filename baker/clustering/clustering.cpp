@@ -1,0 +1,260 @@
+// Vertex clustering (see clustering.h; Low & Tan 1997, sections 3-4).
+#include "clustering/clustering.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <unordered_map>
+
+namespace qf {
+namespace {
+
+constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+
+std::uint64_t bucket_key(std::int64_t x, std::int64_t y, std::int64_t z) {
+  // 21 bits per axis, offset so negative coordinates pack too; only used for lookups.
+  const auto f = [](std::int64_t v) { return static_cast<std::uint64_t>(v + (1 << 20)) & 0x1FFFFF; };
+  return f(x) << 42 | f(y) << 21 | f(z);
+}
+
+// Floating cells through a grid of cell-sized buckets: a cell is filed under the bucket of its
+// centre; the centres that can hold a vertex lie within half a cell of it, in at most 2 buckets
+// per axis, so at most 8 buckets are searched (paper 4).
+std::vector<std::uint32_t> floating_cells(const TriangleMesh& mesh, const std::vector<bool>& used, const VertexGrading& g,
+                                          const ClusterOptions& o, std::vector<std::uint32_t>& centers) {
+  const double c = o.cell, h = 0.5 * o.cell;
+  std::vector<std::uint32_t> cluster(mesh.positions.size(), kNone);
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> buckets;
+  for (std::uint32_t v : g.order) {
+    if (!used[v]) continue;
+    const Vec3f p = mesh.positions[v];
+    std::int64_t lo[3], hi[3];
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = static_cast<std::int64_t>(std::floor((p[k] - h) / c));
+      hi[k] = static_cast<std::int64_t>(std::floor((p[k] + h) / c));
+    }
+    std::uint32_t best = kNone;
+    double best_d2 = INFINITY;
+    for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
+      for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
+        for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
+          const auto it = buckets.find(bucket_key(x, y, z));
+          if (it == buckets.end()) continue;
+          for (std::uint32_t cell : it->second) {
+            const Vec3f q = mesh.positions[centers[cell]];
+            const double d[3] = {double(p.x) - q.x, double(p.y) - q.y, double(p.z) - q.z};
+            const double d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+            const bool inside = o.shape == ClusterOptions::Shape::kCube
+                                    ? std::max({std::fabs(d[0]), std::fabs(d[1]), std::fabs(d[2])}) <= h
+                                    : d2 <= h * h;
+            if (!inside) continue;
+            // Nearest centre (ties: the heavier, i.e. older, cell), or simply the heaviest.
+            const bool better = o.assign == ClusterOptions::Assign::kNearest ? (d2 < best_d2 || (d2 == best_d2 && cell < best))
+                                                                              : cell < best;
+            if (better) best = cell, best_d2 = d2;
+          }
+        }
+    if (best == kNone) {
+      best = static_cast<std::uint32_t>(centers.size());
+      centers.push_back(v);
+      buckets[bucket_key(static_cast<std::int64_t>(std::floor(p.x / c)), static_cast<std::int64_t>(std::floor(p.y / c)),
+                         static_cast<std::int64_t>(std::floor(p.z / c)))]
+          .push_back(best);
+    }
+    cluster[v] = best;
+  }
+  return cluster;
+}
+
+// Rossignac-Borrel: one cluster per occupied cell of a grid anchored at the bounding box's corner;
+// clusters numbered in visiting order, their heaviest member first.
+std::vector<std::uint32_t> uniform_cells(const TriangleMesh& mesh, const std::vector<bool>& used, const VertexGrading& g,
+                                         const ClusterOptions& o, std::vector<std::uint32_t>& heaviest) {
+  Bounds b;
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v)
+    if (used[v]) b.add(mesh.positions[v]);
+  std::vector<std::uint32_t> cluster(mesh.positions.size(), kNone);
+  std::unordered_map<std::uint64_t, std::uint32_t> ids;
+  for (std::uint32_t v : g.order) {
+    if (!used[v]) continue;
+    const Vec3f p = mesh.positions[v] - b.min;
+    const std::uint64_t key = bucket_key(static_cast<std::int64_t>(p.x / o.cell), static_cast<std::int64_t>(p.y / o.cell),
+                                         static_cast<std::int64_t>(p.z / o.cell));
+    const auto [it, fresh] = ids.insert({key, static_cast<std::uint32_t>(heaviest.size())});
+    if (fresh) heaviest.push_back(v);
+    cluster[v] = it->second;
+  }
+  return cluster;
+}
+
+// Distance of p from the line through a and b.
+double line_distance(Vec3f p, Vec3f a, Vec3f b) {
+  const Vec3f d = b - a;
+  const double len = length(d);
+  if (!(len > 0)) return length(p - a);
+  return length(cross(p - a, d)) / len;
+}
+
+}  // namespace
+
+VertexGrading grade_vertices(const TriangleMesh& mesh) {
+  const std::size_t n = mesh.positions.size();
+  // 1. Incident edge directions and the longest incident edge per vertex.
+  std::vector<std::vector<Vec3f>> dirs(n);
+  std::vector<float> longest(n, 0);
+  float mesh_longest = 0;
+  for (const Triangle& t : mesh.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = t[static_cast<std::size_t>(k)], b = t[static_cast<std::size_t>((k + 1) % 3)];
+      const Vec3f e = mesh.positions[b] - mesh.positions[a];
+      const float len = length(e);
+      if (!(len > 0)) continue;
+      dirs[a].push_back(e * (1 / len));
+      dirs[b].push_back(e * (-1 / len));
+      longest[a] = std::max(longest[a], len);
+      longest[b] = std::max(longest[b], len);
+      mesh_longest = std::max(mesh_longest, len);
+    }
+  // 2. theta = the largest angle between two incident edges (each edge appears twice; harmless).
+  VertexGrading g;
+  g.weight.assign(n, 0);
+  for (std::size_t v = 0; v < n; ++v) {
+    if (dirs[v].empty() || !(mesh_longest > 0)) continue;
+    float min_cos = 1;
+    for (std::size_t i = 0; i < dirs[v].size(); ++i)
+      for (std::size_t j = i + 1; j < dirs[v].size(); ++j) min_cos = std::min(min_cos, dot(dirs[v][i], dirs[v][j]));
+    const double theta = std::acos(std::clamp(double(min_cos), -1.0, 1.0));
+    g.weight[v] = static_cast<float>(std::cos(theta / 2) * (longest[v] / mesh_longest));
+  }
+  // 3. Visiting order: decreasing weight, ties by index (stable, so deterministic).
+  g.order.resize(n);
+  for (std::size_t i = 0; i < n; ++i) g.order[i] = static_cast<std::uint32_t>(i);
+  std::stable_sort(g.order.begin(), g.order.end(), [&](std::uint32_t a, std::uint32_t b) { return g.weight[a] > g.weight[b]; });
+  return g;
+}
+
+LodMesh cluster_mesh(const TriangleMesh& mesh, const VertexGrading& g, const ClusterOptions& o) {
+  if (!(o.cell > 0)) throw std::invalid_argument("cluster_mesh: the cell width must be positive");
+  std::vector<bool> used(mesh.positions.size(), false);
+  for (const Triangle& t : mesh.triangles)
+    for (std::uint32_t v : t) used[v] = true;
+  // 1. Clustering.
+  std::vector<std::uint32_t> rep;  // per cluster: its representative (centre / heaviest) vertex
+  const std::vector<std::uint32_t> cluster = o.uniform ? uniform_cells(mesh, used, g, o, rep) : floating_cells(mesh, used, g, o, rep);
+  LodMesh out;
+  out.cell = o.cell;
+  out.clusters = rep.size();
+  std::vector<Vec3f> cluster_pos(rep.size());
+  for (std::size_t c = 0; c < rep.size(); ++c) cluster_pos[c] = mesh.positions[rep[c]];
+  if (o.uniform) {  // the weighted mean of the members (plain mean where all weigh 0)
+    std::vector<double> sum(rep.size() * 4, 0.0);
+    for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+      if (cluster[v] == kNone) continue;
+      const double w = g.weight[v] > 0 ? g.weight[v] : 1e-9;
+      double* s = &sum[cluster[v] * 4];
+      s[0] += w * mesh.positions[v].x, s[1] += w * mesh.positions[v].y, s[2] += w * mesh.positions[v].z, s[3] += w;
+    }
+    for (std::size_t c = 0; c < rep.size(); ++c)
+      cluster_pos[c] = {static_cast<float>(sum[c * 4] / sum[c * 4 + 3]), static_cast<float>(sum[c * 4 + 1] / sum[c * 4 + 3]),
+                        static_cast<float>(sum[c * 4 + 2] / sum[c * 4 + 3])};
+  }
+  // 2. Synthesis: each triangle by its clusters.
+  struct Tri { std::array<std::uint32_t, 3> key; Triangle t; std::size_t index; };
+  struct Edge { std::uint32_t a, b; std::size_t triangle; };
+  std::vector<Tri> tris;
+  std::vector<Edge> edges;
+  std::vector<std::uint32_t> points;
+  for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+    const Triangle& t = mesh.triangles[i];
+    const Triangle c{cluster[t[0]], cluster[t[1]], cluster[t[2]]};
+    if (c[0] != c[1] && c[1] != c[2] && c[0] != c[2]) {
+      std::array<std::uint32_t, 3> key = c;
+      std::sort(key.begin(), key.end());
+      tris.push_back({key, c, i});
+    } else if (c[0] != c[1] || c[1] != c[2]) {
+      const std::uint32_t a = c[0], b = c[0] != c[1] ? c[1] : c[2];
+      edges.push_back({std::min(a, b), std::max(a, b), i});
+    } else {
+      points.push_back(c[0]);
+    }
+  }
+  // 3. Elimination: one triangle per cluster triple (the first, with its winding); edges that are
+  //    sides of a triangle, and points used by a triangle or an edge, go.
+  std::stable_sort(tris.begin(), tris.end(), [](const Tri& x, const Tri& y) { return x.key < y.key; });
+  tris.erase(std::unique(tris.begin(), tris.end(), [](const Tri& x, const Tri& y) { return x.key == y.key; }), tris.end());
+  std::stable_sort(tris.begin(), tris.end(), [](const Tri& x, const Tri& y) { return x.index < y.index; });
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> sides;
+  std::vector<bool> covered(rep.size(), false);
+  for (const Tri& t : tris)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = t.key[static_cast<std::size_t>(k)], b = t.key[static_cast<std::size_t>((k + 1) % 3)];
+      sides.push_back({std::min(a, b), std::max(a, b)});
+      covered[a] = true;
+    }
+  std::sort(sides.begin(), sides.end());
+  std::stable_sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) { return std::tie(x.a, x.b) < std::tie(y.a, y.b); });
+  // 4. Thick edges: per cluster pair, thickness D_A + D_B from the collapsed triangles' vertices.
+  std::vector<std::uint32_t> out_id(rep.size(), kNone);
+  auto id = [&](std::uint32_t c) {
+    if (out_id[c] == kNone) {
+      out_id[c] = static_cast<std::uint32_t>(out.positions.size());
+      out.positions.push_back(cluster_pos[c]);
+      if (mesh.colors.size() == mesh.positions.size()) out.colors.push_back(mesh.colors[rep[c]]);
+    }
+    return out_id[c];
+  };
+  for (const Tri& t : tris) {
+    // A collapse can fold a triangle over (its cluster corners in the other winding): keep the
+    // side the original faced, or smooth normals and two-sided lighting darken it.
+    const Triangle& o3 = mesh.triangles[t.index];
+    const Vec3f before = cross(mesh.positions[o3[1]] - mesh.positions[o3[0]], mesh.positions[o3[2]] - mesh.positions[o3[0]]);
+    const Vec3f after = cross(cluster_pos[t.t[1]] - cluster_pos[t.t[0]], cluster_pos[t.t[2]] - cluster_pos[t.t[0]]);
+    if (dot(before, after) < 0) out.triangles.push_back({id(t.t[0]), id(t.t[2]), id(t.t[1])});
+    else out.triangles.push_back({id(t.t[0]), id(t.t[1]), id(t.t[2])});
+  }
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i;
+    while (j < edges.size() && edges[j].a == edges[i].a && edges[j].b == edges[i].b) ++j;
+    const std::uint32_t A = edges[i].a, B = edges[i].b;
+    covered[A] = covered[B] = true;
+    if (!std::binary_search(sides.begin(), sides.end(), std::make_pair(A, B))) {
+      std::vector<std::uint32_t> va, vb;
+      for (std::size_t k = i; k < j; ++k)
+        for (std::uint32_t v : mesh.triangles[edges[k].triangle]) (cluster[v] == A ? va : vb).push_back(v);
+      for (auto* s : {&va, &vb}) std::sort(s->begin(), s->end()), s->erase(std::unique(s->begin(), s->end()), s->end());
+      auto mean = [&](const std::vector<std::uint32_t>& s) {
+        Vec3f m{};
+        for (std::uint32_t v : s) m = m + mesh.positions[v];
+        return m * (1.0f / static_cast<float>(s.size()));
+      };
+      const Vec3f pa = mean(va), pb = mean(vb);
+      double da = 0, db = 0;
+      for (std::uint32_t v : va) da += line_distance(mesh.positions[v], pa, pb);
+      for (std::uint32_t v : vb) db += line_distance(mesh.positions[v], pa, pb);
+      out.edges.push_back({id(A), id(B)});
+      out.thickness.push_back(static_cast<float>(da / double(va.size()) + db / double(vb.size())));
+    }
+    i = j;
+  }
+  std::sort(points.begin(), points.end());
+  points.erase(std::unique(points.begin(), points.end()), points.end());
+  for (std::uint32_t c : points)
+    if (!covered[c]) out.points.push_back(id(c));
+  out.vertex_of.assign(mesh.positions.size(), kNone);
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v)
+    if (cluster[v] != kNone) out.vertex_of[v] = out_id[cluster[v]];
+  return out;
+}
+
+std::size_t choose_lod(const std::vector<float>& cells, double distance, double fovy_degrees, int window_height, double x) {
+  const double r = 2 * distance * std::tan(0.5 * fovy_degrees * 3.14159265358979323846 / 180) / window_height;
+  std::size_t best = 0;
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    const bool fits = cells[i] <= x * r, best_fits = cells[best] <= x * r;
+    if ((fits && (!best_fits || cells[i] > cells[best])) || (!fits && !best_fits && cells[i] < cells[best])) best = i;
+  }
+  return best;
+}
+
+}  // namespace qf
