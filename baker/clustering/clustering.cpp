@@ -18,30 +18,68 @@ std::uint64_t bucket_key(std::int64_t x, std::int64_t y, std::int64_t z) {
   return f(x) << 42 | f(y) << 21 | f(z);
 }
 
+// The grid of cell-sized buckets, anchored at the origin (so adding geometry elsewhere moves no
+// bucket): a dense array of list heads over the used vertices' box when it has at most 4M buckets,
+// else a hash map. Cells of a bucket form a linked list through `next`.
+class BucketGrid {
+ public:
+  BucketGrid(const Bounds& b, double cell) : cell_(cell) {
+    std::uint64_t total = 1;
+    for (int k = 0; k < 3; ++k) {
+      lo_[k] = static_cast<std::int64_t>(std::floor(b.min[k] / cell)) - 1;
+      n_[k] = static_cast<std::int64_t>(std::floor(b.max[k] / cell)) - lo_[k] + 2;
+      total *= static_cast<std::uint64_t>(n_[k]);
+    }
+    if (total <= (1u << 22)) dense_.assign(total, kNone);
+  }
+  std::int64_t coord(float x) const { return static_cast<std::int64_t>(std::floor(x / cell_)); }
+  std::uint32_t head(std::int64_t x, std::int64_t y, std::int64_t z) const {
+    if (!dense_.empty()) return dense_[index(x, y, z)];
+    const auto it = sparse_.find(bucket_key(x, y, z));
+    return it == sparse_.end() ? kNone : it->second;
+  }
+  void push(std::int64_t x, std::int64_t y, std::int64_t z, std::uint32_t cell, std::vector<std::uint32_t>& next) {
+    std::uint32_t& h = dense_.empty() ? sparse_.try_emplace(bucket_key(x, y, z), kNone).first->second : dense_[index(x, y, z)];
+    next.push_back(h);
+    h = cell;
+  }
+
+ private:
+  std::size_t index(std::int64_t x, std::int64_t y, std::int64_t z) const {
+    return static_cast<std::size_t>(((x - lo_[0]) * n_[1] + (y - lo_[1])) * n_[2] + (z - lo_[2]));
+  }
+  double cell_;
+  std::int64_t lo_[3] = {0, 0, 0}, n_[3] = {1, 1, 1};
+  std::vector<std::uint32_t> dense_;
+  std::unordered_map<std::uint64_t, std::uint32_t> sparse_;
+};
+
 // Floating cells through a grid of cell-sized buckets: a cell is filed under the bucket of its
 // centre; the centres that can hold a vertex lie within half a cell of it, in at most 2 buckets
 // per axis, so at most 8 buckets are searched (paper 4).
 std::vector<std::uint32_t> floating_cells(const TriangleMesh& mesh, const std::vector<bool>& used, const VertexGrading& g,
                                           const ClusterOptions& o, std::vector<std::uint32_t>& centers) {
-  const double c = o.cell, h = 0.5 * o.cell;
+  const double h = 0.5 * o.cell;
+  Bounds box;
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v)
+    if (used[v]) box.add(mesh.positions[v]);
+  BucketGrid grid(box, o.cell);
+  std::vector<std::uint32_t> next;  // per cell: the next cell in its bucket
   std::vector<std::uint32_t> cluster(mesh.positions.size(), kNone);
-  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> buckets;
   for (std::uint32_t v : g.order) {
     if (!used[v]) continue;
     const Vec3f p = mesh.positions[v];
     std::int64_t lo[3], hi[3];
     for (int k = 0; k < 3; ++k) {
-      lo[k] = static_cast<std::int64_t>(std::floor((p[k] - h) / c));
-      hi[k] = static_cast<std::int64_t>(std::floor((p[k] + h) / c));
+      lo[k] = grid.coord(static_cast<float>(p[k] - h));
+      hi[k] = grid.coord(static_cast<float>(p[k] + h));
     }
     std::uint32_t best = kNone;
     double best_d2 = INFINITY;
     for (std::int64_t x = lo[0]; x <= hi[0]; ++x)
       for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
-        for (std::int64_t z = lo[2]; z <= hi[2]; ++z) {
-          const auto it = buckets.find(bucket_key(x, y, z));
-          if (it == buckets.end()) continue;
-          for (std::uint32_t cell : it->second) {
+        for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
+          for (std::uint32_t cell = grid.head(x, y, z); cell != kNone; cell = next[cell]) {
             const Vec3f q = mesh.positions[centers[cell]];
             const double d[3] = {double(p.x) - q.x, double(p.y) - q.y, double(p.z) - q.z};
             const double d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
@@ -54,13 +92,10 @@ std::vector<std::uint32_t> floating_cells(const TriangleMesh& mesh, const std::v
                                                                               : cell < best;
             if (better) best = cell, best_d2 = d2;
           }
-        }
     if (best == kNone) {
       best = static_cast<std::uint32_t>(centers.size());
       centers.push_back(v);
-      buckets[bucket_key(static_cast<std::int64_t>(std::floor(p.x / c)), static_cast<std::int64_t>(std::floor(p.y / c)),
-                         static_cast<std::int64_t>(std::floor(p.z / c)))]
-          .push_back(best);
+      grid.push(grid.coord(p.x), grid.coord(p.y), grid.coord(p.z), best, next);
     }
     cluster[v] = best;
   }
