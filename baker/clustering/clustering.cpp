@@ -6,6 +6,7 @@
 #include <limits>
 #include <stdexcept>
 #include <unordered_map>
+#include <unordered_set>
 
 namespace qf {
 namespace {
@@ -216,15 +217,25 @@ LodMesh cluster_mesh(const TriangleMesh& mesh, const VertexGrading& g, const Clu
   }
   // 3. Elimination: one triangle per cluster triple (the first, with its winding); edges that are
   //    sides of a triangle, and points used by a triangle or an edge, go.
-  std::stable_sort(tris.begin(), tris.end(), [](const Tri& x, const Tri& y) { return x.key < y.key; });
-  tris.erase(std::unique(tris.begin(), tris.end(), [](const Tri& x, const Tri& y) { return x.key == y.key; }), tris.end());
-  std::stable_sort(tris.begin(), tris.end(), [](const Tri& x, const Tri& y) { return x.index < y.index; });
+  {  // first occurrence of each cluster triple, in input order (the set is only looked up)
+    struct KeyHash {
+      std::size_t operator()(const std::array<std::uint32_t, 3>& k) const {
+        return std::hash<std::uint64_t>()((std::uint64_t{k[0]} * 0x9E3779B97F4A7C15ull) ^ (std::uint64_t{k[1]} << 21) ^ k[2]);
+      }
+    };
+    std::unordered_set<std::array<std::uint32_t, 3>, KeyHash> seen;
+    seen.reserve(tris.size());
+    std::size_t kept = 0;
+    for (const Tri& t : tris)
+      if (seen.insert(t.key).second) tris[kept++] = t;
+    tris.resize(kept);
+  }
   std::vector<std::pair<std::uint32_t, std::uint32_t>> sides;
   std::vector<bool> covered(rep.size(), false);
   for (const Tri& t : tris)
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t a = t.key[static_cast<std::size_t>(k)], b = t.key[static_cast<std::size_t>((k + 1) % 3)];
-      sides.push_back({std::min(a, b), std::max(a, b)});
+      if (!edges.empty()) sides.push_back({std::min(a, b), std::max(a, b)});  // only edges look them up
       covered[a] = true;
     }
   std::sort(sides.begin(), sides.end());
