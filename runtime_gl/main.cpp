@@ -315,7 +315,7 @@ int run_eval(const ParsedArgs& a) {
   const AnyScene reference = load_scene(a.positional[0]);
   const AnyScene baked = load_scene(a.positional[1]);
   if (reference.kind == AnyScene::kImpostor) throw UsageError("eval: REFERENCE must be a point set or a mesh, not a glTF file");
-  if (baked.kind != AnyScene::kImpostor) throw UsageError("eval: BAKED must be a .glb or .gltf file");
+  if (baked.kind == AnyScene::kSplats) throw UsageError("eval: BAKED must be a baked .glb (impostor level, cluster LOD, points) or a mesh");
   const Sphere sphere = bounding_sphere(reference.bounds());
 
   HeadlessContext context;
@@ -324,7 +324,8 @@ int run_eval(const ParsedArgs& a) {
   baked.attach(imp_renderer);
   DrawSettings engine = settings;
   engine.method = Method::kEngine;
-  const bool with_engine = !a.flag("no-engine") && settings.method != Method::kEngine;
+  // The engine path applies to impostor levels only (the others have one way to be drawn).
+  const bool with_engine = !a.flag("no-engine") && settings.method != Method::kEngine && baked.kind == AnyScene::kImpostor;
 
   std::vector<ViewMetrics> main_metrics, engine_metrics;
   std::vector<Image> diff_sheet;
@@ -347,15 +348,13 @@ int run_eval(const ParsedArgs& a) {
     exr_sheet.insert(exr_sheet.end(), diff.begin(), diff.end());
   }
   const ImpostorScene& s = baked.impostor;
-  ordered_json report{{"reference", a.positional[0]},
-                      {"baked", a.positional[1]},
-                      {"level", s.level},
-                      {"quads", s.items.size()},
-                      {"views", views},
+  ordered_json report{{"reference", a.positional[0]}, {"baked", a.positional[1]}, {"baked_contents", baked.describe()}};
+  if (baked.kind == AnyScene::kImpostor) report["level"] = s.level, report["quads"] = s.items.size();
+  report.update(ordered_json{{"views", views},
                       {"size", {w, h}},
                       {"background", {background.r, background.g, background.b}},
                       {"method", method_name(settings.method)},
-                      {"engine_alpha_mode", settings.alpha_mode ? *settings.alpha_mode : s.alpha_mode}};
+                      {"engine_alpha_mode", settings.alpha_mode ? *settings.alpha_mode : s.alpha_mode}});
   report["mean"][method_name(settings.method)] = metrics_json(mean_of(main_metrics));
   if (with_engine) report["mean"]["engine"] = metrics_json(mean_of(engine_metrics));
   report["per_view"] = per_view;

@@ -69,7 +69,19 @@ for w in "${what[@]}"; do
     cluster)
       models=$(scripts/fetch-models.sh bunny00.off ChineseDragon-10kv.off | tail -1)
       echo "vertex clustering: per level (cell = diagonal / 128, 32, 8), one thread; grading + sort once per mesh"
-      OMP_NUM_THREADS=1 build/bin/qf-bench-cluster "$models/bunny00.off" "$models/ChineseDragon-10kv.off" sphere ;;
+      tmp=$(mktemp -d)
+      OMP_NUM_THREADS=1 build/bin/qf-bench-cluster --write "$tmp" "$models/bunny00.off" "$models/ChineseDragon-10kv.off" sphere
+      echo
+      echo "image error against the original mesh (qf-render eval, 26 views, 256^2; thick lines drawn for ours)"
+      printf "%-28s %10s %8s %10s %8s\n" level "ours PSNR" "IoU" "meshopt" "IoU"
+      for m in bunny00 ChineseDragon-10kv; do
+        for d in 128 32 8; do
+          o=$(build/bin/qf-render eval "$models/$m.off" "$tmp/${m}_d${d}_ours.glb" -o "$tmp/o.json" 2>&1 | grep -o 'PSNR [0-9.]* dB, IoU [0-9.]*')
+          t=$(build/bin/qf-render eval "$models/$m.off" "$tmp/${m}_d${d}_meshopt.ply" -o "$tmp/t.json" 2>&1 | grep -o 'PSNR [0-9.]* dB, IoU [0-9.]*')
+          printf "%-28s %10s %8s %10s %8s\n" "$m d/$d" "$(echo $o | cut -d' ' -f2)" "$(echo $o | cut -d' ' -f5)" "$(echo $t | cut -d' ' -f2)" "$(echo $t | cut -d' ' -f5)"
+        done
+      done
+      rm -rf "$tmp" ;;
     *) echo "unknown benchmark '$w' (io, analysis, amg, render, bake, sample, cluster)" >&2; exit 2 ;;
   esac
   echo

@@ -19,6 +19,7 @@ packages=(
   fonts-dejavu-core                               # captions of the demo's side-by-side picture
   # tests
   libgtest-dev googletest libbenchmark-dev
+  libmeshoptimizer-dev                            # benchmarks: meshopt_simplifySloppy beside our clustering
   python3-jsonschema                              # validates our JSON outputs against schemas/ in tests
 )
 
