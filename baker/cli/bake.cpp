@@ -44,6 +44,7 @@ CommandSpec bake_spec() {
                     {"lod-screen-height", 0, "PX", "1080", "screen height the MSFT_screencoverage values assume"},
                     {"point-seed", 0, "S", "1", "mesh inputs: seed of the point impostor's random order (STEM_points.glb)"},
                     {"no-points", 0, "", "", "mesh inputs: do not write the point impostor"},
+                    {"no-mesh-lods", 0, "", "", "mesh inputs: do not write the vertex-clustering LODs (STEM_C<i>.glb, cells = diagonal/128../8)"},
                     drop_nonfinite_option(),
                     {"quiet", 'q', "", "", "print nothing on success"}},
                    1, 1};
@@ -88,7 +89,18 @@ int run_bake(const ParsedArgs& args) {
 
   ReadReport read_report;
   SampleStats sampled;
-  const PointSet points = load_points(in, args, "bake", read_report, &sampled);
+  TriangleMesh mesh;
+  const PointSet points = load_points(in, args, "bake", read_report, &sampled, &mesh);
+  // Mesh inputs: vertex-clustering LODs for near and middle distances beside the impostors.
+  std::vector<LodMesh> mesh_lods;
+  if (!sampled.backend.empty() && !args.flag("no-mesh-lods")) {
+    const VertexGrading grading = grade_vertices(mesh);
+    ClusterOptions co;
+    for (double c : default_cluster_cells(mesh)) {
+      co.cell = static_cast<float>(c);
+      mesh_lods.push_back(cluster_mesh(mesh, grading, co));
+    }
+  }
   BakeResult r;
   try {
     r = bake(points, o, in);
@@ -140,12 +152,18 @@ int run_bake(const ParsedArgs& args) {
                      {"switch_screen_height", info.reference_height},
                      {"switch_fov_degrees", canonical_double(info.reference_fov_degrees)}};
     }
+    nlohmann::json mesh_levels;
+    if (!mesh_lods.empty()) mesh_levels = write_cluster_levels(mesh_lods, staging, stem, files);
     nlohmann::json manifest{{"input", in},
                             {"points", r.points},
                             {"bounding_box_diagonal", canonical_double(r.diagonal)},
                             {"levels", levels},
                             {"generator", "quasiflat qf-bake"}};
     if (!point_entry.is_null()) manifest["point_impostor"] = point_entry;
+    if (!mesh_levels.is_null())
+      manifest["mesh_lods"] = {{"levels", mesh_levels},
+                               {"lod_rule", "largest cell_width <= X * R, R = 2 D tan(fov/2) / window height, X = 5; "
+                                            "thick line width = _THICKNESS / R pixels"}};
     if (!lod_name.empty()) manifest["lod_file"] = {{"file", lod_name}, {"screen_height", o.lod_screen_height}};
     nlohmann::json stages = nlohmann::json::array();
     for (const StageTime& t : r.times) stages.push_back({{"stage", t.stage},

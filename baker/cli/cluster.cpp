@@ -17,6 +17,33 @@
 
 namespace qf::cli {
 
+std::vector<double> default_cluster_cells(const TriangleMesh& mesh) {
+  std::vector<double> cells;
+  for (double f : {128.0, 64.0, 32.0, 16.0, 8.0}) cells.push_back(mesh.bounds().diagonal() / f);
+  return cells;
+}
+
+nlohmann::json write_cluster_levels(const std::vector<LodMesh>& lods, const std::string& dir, const std::string& stem,
+                                    std::vector<std::string>& files) {
+  nlohmann::json levels = nlohmann::json::array();
+  for (std::size_t i = 0; i < lods.size(); ++i) {
+    const LodMesh& l = lods[i];
+    const std::string name = stem + "_C" + std::to_string(i) + ".glb";
+    const std::vector<std::uint8_t> glb = encode_cluster_glb(l);
+    write_file_atomically(dir + "/" + name, [&](std::ostream& out) {
+      out.write(reinterpret_cast<const char*>(glb.data()), static_cast<std::streamsize>(glb.size()));
+    });
+    files.push_back(name);
+    levels.push_back({{"file", name},
+                      {"cell_width", canonical_double(l.cell)},
+                      {"vertices", l.positions.size()},
+                      {"triangles", l.triangles.size()},
+                      {"edges", l.edges.size()},
+                      {"points", l.points.size()}});
+  }
+  return levels;
+}
+
 CommandSpec cluster_spec() {
   return {"cluster", "MESH -o OUTDIR [options]",
           "simplify a triangle mesh into vertex-clustering LODs with thick edges (one .glb per cell width)",
@@ -63,8 +90,7 @@ int run_cluster(const ParsedArgs& args) {
   const TriangleMesh& mesh = model.mesh;
   if (mesh.triangles.empty()) throw InputError("mesh.no_triangles", in, "", "is a mesh without triangles; nothing to simplify");
   const float diagonal = mesh.bounds().diagonal();
-  if (cells.empty())
-    for (double f : {128.0, 64.0, 32.0, 16.0, 8.0}) cells.push_back(diagonal / f);
+  if (cells.empty()) cells = default_cluster_cells(mesh);
 
   const auto start = std::chrono::steady_clock::now();
   const VertexGrading grading = grade_vertices(mesh);
@@ -80,23 +106,8 @@ int run_cluster(const ParsedArgs& args) {
   std::filesystem::create_directories(staging);
   try {
     const std::string stem = std::filesystem::path(in).stem().string();
-    nlohmann::json levels = nlohmann::json::array();
     std::vector<std::string> files;
-    for (std::size_t i = 0; i < lods.size(); ++i) {
-      const LodMesh& l = lods[i];
-      const std::string name = stem + "_C" + std::to_string(i) + ".glb";
-      const std::vector<std::uint8_t> glb = encode_cluster_glb(l);
-      write_file_atomically(staging + "/" + name, [&](std::ostream& out) {
-        out.write(reinterpret_cast<const char*>(glb.data()), static_cast<std::streamsize>(glb.size()));
-      });
-      files.push_back(name);
-      levels.push_back({{"file", name},
-                        {"cell_width", canonical_double(l.cell)},
-                        {"vertices", l.positions.size()},
-                        {"triangles", l.triangles.size()},
-                        {"edges", l.edges.size()},
-                        {"points", l.points.size()}});
-    }
+    const nlohmann::json levels = write_cluster_levels(lods, staging, stem, files);
     nlohmann::json manifest{{"input", in},
                             {"triangles", mesh.triangles.size()},
                             {"vertices", mesh.positions.size()},

@@ -78,7 +78,7 @@ SampleOptions read_sample_options(const ParsedArgs& args) {
 }
 
 PointSet load_points(const std::string& path, const ParsedArgs& args, const std::string& command, ReadReport& report,
-                     SampleStats* sampled) {
+                     SampleStats* sampled, TriangleMesh* mesh) {
   ReadOptions ro;
   ro.drop_nonfinite = args.flag("drop-nonfinite");
   const SampleOptions so = read_sample_options(args);  // usage errors before reading
@@ -88,6 +88,7 @@ PointSet load_points(const std::string& path, const ParsedArgs& args, const std:
     PointSet points = sample_mesh(model.mesh, so, path, &stats);
     if (!stats.fallback.empty()) std::cerr << "qf-bake " << command << ": warning: " << stats.fallback << "\n";
     if (sampled) *sampled = stats;
+    if (mesh) *mesh = std::move(model.mesh);
     return points;
   }
   if (model.points.size() == 0) throw InputError(command + ".empty", path, "", "holds no points");

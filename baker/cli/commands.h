@@ -1,10 +1,13 @@
 // qf-bake's subcommands. Each returns the process exit code; errors are thrown (see main.cpp).
 #pragma once
 
+#include <nlohmann/json.hpp>
+
 #include <string>
 #include <vector>
 
 #include "analysis/analysis.h"
+#include "clustering/clustering.h"
 #include "domains/merge.h"
 #include "cli/args.h"
 #include "io/model_io.h"
@@ -42,10 +45,11 @@ std::vector<OptionSpec> sample_option_specs();
 SampleOptions read_sample_options(const ParsedArgs& args);
 
 // Reads a point set for the analysis; a mesh is sampled into one by depth peeling (its figures in
-// `sampled`, when given; sampled->backend stays empty for point-set inputs). Rejects empty sets
+// `sampled`, when given; sampled->backend stays empty for point-set inputs; the mesh itself in
+// `mesh`, when given). Rejects empty sets
 // with InputError `command`.empty.
 PointSet load_points(const std::string& path, const ParsedArgs& args, const std::string& command, ReadReport& report,
-                     SampleStats* sampled = nullptr);
+                     SampleStats* sampled = nullptr, TriangleMesh* mesh = nullptr);
 
 // Shared by decompose and bake: --cache/--no-cache, and --merge with its two thresholds.
 std::vector<OptionSpec> cache_option_specs();
@@ -58,6 +62,11 @@ int run_decompose(const ParsedArgs& args);
 CommandSpec bake_spec();
 int run_bake(const ParsedArgs& args);
 CommandSpec cluster_spec();
+// The cluster levels' default cell widths (bounding-box diagonal / 128, 64, 32, 16, 8), and writing
+// levels as DIR/STEM_C<i>.glb (names appended to `files`); returns their manifest entries.
+std::vector<double> default_cluster_cells(const TriangleMesh& mesh);
+nlohmann::json write_cluster_levels(const std::vector<LodMesh>& lods, const std::string& dir, const std::string& stem,
+                                    std::vector<std::string>& files);
 int run_cluster(const ParsedArgs& args);
 
 }  // namespace qf::cli

@@ -201,6 +201,15 @@ PY
 expect 0 "bake a mesh" -- "$bake" "$work/cube_mesh.ply" -o "$work/meshbake" --primitives 50 --ldi 64 -q
 /usr/bin/python3 -c 'import json,sys; s=json.load(open(sys.argv[1]))["sampling"]; assert s["ldi_size"]==64 and s["backend"]=="cpu" and sum(s["points_per_axis"])>1000' \
   "$work/meshbake/report.json" 2>"$work/err" && ok || bad "bake report sampling: $(tail -1 "$work/err")"
+/usr/bin/python3 - "$work/meshbake" <<'PY' 2>"$work/err" && ok || bad "mesh bake outputs: $(tail -1 "$work/err")"
+import json, os, sys
+d = sys.argv[1]
+m = json.load(open(os.path.join(d, "manifest.json")))
+assert os.path.getsize(os.path.join(d, m["point_impostor"]["file"])) > 1000
+lods = m["mesh_lods"]["levels"]
+assert len(lods) == 5 and all(os.path.exists(os.path.join(d, l["file"])) for l in lods)
+assert lods[0]["cell_width"] < lods[-1]["cell_width"] and lods[0]["triangles"] >= lods[-1]["triangles"]
+PY
 # cluster: vertex-clustering LODs of a mesh, a manifest with cell widths, same bytes twice
 expect 0 "cluster" -- "$bake" cluster "$work/cube_mesh.ply" -o "$work/cl1" --cells 0.2,0.5,1
 expect 0 "cluster again" -- "$bake" cluster "$work/cube_mesh.ply" -o "$work/cl2" --cells 0.2,0.5,1 -q
