@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include "analysis/local_frames.h"
 #include "analysis/neighborhoods.h"
@@ -99,6 +101,10 @@ tinygltf::Model read_gltf(const std::string& path) {
   const bool ok = binary ? loader.LoadBinaryFromFile(&m, &err, &warn, path) : loader.LoadASCIIFromFile(&m, &err, &warn, path);
   if (!ok) {
     while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
+    std::ifstream raw(path, std::ios::binary);
+    const std::string head(std::istreambuf_iterator<char>(raw), {});
+    if (head.find("KHR_draco_mesh_compression") != std::string::npos)
+      fail(path, "draco", "requires KHR_draco_mesh_compression, which qf-render does not decode; render the uncompressed .glb");
     fail(path, "parse", err.empty() ? "not a readable glTF file" : err);
   }
   return m;

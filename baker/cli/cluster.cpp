@@ -24,7 +24,7 @@ std::vector<double> default_cluster_cells(const TriangleMesh& mesh) {
 }
 
 nlohmann::json write_cluster_levels(const std::vector<LodMesh>& lods, const std::string& dir, const std::string& stem,
-                                    std::vector<std::string>& files) {
+                                    std::vector<std::string>& files, bool draco) {
   nlohmann::json levels = nlohmann::json::array();
   for (std::size_t i = 0; i < lods.size(); ++i) {
     const LodMesh& l = lods[i];
@@ -40,6 +40,17 @@ nlohmann::json write_cluster_levels(const std::vector<LodMesh>& lods, const std:
                       {"triangles", l.triangles.size()},
                       {"edges", l.edges.size()},
                       {"points", l.points.size()}});
+    if (draco) {
+      const std::string dname = stem + "_C" + std::to_string(i) + ".draco.glb";
+      const std::vector<std::uint8_t> d = encode_cluster_glb(l, {}, true);
+      write_file_atomically(dir + "/" + dname, [&](std::ostream& out) {
+        out.write(reinterpret_cast<const char*>(d.data()), static_cast<std::streamsize>(d.size()));
+      });
+      files.push_back(dname);
+      levels.back()["draco_file"] = dname;
+      levels.back()["bytes"] = glb.size();
+      levels.back()["draco_bytes"] = d.size();
+    }
   }
   return levels;
 }
@@ -57,6 +68,7 @@ CommandSpec cluster_spec() {
            {"shape", 0, "cube|sphere", "cube", "cell shape"},
            {"assign", 0, "nearest|heaviest", "nearest", "a vertex inside several cells joins the nearest centre (paper 3.2.3) or the heaviest"},
            {"uniform", 0, "", "", "Rossignac-Borrel uniform grid clustering instead of floating cells (for comparison)"},
+           {"draco", 0, "", "", "also write STEM_C<i>.draco.glb: triangles Draco-compressed (KHR_draco_mesh_compression, required)"},
            drop_nonfinite_option(),
            {"quiet", 'q', "", "", "print nothing on success"}},
           1, 1};
@@ -107,7 +119,7 @@ int run_cluster(const ParsedArgs& args) {
   try {
     const std::string stem = std::filesystem::path(in).stem().string();
     std::vector<std::string> files;
-    const nlohmann::json levels = write_cluster_levels(lods, staging, stem, files);
+    const nlohmann::json levels = write_cluster_levels(lods, staging, stem, files, args.flag("draco"));
     nlohmann::json manifest{{"input", in},
                             {"triangles", mesh.triangles.size()},
                             {"vertices", mesh.positions.size()},

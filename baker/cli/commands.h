@@ -63,10 +63,11 @@ CommandSpec bake_spec();
 int run_bake(const ParsedArgs& args);
 CommandSpec cluster_spec();
 // The cluster levels' default cell widths (bounding-box diagonal / 128, 64, 32, 16, 8), and writing
-// levels as DIR/STEM_C<i>.glb (names appended to `files`); returns their manifest entries.
+// levels as DIR/STEM_C<i>.glb (and STEM_C<i>.draco.glb with `draco`; names appended to `files`);
+// returns their manifest entries.
 std::vector<double> default_cluster_cells(const TriangleMesh& mesh);
 nlohmann::json write_cluster_levels(const std::vector<LodMesh>& lods, const std::string& dir, const std::string& stem,
-                                    std::vector<std::string>& files);
+                                    std::vector<std::string>& files, bool draco = false);
 int run_cluster(const ParsedArgs& args);
 
 }  // namespace qf::cli

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "gltf/draco.h"
 #include "gltf/png.h"
 
 namespace qf {
@@ -244,7 +245,7 @@ double point_switch_distance(const PointImpostorInfo& info) {
 
 // COLOR_0 as normalized 16-bit linear RGBA (glTF vertex colours are linear; ours are sRGB bytes;
 // 8 bits would band the darks; RGBA keeps elements 4-byte aligned).
-int add_colors(tinygltf::Model& m, const std::vector<Rgb8>& colors) {
+std::vector<std::uint16_t> linear_rgba16(const std::vector<Rgb8>& colors) {
   std::vector<std::uint16_t> rgba;
   auto linear = [](std::uint8_t c) {
     const double v = c / 255.0;
@@ -252,6 +253,11 @@ int add_colors(tinygltf::Model& m, const std::vector<Rgb8>& colors) {
     return static_cast<std::uint16_t>(std::lround(l * 65535));
   };
   for (Rgb8 c : colors) rgba.insert(rgba.end(), {linear(c.r), linear(c.g), linear(c.b), 65535});
+  return rgba;
+}
+
+int add_colors(tinygltf::Model& m, const std::vector<Rgb8>& colors) {
+  const std::vector<std::uint16_t> rgba = linear_rgba16(colors);
   tinygltf::Accessor a;
   a.bufferView = add_view(m, rgba.data(), rgba.size() * sizeof(std::uint16_t), TINYGLTF_TARGET_ARRAY_BUFFER);
   a.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
@@ -262,7 +268,47 @@ int add_colors(tinygltf::Model& m, const std::vector<Rgb8>& colors) {
   return static_cast<int>(m.accessors.size() - 1);
 }
 
-std::vector<std::uint8_t> encode_cluster_glb(const LodMesh& lod, const GltfOptions& options) {
+// An accessor with no bufferView (its data lives in a Draco stream).
+int add_described(tinygltf::Model& m, int component, int type, std::size_t count, bool normalized = false) {
+  tinygltf::Accessor a;
+  a.componentType = component;
+  a.type = type;
+  a.count = count;
+  a.normalized = normalized;
+  m.accessors.push_back(a);
+  return static_cast<int>(m.accessors.size() - 1);
+}
+
+// The triangles as a KHR_draco_mesh_compression primitive without fallback (gltf-notes.md 2.4).
+tinygltf::Primitive draco_triangles(tinygltf::Model& m, const std::vector<float>& pos, const std::vector<float>& nrm,
+                                    const std::vector<Rgb8>& col) {
+  DracoInput in{pos, nrm, col.empty() ? std::vector<std::uint16_t>() : linear_rgba16(col)};
+  const DracoOutput d = draco_compress(in);
+  tinygltf::Primitive prim;
+  prim.mode = TINYGLTF_MODE_TRIANGLES;
+  prim.material = 0;
+  const int p = add_described(m, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, d.vertices);
+  for (int k = 0; k < 3; ++k) {
+    m.accessors[static_cast<std::size_t>(p)].minValues.push_back(canonical_double(static_cast<float>(d.min[static_cast<std::size_t>(k)])));
+    m.accessors[static_cast<std::size_t>(p)].maxValues.push_back(canonical_double(static_cast<float>(d.max[static_cast<std::size_t>(k)])));
+  }
+  prim.attributes["POSITION"] = p;
+  Value::Object ids{{"POSITION", Value(d.position_id)}};
+  if (d.normal_id >= 0) {
+    prim.attributes["NORMAL"] = add_described(m, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, d.vertices);
+    ids["NORMAL"] = Value(d.normal_id);
+  }
+  if (d.color_id >= 0) {
+    prim.attributes["COLOR_0"] = add_described(m, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC4, d.vertices, true);
+    ids["COLOR_0"] = Value(d.color_id);
+  }
+  prim.indices = add_described(m, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, d.indices);
+  const int view = add_view(m, d.bytes.data(), d.bytes.size(), 0);
+  prim.extensions["KHR_draco_mesh_compression"] = Value(Value::Object{{"bufferView", Value(view)}, {"attributes", Value(ids)}});
+  return prim;
+}
+
+std::vector<std::uint8_t> encode_cluster_glb(const LodMesh& lod, const GltfOptions& options, bool draco) {
   tinygltf::Model m = new_model(options);
   m.samplers.clear();
   tinygltf::Material mat;
@@ -307,7 +353,17 @@ std::vector<std::uint8_t> encode_cluster_glb(const LodMesh& lod, const GltfOptio
       const Vec3f n = normalized(vn[v]);
       tn.insert(tn.end(), {n.x, n.y, n.z});
     }
-  add_primitive(TINYGLTF_MODE_TRIANGLES, tv, &tn, nullptr);
+  if (draco && !tv.empty()) {
+    std::vector<float> pos;
+    std::vector<Rgb8> col;
+    for (std::uint32_t v : tv) {
+      pos.insert(pos.end(), {lod.positions[v].x, lod.positions[v].y, lod.positions[v].z});
+      if (coloured) col.push_back(lod.colors[v]);
+    }
+    mesh.primitives.push_back(draco_triangles(m, pos, tn, col));
+  } else {
+    add_primitive(TINYGLTF_MODE_TRIANGLES, tv, &tn, nullptr);
+  }
   std::vector<std::uint32_t> ev;
   std::vector<float> et;
   for (std::size_t e = 0; e < lod.edges.size(); ++e)
@@ -321,6 +377,10 @@ std::vector<std::uint8_t> encode_cluster_glb(const LodMesh& lod, const GltfOptio
   node.mesh = 0;
   node.extras = Value(Value::Object{{"cellWidth", Value(canonical_double(lod.cell))}});
   m.nodes.push_back(node);
+  if (draco && !tv.empty()) {  // no uncompressed fallback: readers without Draco must refuse the file
+    m.extensionsUsed.push_back("KHR_draco_mesh_compression");
+    m.extensionsRequired.push_back("KHR_draco_mesh_compression");
+  }
   tinygltf::Scene scene;
   scene.nodes.push_back(0);
   m.scenes.push_back(scene);

@@ -75,7 +75,8 @@ double point_switch_distance(const PointImpostorInfo& info);  // s Z0 on the ref
 // sided: clustering does not keep orientation), thick edges as a LINES primitive with the custom
 // per-vertex attribute _THICKNESS (model units; a runtime draws width = thickness / R pixels), and
 // isolated points as POINTS; COLOR_0 (16-bit linear) where the mesh has colours. The node's extras
-// give the cell width.
-std::vector<std::uint8_t> encode_cluster_glb(const LodMesh& lod, const GltfOptions& options = {});
+// give the cell width. With `draco`, the triangles are a KHR_draco_mesh_compression primitive with no
+// uncompressed fallback (the extension is then required; lines and points stay plain).
+std::vector<std::uint8_t> encode_cluster_glb(const LodMesh& lod, const GltfOptions& options = {}, bool draco = false);
 
 }  // namespace qf

@@ -211,8 +211,9 @@ assert len(lods) == 5 and all(os.path.exists(os.path.join(d, l["file"])) for l i
 assert lods[0]["cell_width"] < lods[-1]["cell_width"] and lods[0]["triangles"] >= lods[-1]["triangles"]
 PY
 # cluster: vertex-clustering LODs of a mesh, a manifest with cell widths, same bytes twice
-expect 0 "cluster" -- "$bake" cluster "$work/cube_mesh.ply" -o "$work/cl1" --cells 0.2,0.5,1
-expect 0 "cluster again" -- "$bake" cluster "$work/cube_mesh.ply" -o "$work/cl2" --cells 0.2,0.5,1 -q
+expect 0 "cluster" -- "$bake" cluster "$work/cube_mesh.ply" -o "$work/cl1" --cells 0.2,0.5,1 --draco
+expect 0 "cluster again" -- "$bake" cluster "$work/cube_mesh.ply" -o "$work/cl2" --cells 0.2,0.5,1 --draco -q
+[[ $(ls "$work/cl1"/*.draco.glb | wc -l) == 3 ]] && ok || bad "cluster --draco writes a Draco variant per level"
 for f in "$work/cl1"/*.glb; do cmp -s "$f" "$work/cl2/$(basename "$f")" && ok || bad "cluster output $(basename "$f") differs between runs"; done
 /usr/bin/python3 -c 'import json,sys; m=json.load(open(sys.argv[1])); assert [l["cell_width"] for l in m["levels"]]==[0.2,0.5,1.0] and m["levels"][0]["triangles"]>=m["levels"][2]["triangles"]' \
   "$work/cl1/manifest.json" 2>"$work/err" && ok || bad "cluster manifest: $(tail -1 "$work/err")"

@@ -8,7 +8,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 "$writer" "$work" || exit 1
 files=("$work"/*.glb)
-[[ ${#files[@]} -ge 9 ]] || { echo "expected 9 .glb files, got ${#files[@]}"; exit 1; }
+[[ ${#files[@]} -ge 10 ]] || { echo "expected 10 .glb files, got ${#files[@]}"; exit 1; }
 node "$validator/validate.js" "${files[@]}"
 status=$?
 # The extension block of every file, and the schema's examples, against the extension's schema.
@@ -38,6 +38,14 @@ for f in files:
         if len(doc["scenes"][0]["nodes"]) != 1 or len(ids) != 2 or len(cov) != 3 or cov != sorted(cov, reverse=True) \
                 or "extensions" in doc or doc["extensionsUsed"] != ["MSFT_lod"]:
             print(f, "MSFT_lod structure wrong"); bad = 1
+        continue
+    if f.endswith("_cluster_draco.glb"):
+        # Draco without fallback: required, accessors without bufferView, the stream in a bufferView.
+        tri = [p for p in doc["meshes"][0]["primitives"] if p.get("mode", 4) == 4][0]
+        ext = tri["extensions"]["KHR_draco_mesh_compression"]
+        if doc.get("extensionsRequired") != ["KHR_draco_mesh_compression"] or "bufferView" in doc["accessors"][tri["attributes"]["POSITION"]] \
+                or set(ext["attributes"]) != set(tri["attributes"]) or doc["bufferViews"][ext["bufferView"]]["byteLength"] < 100:
+            print(f, "Draco structure wrong"); bad = 1
         continue
     if f.endswith("_cluster.glb"):
         # A clustering LOD: triangles, and thick lines carrying _THICKNESS; plain glTF otherwise.

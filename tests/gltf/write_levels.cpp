@@ -69,6 +69,8 @@ int main(int argc, char** argv) {
   m.triangles.push_back({base, base + 2, base + 3});
   ClusterOptions co;
   co.cell = 0.3f;
-  write_bytes(dir + "/sphere_cluster.glb", encode_cluster_glb(cluster_mesh(m, grade_vertices(m), co)));
+  const LodMesh lod = cluster_mesh(m, grade_vertices(m), co);
+  write_bytes(dir + "/sphere_cluster.glb", encode_cluster_glb(lod));
+  write_bytes(dir + "/sphere_cluster_draco.glb", encode_cluster_glb(lod, {}, true));  // KHR_draco_mesh_compression
   return 0;
 }

@@ -9,7 +9,10 @@
 #include <filesystem>
 #include <set>
 
+#include <draco/compression/decode.h>
+
 #include "clustering/clustering.h"
+#include "gltf/draco.h"
 #include "gltf/glb.h"
 #include "io/model_io.h"
 #include "shapes/shapes.h"
@@ -140,6 +143,37 @@ TEST(Clustering, DeterministicBytes) {
   const TriangleMesh m = generate_mesh("sphere", 16);
   const VertexGrading g = grade_vertices(m);
   EXPECT_EQ(encode_cluster_glb(cluster_mesh(m, g, cells(0.2f))), encode_cluster_glb(cluster_mesh(m, g, cells(0.2f))));
+}
+
+TEST(Clustering, DracoStreamDecodesToTheLod) {
+  // Every decoded triangle is one of the LOD's, to the 14-bit position quantisation; none lost.
+  const TriangleMesh m = generate_mesh("sphere", 16);
+  const LodMesh lod = cluster_mesh(m, grade_vertices(m), cells(0.2f));
+  DracoInput in;
+  for (const Triangle& t : lod.triangles)
+    for (std::uint32_t v : t) in.positions.insert(in.positions.end(), {lod.positions[v].x, lod.positions[v].y, lod.positions[v].z});
+  const DracoOutput out = draco_compress(in);
+  EXPECT_EQ(out.indices, lod.triangles.size() * 3);
+  EXPECT_LE(out.vertices, lod.positions.size());
+  EXPECT_LT(out.bytes.size(), in.positions.size() * sizeof(float) / 4);  // > 4x smaller than raw floats
+  draco::DecoderBuffer buf;
+  buf.Init(reinterpret_cast<const char*>(out.bytes.data()), out.bytes.size());
+  draco::Decoder decoder;
+  auto decoded = decoder.DecodeMeshFromBuffer(&buf);
+  ASSERT_TRUE(decoded.ok());
+  const draco::Mesh& d = *decoded.value();
+  const draco::PointAttribute* p = d.GetNamedAttribute(draco::GeometryAttribute::POSITION);
+  const float tol = 2.0f / (1 << 14) * 2;  // the sphere spans 2: one quantisation step, twice
+  double worst = 0;
+  for (draco::PointIndex i(0); i < d.num_points(); ++i) {
+    float v[3];
+    p->GetMappedValue(i, v);
+    double best = INFINITY;
+    for (Vec3f q : lod.positions) best = std::min(best, double(length(q - Vec3f{v[0], v[1], v[2]})));
+    worst = std::max(worst, best);
+  }
+  EXPECT_LT(worst, tol);
+  EXPECT_EQ(draco_compress(in).bytes, out.bytes);  // deterministic
 }
 
 TEST(Clustering, ChoosesTheLargestCellWithinXPixels) {
