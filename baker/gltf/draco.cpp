@@ -62,4 +62,23 @@ DracoOutput draco_compress(const DracoInput& in) {
   return out;
 }
 
+void draco_decode(const std::vector<std::uint8_t>& bytes, std::vector<float>& positions, std::vector<std::uint32_t>& corners) {
+  draco::DecoderBuffer buf;
+  buf.Init(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+  draco::Decoder decoder;
+  auto decoded = decoder.DecodeMeshFromBuffer(&buf);
+  if (!decoded.ok()) throw std::runtime_error("draco: the stream does not decode");
+  const draco::Mesh& d = *decoded.value();
+  const draco::PointAttribute* p = d.GetNamedAttribute(draco::GeometryAttribute::POSITION);
+  positions.clear();
+  corners.clear();
+  for (draco::PointIndex i(0); i < d.num_points(); ++i) {
+    float v[3];
+    p->GetMappedValue(i, v);
+    positions.insert(positions.end(), {v[0], v[1], v[2]});
+  }
+  for (draco::FaceIndex f(0); f < d.num_faces(); ++f)
+    for (int k = 0; k < 3; ++k) corners.push_back(d.face(f)[k].value());
+}
+
 }  // namespace qf

@@ -29,4 +29,8 @@ struct DracoOutput {
 // std::runtime_error when Draco fails.
 DracoOutput draco_compress(const DracoInput& in);
 
+// The positions (3 per point) and triangle corners a Draco reader gets from `bytes`; throws
+// std::runtime_error when they do not decode. For checks and tools.
+void draco_decode(const std::vector<std::uint8_t>& bytes, std::vector<float>& positions, std::vector<std::uint32_t>& corners);
+
 }  // namespace qf
