@@ -230,15 +230,25 @@ LodMesh cluster_mesh(const TriangleMesh& mesh, const VertexGrading& g, const Clu
       if (seen.insert(t.key).second) tris[kept++] = t;
     tris.resize(kept);
   }
-  std::vector<std::pair<std::uint32_t, std::uint32_t>> sides;
   std::vector<bool> covered(rep.size(), false);
-  for (const Tri& t : tris)
-    for (int k = 0; k < 3; ++k) {
-      const std::uint32_t a = t.key[static_cast<std::size_t>(k)], b = t.key[static_cast<std::size_t>((k + 1) % 3)];
-      if (!edges.empty()) sides.push_back({std::min(a, b), std::max(a, b)});  // only edges look them up
-      covered[a] = true;
+  {
+    // Collapsed triangles whose edge is a side of a kept triangle add nothing: drop them before
+    // grouping (most of them, on fine levels), so only true thick edges get sorted.
+    std::unordered_set<std::uint64_t> sides;
+    if (!edges.empty()) sides.reserve(tris.size() * 3);
+    for (const Tri& t : tris)
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t a = t.key[static_cast<std::size_t>(k)], b = t.key[static_cast<std::size_t>((k + 1) % 3)];
+        if (!edges.empty()) sides.insert(std::uint64_t{std::min(a, b)} << 32 | std::max(a, b));
+        covered[a] = true;
+      }
+    std::size_t kept = 0;
+    for (const Edge& e : edges) {
+      covered[e.a] = covered[e.b] = true;
+      if (!sides.count(std::uint64_t{e.a} << 32 | e.b)) edges[kept++] = e;
     }
-  std::sort(sides.begin(), sides.end());
+    edges.resize(kept);
+  }
   std::stable_sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) { return std::tie(x.a, x.b) < std::tie(y.a, y.b); });
   // 4. Thick edges: per cluster pair, thickness D_A + D_B from the collapsed triangles' vertices.
   std::vector<std::uint32_t> out_id(rep.size(), kNone);
@@ -263,8 +273,7 @@ LodMesh cluster_mesh(const TriangleMesh& mesh, const VertexGrading& g, const Clu
     std::size_t j = i;
     while (j < edges.size() && edges[j].a == edges[i].a && edges[j].b == edges[i].b) ++j;
     const std::uint32_t A = edges[i].a, B = edges[i].b;
-    covered[A] = covered[B] = true;
-    if (!std::binary_search(sides.begin(), sides.end(), std::make_pair(A, B))) {
+    {
       std::vector<std::uint32_t> va, vb;
       for (std::size_t k = i; k < j; ++k)
         for (std::uint32_t v : mesh.triangles[edges[k].triangle]) (cluster[v] == A ? va : vb).push_back(v);
