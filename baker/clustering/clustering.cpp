@@ -6,7 +6,6 @@
 #include <limits>
 #include <stdexcept>
 #include <unordered_map>
-#include <unordered_set>
 
 namespace qf {
 namespace {
@@ -124,6 +123,37 @@ std::vector<std::uint32_t> uniform_cells(const TriangleMesh& mesh, const std::ve
   return cluster;
 }
 
+// A set of 96-bit keys by open addressing (linear probing in one array): the per-level duplicate
+// tests without a node allocation per entry. Only used for membership, never iterated.
+class KeySet {
+ public:
+  explicit KeySet(std::size_t n) {
+    std::size_t cap = 16;
+    while (cap < 2 * n) cap *= 2;
+    slots_.assign(cap, {kNone, kNone, kNone});
+  }
+  // Inserts k (whose first word is not kNone); false when it was already there.
+  bool insert(const std::array<std::uint32_t, 3>& k) {
+    const std::size_t mask = slots_.size() - 1;
+    std::uint64_t h = (std::uint64_t{k[0]} * 0x9E3779B97F4A7C15ull) ^ (std::uint64_t{k[1]} * 0xC2B2AE3D27D4EB4Full) ^ k[2];
+    for (std::size_t i = static_cast<std::size_t>(h ^ (h >> 29)) & mask;; i = (i + 1) & mask) {
+      if (slots_[i][0] == kNone) return slots_[i] = k, true;
+      if (slots_[i] == k) return false;
+    }
+  }
+  bool contains(const std::array<std::uint32_t, 3>& k) const {
+    const std::size_t mask = slots_.size() - 1;
+    std::uint64_t h = (std::uint64_t{k[0]} * 0x9E3779B97F4A7C15ull) ^ (std::uint64_t{k[1]} * 0xC2B2AE3D27D4EB4Full) ^ k[2];
+    for (std::size_t i = static_cast<std::size_t>(h ^ (h >> 29)) & mask;; i = (i + 1) & mask) {
+      if (slots_[i][0] == kNone) return false;
+      if (slots_[i] == k) return true;
+    }
+  }
+
+ private:
+  std::vector<std::array<std::uint32_t, 3>> slots_;
+};
+
 // Distance of p from the line through a and b.
 double line_distance(Vec3f p, Vec3f a, Vec3f b) {
   const Vec3f d = b - a;
@@ -217,35 +247,28 @@ LodMesh cluster_mesh(const TriangleMesh& mesh, const VertexGrading& g, const Clu
   }
   // 3. Elimination: one triangle per cluster triple (the first, with its winding); edges that are
   //    sides of a triangle, and points used by a triangle or an edge, go.
-  {  // first occurrence of each cluster triple, in input order (the set is only looked up)
-    struct KeyHash {
-      std::size_t operator()(const std::array<std::uint32_t, 3>& k) const {
-        return std::hash<std::uint64_t>()((std::uint64_t{k[0]} * 0x9E3779B97F4A7C15ull) ^ (std::uint64_t{k[1]} << 21) ^ k[2]);
-      }
-    };
-    std::unordered_set<std::array<std::uint32_t, 3>, KeyHash> seen;
-    seen.reserve(tris.size());
+  {  // first occurrence of each cluster triple, in input order
+    KeySet seen(tris.size());
     std::size_t kept = 0;
     for (const Tri& t : tris)
-      if (seen.insert(t.key).second) tris[kept++] = t;
+      if (seen.insert(t.key)) tris[kept++] = t;
     tris.resize(kept);
   }
   std::vector<bool> covered(rep.size(), false);
   {
     // Collapsed triangles whose edge is a side of a kept triangle add nothing: drop them before
     // grouping (most of them, on fine levels), so only true thick edges get sorted.
-    std::unordered_set<std::uint64_t> sides;
-    if (!edges.empty()) sides.reserve(tris.size() * 3);
+    KeySet sides(edges.empty() ? 0 : tris.size() * 3);
     for (const Tri& t : tris)
       for (int k = 0; k < 3; ++k) {
         const std::uint32_t a = t.key[static_cast<std::size_t>(k)], b = t.key[static_cast<std::size_t>((k + 1) % 3)];
-        if (!edges.empty()) sides.insert(std::uint64_t{std::min(a, b)} << 32 | std::max(a, b));
+        if (!edges.empty()) sides.insert({std::min(a, b), std::max(a, b), 0});
         covered[a] = true;
       }
     std::size_t kept = 0;
     for (const Edge& e : edges) {
       covered[e.a] = covered[e.b] = true;
-      if (!sides.count(std::uint64_t{e.a} << 32 | e.b)) edges[kept++] = e;
+      if (!sides.contains({e.a, e.b, 0})) edges[kept++] = e;
     }
     edges.resize(kept);
   }
