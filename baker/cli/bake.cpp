@@ -109,13 +109,9 @@ int run_bake(const ParsedArgs& args) {
   }
 
   // Write into a private folder inside OUTDIR, then move the files into place, manifest last.
-  std::filesystem::create_directories(outdir);
-  const std::string staging = outdir + "/.qf-bake-" + std::to_string(::getpid());
-  std::filesystem::create_directories(staging);
-  try {
+  write_folder_atomically(outdir, "qf-bake", [&](const std::string& staging, std::vector<std::string>& files) {
     const std::string stem = std::filesystem::path(in).stem().string();
     nlohmann::json levels = nlohmann::json::array();
-    std::vector<std::string> files;
     for (const BakedLevel& l : r.levels) {
       const std::string name = stem + "_L" + std::to_string(l.level) + ".glb";
       write_bytes(staging + "/" + name, l.glb);
@@ -207,13 +203,7 @@ int run_bake(const ParsedArgs& args) {
     write_file_atomically(staging + "/manifest.json", [&](std::ostream& out) { out << manifest.dump(2) << "\n"; });
     files.push_back("report.json");
     files.push_back("manifest.json");
-    for (const std::string& f : files) std::filesystem::rename(staging + "/" + f, outdir + "/" + f);
-    std::filesystem::remove_all(staging);
-  } catch (...) {
-    std::error_code ec;
-    std::filesystem::remove_all(staging, ec);
-    throw;
-  }
+  });
   if (!args.flag("quiet")) {
     std::fprintf(stderr, "qf-bake: %s (%zu points) -> %s, hierarchy of %zu levels (cache: %s)\n", in.c_str(), r.points,
                  outdir.c_str(), r.hierarchy_levels, r.cache.c_str());

@@ -113,12 +113,8 @@ int run_cluster(const ParsedArgs& args) {
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  std::filesystem::create_directories(outdir);
-  const std::string staging = outdir + "/.qf-cluster-" + std::to_string(::getpid());
-  std::filesystem::create_directories(staging);
-  try {
+  write_folder_atomically(outdir, "qf-cluster", [&](const std::string& staging, std::vector<std::string>& files) {
     const std::string stem = std::filesystem::path(in).stem().string();
-    std::vector<std::string> files;
     const nlohmann::json levels = write_cluster_levels(lods, staging, stem, files, args.flag("draco"));
     nlohmann::json manifest{{"input", in},
                             {"triangles", mesh.triangles.size()},
@@ -133,13 +129,7 @@ int run_cluster(const ParsedArgs& args) {
                             {"generator", "quasiflat qf-bake cluster"}};
     write_file_atomically(staging + "/manifest.json", [&](std::ostream& out) { out << manifest.dump(2) << "\n"; });
     files.push_back("manifest.json");
-    for (const std::string& f : files) std::filesystem::rename(staging + "/" + f, outdir + "/" + f);
-    std::filesystem::remove_all(staging);
-  } catch (...) {
-    std::error_code ec;
-    std::filesystem::remove_all(staging, ec);
-    throw;
-  }
+  });
   if (!args.flag("quiet")) {
     std::fprintf(stderr, "qf-bake cluster: %s (%zu triangles) -> %s, %zu levels in %.3f s\n", in.c_str(), mesh.triangles.size(),
                  outdir.c_str(), lods.size(), seconds);

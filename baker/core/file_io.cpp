@@ -76,6 +76,23 @@ void write_file_atomically(const std::string& path, const std::function<void(std
   }
 }
 
+void write_folder_atomically(const std::string& outdir, const std::string& tag,
+                             const std::function<void(const std::string& staging, std::vector<std::string>& files)>& fill) {
+  std::filesystem::create_directories(outdir);
+  const std::string staging = outdir + "/." + tag + "-" + std::to_string(::getpid());
+  std::filesystem::create_directories(staging);
+  try {
+    std::vector<std::string> files;
+    fill(staging, files);
+    for (const std::string& f : files) std::filesystem::rename(staging + "/" + f, outdir + "/" + f);
+    std::filesystem::remove_all(staging);
+  } catch (...) {
+    std::error_code ec;
+    std::filesystem::remove_all(staging, ec);
+    throw;
+  }
+}
+
 std::string file_extension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   if (!ext.empty() && ext[0] == '.') ext.erase(0, 1);

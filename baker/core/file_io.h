@@ -49,6 +49,13 @@ class InputFile {
 // exception propagates; `path` is left untouched.
 void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write);
 
+// Writes a set of files into `outdir` so that none is ever seen half-written: `fill` writes them
+// into a private folder inside outdir (".<tag>-<pid>", created here) and appends each name to
+// `files`; they are then renamed into outdir in that order (put the manifest last). If `fill`
+// throws, the private folder is removed and the exception propagates; outdir keeps what it had.
+void write_folder_atomically(const std::string& outdir, const std::string& tag,
+                             const std::function<void(const std::string& staging, std::vector<std::string>& files)>& fill);
+
 // Lower-case extension without the dot ("ply" for "a/b.PLY"), or "" if none.
 std::string file_extension(const std::string& path);
 
