@@ -40,6 +40,8 @@ Vec3f sphere_direction(int i, int n) {
   return {static_cast<float>(r * std::sin(phi)), static_cast<float>(y), static_cast<float>(r * std::cos(phi))};
 }
 
+double Camera::focal_pixels() const { return height / (2 * std::tan(double(radians(fovy_degrees)) * 0.5)); }
+
 Camera orbit_camera(const Sphere& s, Vec3f direction, float distance, int width, int height, float fovy_degrees) {
   Camera c;
   c.width = width;

@@ -24,6 +24,9 @@ struct Camera {
   int width = 512, height = 512;
   Mat4 view() const;        // world -> eye (gluLookAt)
   Mat4 projection() const;  // gluPerspective
+  // Z0 = height / (2 tan(fovy / 2)): pixels per world unit at distance 1, so a length L at distance
+  // d spans L Z0 / d pixels and one pixel there is R = d / Z0 long (paper 5; Low & Tan 4).
+  double focal_pixels() const;
 };
 
 // Unit direction from the target to the eye: azimuth about +Y from +Z, elevation above the XZ plane

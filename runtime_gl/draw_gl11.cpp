@@ -280,12 +280,12 @@ void Renderer::set_scene(const ClusterScene& scene) {
 
 void Renderer::Impl::draw_thick_lines(const Camera& c, DrawStats& stats) {
   const ClusterScene& sc = *cluster;
-  const double per_distance = 2 * std::tan(0.5 * double(c.fovy_degrees) * 3.14159265358979323846 / 180) / c.height;
+  const double z0 = c.focal_pixels();
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   for (std::size_t e = 0; e < sc.thickness.size(); ++e) {
     const Vec3f a = sc.line_positions[2 * e], b = sc.line_positions[2 * e + 1];
-    const double r = length((a + b) * 0.5f - c.eye) * per_distance;  // R: model size of a pixel there
+    const double r = length((a + b) * 0.5f - c.eye) / z0;  // R: model size of a pixel there
     const float width = static_cast<float>(std::clamp(sc.thickness[e] / r, 1.0, 64.0));
     // Perpendicular to the line, in the plane of the line and the eye, towards the eye.
     const Vec3f n = normalized(cross(cross(a - c.eye, b - c.eye), b - a));
@@ -322,14 +322,14 @@ void Renderer::Impl::draw_thick_lines(const Camera& c, DrawStats& stats) {
 void Renderer::Impl::draw_points(const Camera& c, DrawStats& stats) {
   const PointImpostorScene& p = *points;
   const float d = length(c.eye - p.bounds.center());
-  const double z0 = c.height / (2 * std::tan(0.5 * double(c.fovy_degrees) * 3.14159265358979323846 / 180));
+  const double z0 = c.focal_pixels();
   const double d_switch = p.pixel * z0;
   float weight = 1;
   if (mesh) weight = static_cast<float>(std::clamp((d - 0.7 * d_switch) / (0.3 * d_switch), 0.0, 1.0));
   stats.points_weight = weight;
   if (weight < 1) draw_mesh();
   if (weight <= 0) return;
-  const std::size_t n = points_to_draw(p.positions.size(), p.pixel, d, c.height, c.fovy_degrees);
+  const std::size_t n = points_to_draw(p.positions.size(), p.pixel, d, z0);
   stats.points = n;
   const auto alpha = static_cast<std::uint8_t>(std::lround(weight * 255));
   for (std::size_t i = 0; i < n; ++i) point_rgba[i * 4 + 3] = alpha;

@@ -18,10 +18,6 @@ namespace qf::render {
 namespace IBA = OIIO::ImageBufAlgo;
 namespace {
 
-void write_bytes(const std::string& path, const std::vector<unsigned char>& bytes) {
-  write_file_atomically(path, [&](std::ostream& out) { out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size())); });
-}
-
 // The RGB channels of an 8-bit RGBA image as floats in 0..1.
 OIIO::ImageBuf rgb_float(const Image& img) {
   OIIO::ImageBuf wrapped(OIIO::ImageSpec(img.width, img.height, 4, OIIO::TypeDesc::UINT8), const_cast<std::uint8_t*>(img.rgba.data()));
@@ -63,7 +59,7 @@ void save_png(const std::string& path, const Image& image) {
   std::vector<std::uint8_t> rgb(static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) * 3);
   for (std::size_t i = 0, n = rgb.size() / 3; i < n; ++i)
     for (int c = 0; c < 3; ++c) rgb[i * 3 + c] = image.rgba[i * 4 + c];
-  write_bytes(path, encode_png(rgb.data(), image.width, image.height, 3));
+  write_bytes_atomically(path, encode_png(rgb.data(), image.width, image.height, 3));
 }
 
 Image contact_sheet(const std::vector<Image>& images, int columns, Rgb8 background, const std::vector<std::string>& captions) {
@@ -130,7 +126,7 @@ void save_exr(const std::string& path, const std::vector<float>& rgb, int width,
   spec.attribute("compression", "zip");
   if (!out->open(path, spec) || !out->write_image(OIIO::TypeDesc::FLOAT, rgb.data()) || !out->close())
     throw std::runtime_error("EXR encoding failed: " + out->geterror());
-  write_bytes(path, bytes);
+  write_bytes_atomically(path, bytes);
 }
 
 Image to_8bit(const std::vector<float>& rgb, int width, int height, float gain) {

@@ -13,6 +13,7 @@
 
 #include "analysis/local_frames.h"
 #include "analysis/neighborhoods.h"
+#include "core/color.h"
 #include "core/error.h"
 
 namespace qf::render {
@@ -110,73 +111,21 @@ tinygltf::Model read_gltf(const std::string& path) {
   return m;
 }
 
-// Linear 16-bit glTF vertex colour -> the sRGB byte the fixed-function pipeline draws.
-std::uint8_t srgb_byte(std::uint16_t linear) {
-  const double l = linear / 65535.0;
-  const double v = l <= 0.0031308 ? 12.92 * l : 1.055 * std::pow(l, 1 / 2.4) - 0.055;
-  return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255));
-}
-
-}  // namespace
-
-std::optional<PointImpostorScene> load_point_impostor(const std::string& path) {
-  const tinygltf::Model m = read_gltf(path);
-  const auto ext = m.extensions.find("QF_point_impostor");
-  if (ext == m.extensions.end()) return std::nullopt;
-  PointImpostorScene s;
-  s.pixel = static_cast<float>(ext->second.Get("pixelSize").GetNumberAsDouble());
-  if (!(s.pixel > 0)) fail(path, "points", "QF_point_impostor.pixelSize must be positive");
-  AccessorReader read{m, path};
-  for (const tinygltf::Mesh& mesh : m.meshes)
-    for (const tinygltf::Primitive& prim : mesh.primitives) {
-      if (prim.mode != TINYGLTF_MODE_POINTS || !s.positions.empty()) continue;
-      const auto pos = prim.attributes.find("POSITION"), nrm = prim.attributes.find("NORMAL"), col = prim.attributes.find("COLOR_0");
-      if (pos == prim.attributes.end()) fail(path, "points", "the POINTS primitive has no POSITION");
-      const std::vector<float> p = read.floats(pos->second, 3);
-      for (std::size_t i = 0; i + 2 < p.size(); i += 3) s.positions.push_back({p[i], p[i + 1], p[i + 2]});
-      if (nrm != prim.attributes.end()) {
-        const std::vector<float> n = read.floats(nrm->second, 3);
-        for (std::size_t i = 0; i + 2 < n.size(); i += 3) s.normals.push_back({n[i], n[i + 1], n[i + 2]});
-      }
-      if (col != prim.attributes.end()) {
-        const tinygltf::Accessor& a = m.accessors.at(static_cast<std::size_t>(col->second));
-        if (a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT || a.type != TINYGLTF_TYPE_VEC4)
-          fail(path, "points", "COLOR_0 of a point impostor must be normalized unsigned short RGBA");
-        std::size_t stride = 0;
-        const unsigned char* b = read.base(a, 8, stride);
-        for (std::size_t i = 0; i < a.count; ++i) {
-          std::uint16_t c[4];
-          std::memcpy(c, b + i * stride, 8);
-          s.colors.push_back({srgb_byte(c[0]), srgb_byte(c[1]), srgb_byte(c[2])});
-        }
-      }
-    }
-  if (s.positions.empty()) fail(path, "points", "has QF_point_impostor but no POINTS primitive with points");
-  if ((!s.normals.empty() && s.normals.size() != s.positions.size()) || (!s.colors.empty() && s.colors.size() != s.positions.size()))
-    fail(path, "points", "NORMAL/COLOR_0 counts differ from POSITION's");
-  if (s.normals.empty()) s.normals.assign(s.positions.size(), Vec3f{0, 0, 1});
-  if (s.colors.empty()) s.colors.assign(s.positions.size(), kBaseColor);
-  for (Vec3f q : s.positions) s.bounds.add(q);
-  return s;
-}
-
-namespace {
-
-// COLOR_0 as written by the baker (normalized 16-bit linear RGBA) -> sRGB bytes; `fallback` when absent.
-std::vector<Rgb8> read_colors(const tinygltf::Model& m, const tinygltf::Primitive& prim, const std::string& path, std::size_t n) {
+// COLOR_0 as the baker writes it (normalized 16-bit linear RGBA) -> sRGB bytes; the base colour
+// when absent.
+std::vector<Rgb8> read_colors(const AccessorReader& read, const tinygltf::Primitive& prim, std::size_t n) {
   const auto col = prim.attributes.find("COLOR_0");
   if (col == prim.attributes.end()) return std::vector<Rgb8>(n, kBaseColor);
-  const tinygltf::Accessor& a = m.accessors.at(static_cast<std::size_t>(col->second));
+  const tinygltf::Accessor& a = read.m.accessors.at(static_cast<std::size_t>(col->second));
   if (a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT || a.type != TINYGLTF_TYPE_VEC4 || a.count != n)
-    fail(path, "colors", "COLOR_0 must be normalized unsigned short RGBA, one per vertex");
-  AccessorReader read{m, path};
+    fail(read.path, "colors", "COLOR_0 must be normalized unsigned short RGBA, one per vertex");
   std::size_t stride = 0;
   const unsigned char* b = read.base(a, 8, stride);
   std::vector<Rgb8> out;
   for (std::size_t i = 0; i < a.count; ++i) {
     std::uint16_t c[4];
     std::memcpy(c, b + i * stride, 8);
-    out.push_back({srgb_byte(c[0]), srgb_byte(c[1]), srgb_byte(c[2])});
+    out.push_back({linear16_to_srgb(c[0]), linear16_to_srgb(c[1]), linear16_to_srgb(c[2])});
   }
   return out;
 }
@@ -190,18 +139,33 @@ std::vector<Vec3f> read_vec3(const AccessorReader& read, const tinygltf::Primiti
   return out;
 }
 
-}  // namespace
+PointImpostorScene point_scene(const tinygltf::Model& m, const std::string& path) {
+  PointImpostorScene s;
+  s.pixel = static_cast<float>(m.extensions.at("QF_point_impostor").Get("pixelSize").GetNumberAsDouble());
+  if (!(s.pixel > 0)) fail(path, "points", "QF_point_impostor.pixelSize must be positive");
+  AccessorReader read{m, path};
+  for (const tinygltf::Mesh& mesh : m.meshes)
+    for (const tinygltf::Primitive& prim : mesh.primitives) {
+      if (prim.mode != TINYGLTF_MODE_POINTS || !s.positions.empty()) continue;
+      s.positions = read_vec3(read, prim, "POSITION");
+      s.normals = read_vec3(read, prim, "NORMAL");
+      s.colors = read_colors(read, prim, s.positions.size());
+    }
+  if (s.positions.empty()) fail(path, "points", "has QF_point_impostor but no POINTS primitive with points");
+  if (!s.normals.empty() && s.normals.size() != s.positions.size()) fail(path, "points", "NORMAL and POSITION counts differ");
+  if (s.normals.empty()) s.normals.assign(s.positions.size(), Vec3f{0, 0, 1});
+  for (Vec3f q : s.positions) s.bounds.add(q);
+  return s;
+}
 
-std::optional<ClusterScene> load_cluster_lod(const std::string& path) {
-  const tinygltf::Model m = read_gltf(path);
-  if (m.nodes.empty() || !m.nodes[0].extras.Has("cellWidth")) return std::nullopt;
+ClusterScene cluster_scene(const tinygltf::Model& m, const std::string& path) {
   ClusterScene s;
   s.cell = static_cast<float>(m.nodes[0].extras.Get("cellWidth").GetNumberAsDouble());
   AccessorReader read{m, path};
   for (const tinygltf::Mesh& mesh : m.meshes)
     for (const tinygltf::Primitive& prim : mesh.primitives) {
       const std::vector<Vec3f> pos = read_vec3(read, prim, "POSITION");
-      const std::vector<Rgb8> col = read_colors(m, prim, path, pos.size());
+      const std::vector<Rgb8> col = read_colors(read, prim, pos.size());
       if (prim.mode == TINYGLTF_MODE_TRIANGLES) {
         std::vector<Vec3f> nrm = read_vec3(read, prim, "NORMAL");
         if (nrm.size() != pos.size()) fail(path, "mesh", "cluster LOD triangles need one NORMAL per vertex");
@@ -230,8 +194,30 @@ std::optional<ClusterScene> load_cluster_lod(const std::string& path) {
   return s;
 }
 
-ImpostorScene load_gltf(const std::string& path) {
-  const tinygltf::Model m = read_gltf(path);
+ImpostorScene impostor_scene(const tinygltf::Model& m, const std::string& path);
+
+}  // namespace
+
+BakedScene load_baked(const std::string& path) {
+  const tinygltf::Model m = read_gltf(path);  // parsed once, whatever it holds
+  BakedScene s;
+  if (m.extensions.count("QF_point_impostor")) {
+    s.kind = BakedScene::kPoints;
+    s.points = point_scene(m, path);
+  } else if (!m.nodes.empty() && m.nodes[0].extras.Has("cellWidth")) {
+    s.kind = BakedScene::kCluster;
+    s.cluster = cluster_scene(m, path);
+  } else {
+    s.impostor = impostor_scene(m, path);
+  }
+  return s;
+}
+
+ImpostorScene load_gltf(const std::string& path) { return impostor_scene(read_gltf(path), path); }
+
+namespace {
+
+ImpostorScene impostor_scene(const tinygltf::Model& m, const std::string& path) {
   ImpostorScene s;
   AccessorReader read{m, path};
   // Textures: one per glTF image, plus a white one at the end for untextured materials.
@@ -357,6 +343,8 @@ ImpostorScene load_gltf(const std::string& path) {
   if (s.items.empty()) fail(path, "empty", "the file has no triangles to draw");
   return s;
 }
+
+}  // namespace
 
 SplatScene splat_scene(PointSet points, const std::string& source) {
   if (points.size() == 0) throw InputError("render.points.empty", source, "", "the point set is empty");

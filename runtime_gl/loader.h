@@ -2,7 +2,6 @@
 // present) and reference scenes made from an input point set or mesh.
 #pragma once
 
-#include <optional>
 #include <string>
 
 #include "core/types.h"
@@ -15,13 +14,16 @@ namespace qf::render {
 // centroid and normal, and no neighbours. Throws InputError ("render.gltf.*") naming the file.
 ImpostorScene load_gltf(const std::string& path);
 
-// A point impostor (.glb with QF_point_impostor), or nothing when the file lacks the extension.
-// Throws InputError ("render.gltf.*") for unreadable files and malformed point data.
-std::optional<PointImpostorScene> load_point_impostor(const std::string& path);
-
-// A vertex-clustering LOD (.glb written by `qf-bake cluster`: node extras cellWidth), or nothing
-// for other files. Throws InputError ("render.gltf.*") for unreadable files.
-std::optional<ClusterScene> load_cluster_lod(const std::string& path);
+// Any .glb/.gltf the baker writes, parsed once: a point impostor (QF_point_impostor), a
+// vertex-clustering LOD (node extras cellWidth, from `qf-bake cluster`), else an impostor level as
+// load_gltf reads it. Throws InputError ("render.gltf.*") naming the file.
+struct BakedScene {
+  enum Kind { kImpostor, kPoints, kCluster } kind = kImpostor;
+  ImpostorScene impostor;
+  PointImpostorScene points;
+  ClusterScene cluster;
+};
+BakedScene load_baked(const std::string& path);
 
 // A reference scene of a point set: radii estimated from the spacing where missing (as the baker
 // does), normals estimated by the surface analysis where missing.

@@ -70,15 +70,11 @@ AnyScene load_scene(const std::string& path) {
   AnyScene s;
   const std::string ext = file_extension(path);
   if (ext == "glb" || ext == "gltf") {
-    if (std::optional<PointImpostorScene> p = load_point_impostor(path)) {
-      s.kind = AnyScene::kPoints;
-      s.points = std::move(*p);
-    } else if (std::optional<ClusterScene> c = load_cluster_lod(path)) {
-      s.kind = AnyScene::kCluster;
-      s.cluster = std::move(*c);
-    } else {
-      s.impostor = load_gltf(path);
-    }
+    BakedScene b = load_baked(path);
+    s.kind = b.kind == BakedScene::kPoints ? AnyScene::kPoints : b.kind == BakedScene::kCluster ? AnyScene::kCluster : AnyScene::kImpostor;
+    s.impostor = std::move(b.impostor);
+    s.points = std::move(b.points);
+    s.cluster = std::move(b.cluster);
     return s;
   }
   Model m = read_model(path);

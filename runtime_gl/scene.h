@@ -85,9 +85,8 @@ struct ClusterScene {
 };
 
 // How many of a point impostor's n0 points to draw at distance d (paper 5): N = N0 (s Z0 / d)^2
-// with Z0 = H / (2 tan(fov / 2)), at most N0 (closer than s Z0 the mesh takes over).
-inline std::size_t points_to_draw(std::size_t n0, float pixel, float distance, int height, float fovy_degrees) {
-  const double z0 = height / (2 * std::tan(0.5 * double(fovy_degrees) * 3.14159265358979323846 / 180));
+// with Z0 = Camera::focal_pixels(), at most N0 (closer than s Z0 the mesh takes over).
+inline std::size_t points_to_draw(std::size_t n0, float pixel, float distance, double z0) {
   const double n = double(n0) * std::pow(pixel * z0 / std::max(double(distance), 1e-30), 2);
   return n >= double(n0) ? n0 : static_cast<std::size_t>(n);
 }

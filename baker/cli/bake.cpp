@@ -15,15 +15,6 @@
 #include "pipeline/bake.h"
 
 namespace qf::cli {
-namespace {
-
-void write_bytes(const std::string& path, const std::vector<std::uint8_t>& bytes) {
-  write_file_atomically(path, [&](std::ostream& out) {
-    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-  });
-}
-
-}  // namespace
 
 CommandSpec bake_spec() {
   CommandSpec spec{"bake", "IN -o OUTDIR [options]   (also: qf-bake IN -o OUTDIR)",
@@ -114,7 +105,7 @@ int run_bake(const ParsedArgs& args) {
     nlohmann::json levels = nlohmann::json::array();
     for (const BakedLevel& l : r.levels) {
       const std::string name = stem + "_L" + std::to_string(l.level) + ".glb";
-      write_bytes(staging + "/" + name, l.glb);
+      write_bytes_atomically(staging + "/" + name, l.glb);
       files.push_back(name);
       levels.push_back({{"file", name},
                         {"level", l.level},
@@ -128,7 +119,7 @@ int run_bake(const ParsedArgs& args) {
     std::string lod_name;
     if (!r.lod_glb.empty()) {
       lod_name = stem + "_lods.glb";
-      write_bytes(staging + "/" + lod_name, r.lod_glb);
+      write_bytes_atomically(staging + "/" + lod_name, r.lod_glb);
       files.push_back(lod_name);
     }
     // Mesh inputs: the sampled points, randomly permuted, as a point impostor.
@@ -138,7 +129,7 @@ int run_bake(const ParsedArgs& args) {
       info.pixel = sampled.pixel;
       info.seed = static_cast<std::uint64_t>(args.get_int("point-seed", 1, 0, 1ll << 62));
       const std::string name = stem + "_points.glb";
-      write_bytes(staging + "/" + name, encode_point_glb(permuted(points, point_permutation(points.size(), info.seed)), info));
+      write_bytes_atomically(staging + "/" + name, encode_point_glb(permuted(points, point_permutation(points.size(), info.seed)), info));
       files.push_back(name);
       point_entry = {{"file", name},
                      {"points", points.size()},

@@ -30,9 +30,7 @@ nlohmann::json write_cluster_levels(const std::vector<LodMesh>& lods, const std:
     const LodMesh& l = lods[i];
     const std::string name = stem + "_C" + std::to_string(i) + ".glb";
     const std::vector<std::uint8_t> glb = encode_cluster_glb(l);
-    write_file_atomically(dir + "/" + name, [&](std::ostream& out) {
-      out.write(reinterpret_cast<const char*>(glb.data()), static_cast<std::streamsize>(glb.size()));
-    });
+    write_bytes_atomically(dir + "/" + name, glb);
     files.push_back(name);
     levels.push_back({{"file", name},
                       {"cell_width", canonical_double(l.cell)},
@@ -43,9 +41,7 @@ nlohmann::json write_cluster_levels(const std::vector<LodMesh>& lods, const std:
     if (draco) {
       const std::string dname = stem + "_C" + std::to_string(i) + ".draco.glb";
       const std::vector<std::uint8_t> d = encode_cluster_glb(l, {}, true);
-      write_file_atomically(dir + "/" + dname, [&](std::ostream& out) {
-        out.write(reinterpret_cast<const char*>(d.data()), static_cast<std::streamsize>(d.size()));
-      });
+      write_bytes_atomically(dir + "/" + dname, d);
       files.push_back(dname);
       levels.back()["draco_file"] = dname;
       levels.back()["bytes"] = glb.size();

@@ -134,23 +134,22 @@ class KeySet {
   }
   // Inserts k (whose first word is not kNone); false when it was already there.
   bool insert(const std::array<std::uint32_t, 3>& k) {
-    const std::size_t mask = slots_.size() - 1;
-    std::uint64_t h = (std::uint64_t{k[0]} * 0x9E3779B97F4A7C15ull) ^ (std::uint64_t{k[1]} * 0xC2B2AE3D27D4EB4Full) ^ k[2];
-    for (std::size_t i = static_cast<std::size_t>(h ^ (h >> 29)) & mask;; i = (i + 1) & mask) {
-      if (slots_[i][0] == kNone) return slots_[i] = k, true;
-      if (slots_[i] == k) return false;
-    }
+    std::array<std::uint32_t, 3>& slot = find(k);
+    if (slot[0] != kNone) return false;
+    slot = k;
+    return true;
   }
-  bool contains(const std::array<std::uint32_t, 3>& k) const {
-    const std::size_t mask = slots_.size() - 1;
-    std::uint64_t h = (std::uint64_t{k[0]} * 0x9E3779B97F4A7C15ull) ^ (std::uint64_t{k[1]} * 0xC2B2AE3D27D4EB4Full) ^ k[2];
-    for (std::size_t i = static_cast<std::size_t>(h ^ (h >> 29)) & mask;; i = (i + 1) & mask) {
-      if (slots_[i][0] == kNone) return false;
-      if (slots_[i] == k) return true;
-    }
-  }
+  bool contains(const std::array<std::uint32_t, 3>& k) { return find(k)[0] != kNone; }
 
  private:
+  // k's slot, or the empty slot where it would go (linear probing; the table is never full).
+  std::array<std::uint32_t, 3>& find(const std::array<std::uint32_t, 3>& k) {
+    const std::size_t mask = slots_.size() - 1;
+    const std::uint64_t h = (std::uint64_t{k[0]} * 0x9E3779B97F4A7C15ull) ^ (std::uint64_t{k[1]} * 0xC2B2AE3D27D4EB4Full) ^ k[2];
+    std::size_t i = static_cast<std::size_t>(h ^ (h >> 29)) & mask;
+    while (slots_[i][0] != kNone && slots_[i] != k) i = (i + 1) & mask;
+    return slots_[i];
+  }
   std::vector<std::array<std::uint32_t, 3>> slots_;
 };
 

@@ -76,6 +76,12 @@ void write_file_atomically(const std::string& path, const std::function<void(std
   }
 }
 
+void write_bytes_atomically(const std::string& path, const std::vector<std::uint8_t>& bytes) {
+  write_file_atomically(path, [&](std::ostream& out) {
+    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+  });
+}
+
 void write_folder_atomically(const std::string& outdir, const std::string& tag,
                              const std::function<void(const std::string& staging, std::vector<std::string>& files)>& fill) {
   std::filesystem::create_directories(outdir);

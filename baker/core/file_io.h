@@ -49,6 +49,9 @@ class InputFile {
 // exception propagates; `path` is left untouched.
 void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write);
 
+// write_file_atomically with these bytes as the whole content.
+void write_bytes_atomically(const std::string& path, const std::vector<std::uint8_t>& bytes);
+
 // Writes a set of files into `outdir` so that none is ever seen half-written: `fill` writes them
 // into a private folder inside outdir (".<tag>-<pid>", created here) and appends each name to
 // `files`; they are then renamed into outdir in that order (put the manifest last). If `fill`

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/color.h"
 #include "gltf/draco.h"
 #include "gltf/png.h"
 
@@ -243,16 +244,12 @@ double point_switch_distance(const PointImpostorInfo& info) {
   return info.pixel * z0;
 }
 
-// COLOR_0 as normalized 16-bit linear RGBA (glTF vertex colours are linear; ours are sRGB bytes;
-// 8 bits would band the darks; RGBA keeps elements 4-byte aligned).
+namespace {
+
+// COLOR_0 as normalized 16-bit linear RGBA (core/color.h; RGBA keeps elements 4-byte aligned).
 std::vector<std::uint16_t> linear_rgba16(const std::vector<Rgb8>& colors) {
   std::vector<std::uint16_t> rgba;
-  auto linear = [](std::uint8_t c) {
-    const double v = c / 255.0;
-    const double l = v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
-    return static_cast<std::uint16_t>(std::lround(l * 65535));
-  };
-  for (Rgb8 c : colors) rgba.insert(rgba.end(), {linear(c.r), linear(c.g), linear(c.b), 65535});
+  for (Rgb8 c : colors) rgba.insert(rgba.end(), {srgb_to_linear16(c.r), srgb_to_linear16(c.g), srgb_to_linear16(c.b), 65535});
   return rgba;
 }
 
@@ -307,6 +304,8 @@ tinygltf::Primitive draco_triangles(tinygltf::Model& m, const std::vector<float>
   prim.extensions["KHR_draco_mesh_compression"] = Value(Value::Object{{"bufferView", Value(view)}, {"attributes", Value(ids)}});
   return prim;
 }
+
+}  // namespace
 
 std::vector<std::uint8_t> encode_cluster_glb(const LodMesh& lod, const GltfOptions& options, bool draco) {
   tinygltf::Model m = new_model(options);

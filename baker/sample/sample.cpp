@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "core/random.h"
 
 namespace qf {
 namespace {
@@ -180,16 +181,10 @@ PointSet sample_mesh(const TriangleMesh& mesh, const SampleOptions& options, con
 std::vector<std::uint32_t> point_permutation(std::size_t n, std::uint64_t seed) {
   std::vector<std::uint32_t> order(n);
   for (std::size_t i = 0; i < n; ++i) order[i] = static_cast<std::uint32_t>(i);
-  std::uint64_t state = seed;
-  auto next = [&state] {  // splitmix64
-    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  };
+  SplitMix64 random(seed);
   for (std::size_t i = n; i > 1; --i) {
     // Unbiased enough: 2^64 / i leaves a bias below 2^-32 for any i < 2^32.
-    const std::size_t j = static_cast<std::size_t>(next() % i);
+    const std::size_t j = static_cast<std::size_t>(random.next() % i);
     std::swap(order[i - 1], order[j]);
   }
   return order;

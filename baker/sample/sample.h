@@ -58,6 +58,15 @@ struct SampleGrid {
   int height(int axis) const { return cells[static_cast<std::size_t>((axis + 2) % 3)]; }
 };
 
+// Axis `axis`'s layers with the grid's image size and nothing found yet, for a backend to fill.
+inline AxisLayers empty_layers(const SampleGrid& grid, int axis) {
+  AxisLayers L;
+  L.axis = axis;
+  L.width = grid.width(axis);
+  L.height = grid.height(axis);
+  return L;
+}
+
 struct SampleStats {
   std::string backend;                 // what actually ran ("gl" or "cpu")
   float pixel = 0;                     // s

@@ -53,10 +53,7 @@ void rasterize(const std::array<double, 3>& x, const std::array<double, 3>& y, c
 
 AxisLayers peel_axis(const TriangleMesh& mesh, const SampleGrid& grid, const SampleOptions& options, int axis) {
   const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-  AxisLayers L;
-  L.axis = axis;
-  L.width = grid.width(axis);
-  L.height = grid.height(axis);
+  AxisLayers L = empty_layers(grid, axis);
   // 1. Every fragment of every triangle drawn on this axis.
   std::vector<Fragment> frags;
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {

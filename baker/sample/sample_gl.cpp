@@ -92,10 +92,7 @@ GLuint make_texture(GLenum internal, GLenum format, GLenum type, int w, int h) {
 
 AxisLayers peel_axis(const TriangleMesh& mesh, const SampleGrid& grid, const SampleOptions& options, int axis, PeelTarget& t) {
   const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-  AxisLayers L;
-  L.axis = axis;
-  L.width = grid.width(axis);
-  L.height = grid.height(axis);
+  AxisLayers L = empty_layers(grid, axis);
   // 1. The triangles of this axis as a vertex array, relative to the grid corner (float precision
   //    where it matters), ids as RGBA bytes.
   std::vector<float> pos;

@@ -6,25 +6,12 @@
 
 #include "analysis/neighborhoods.h"
 #include "core/error.h"
+#include "core/random.h"
 
 namespace qf {
 namespace {
 
-// splitmix64: tiny, fast, and the same sequence on every platform (unlike std:: distributions).
-class Random {
- public:
-  explicit Random(std::uint64_t seed) : s_(seed) {}
-  double uniform() {  // [0, 1)
-    std::uint64_t z = (s_ += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    z ^= z >> 31;
-    return static_cast<double>(z >> 11) * (1.0 / 9007199254740992.0);
-  }
-
- private:
-  std::uint64_t s_;
-};
+using Random = SplitMix64;
 
 constexpr double kPi = 3.14159265358979323846;
 

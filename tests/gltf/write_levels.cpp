@@ -7,6 +7,7 @@
 #include "amg/basis.h"
 #include "analysis/analysis.h"
 #include "domains/merge.h"
+#include "core/file_io.h"
 #include "gltf/glb.h"
 #include "primitives/texture.h"
 #include "sample/sample.h"
@@ -14,9 +15,6 @@
 
 using namespace qf;
 
-static void write_bytes(const std::string& path, const std::vector<std::uint8_t>& glb) {
-  std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(glb.data()), static_cast<std::streamsize>(glb.size()));
-}
 
 static ImpostorLevel make_level(const PointSet& p, const AmgHierarchy& h, std::size_t level, bool merge) {
   SparseMatrix psi = basis_at_level(h, level);
@@ -29,7 +27,7 @@ static ImpostorLevel make_level(const PointSet& p, const AmgHierarchy& h, std::s
 }
 
 static void write_level(const std::string& path, const PointSet& p, const AmgHierarchy& h, std::size_t level, bool merge) {
-  write_bytes(path, encode_glb(make_level(p, h, level, merge)));
+  write_bytes_atomically(path, encode_glb(make_level(p, h, level, merge)));
 }
 
 int main(int argc, char** argv) {
@@ -45,7 +43,7 @@ int main(int argc, char** argv) {
       const ImpostorLevel a = make_level(p, h, level_by_primitives(h, 300), false);
       const ImpostorLevel b = make_level(p, h, level_by_primitives(h, 100), false);
       const ImpostorLevel c = make_level(p, h, level_by_primitives(h, 30), false);
-      write_bytes(dir + "/torus_lods.glb", encode_lod_glb({&a, &b, &c}, {0.25, 0.1, 0}));
+      write_bytes_atomically(dir + "/torus_lods.glb", encode_lod_glb({&a, &b, &c}, {0.25, 0.1, 0}));
     }
   }
   // A point impostor of a sampled mesh (COLOR_0 as 16-bit linear RGBA, mode POINTS).
@@ -56,7 +54,7 @@ int main(int argc, char** argv) {
   const PointSet sampled = sample_mesh(generate_mesh("sphere", 6), so, "sphere", &st);
   PointImpostorInfo info;
   info.pixel = st.pixel;
-  write_bytes(dir + "/sphere_points.glb", encode_point_glb(permuted(sampled, point_permutation(sampled.size(), 1)), info));
+  write_bytes_atomically(dir + "/sphere_points.glb", encode_point_glb(permuted(sampled, point_permutation(sampled.size(), 1)), info));
   // A vertex-clustering LOD with triangles, thick lines (_THICKNESS) and colours: a sphere with a
   // thin spike of two long triangles that collapses to an edge.
   TriangleMesh m = generate_mesh("sphere", 8);
@@ -70,7 +68,7 @@ int main(int argc, char** argv) {
   ClusterOptions co;
   co.cell = 0.3f;
   const LodMesh lod = cluster_mesh(m, grade_vertices(m), co);
-  write_bytes(dir + "/sphere_cluster.glb", encode_cluster_glb(lod));
-  write_bytes(dir + "/sphere_cluster_draco.glb", encode_cluster_glb(lod, {}, true));  // KHR_draco_mesh_compression
+  write_bytes_atomically(dir + "/sphere_cluster.glb", encode_cluster_glb(lod));
+  write_bytes_atomically(dir + "/sphere_cluster_draco.glb", encode_cluster_glb(lod, {}, true));  // KHR_draco_mesh_compression
   return 0;
 }

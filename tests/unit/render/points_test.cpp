@@ -34,10 +34,15 @@ TEST(PointImpostor, PermutationIsSeededAndComplete) {
 
 TEST(PointImpostor, PointsToDrawFollowsTheInverseSquare) {
   // s Z0 = 0.01 * 512 / (2 tan 15 deg) = 9.55: all points there and nearer, a quarter at twice that.
-  const float d0 = 0.01f * 512 / (2 * std::tan(15 * 3.14159265f / 180));
-  EXPECT_EQ(points_to_draw(10000, 0.01f, d0 * 0.5f, 512, 30), 10000u);
-  EXPECT_NEAR(double(points_to_draw(10000, 0.01f, d0 * 2, 512, 30)), 2500.0, 2.0);
-  EXPECT_NEAR(double(points_to_draw(10000, 0.01f, d0 * 10, 512, 30)), 100.0, 1.0);
+  Camera c;
+  c.height = 512;
+  c.fovy_degrees = 30;
+  const double z0 = c.focal_pixels();
+  EXPECT_NEAR(z0, 955.4, 0.1);
+  const float d0 = static_cast<float>(0.01 * z0);
+  EXPECT_EQ(points_to_draw(10000, 0.01f, d0 * 0.5f, z0), 10000u);
+  EXPECT_NEAR(double(points_to_draw(10000, 0.01f, d0 * 2, z0)), 2500.0, 2.0);
+  EXPECT_NEAR(double(points_to_draw(10000, 0.01f, d0 * 10, z0)), 100.0, 1.0);
 }
 
 struct Fixture {
@@ -63,8 +68,9 @@ struct Fixture {
 
 TEST(PointImpostor, GlbRoundTripKeepsOrderAndColours) {
   Fixture f;
-  const std::optional<PointImpostorScene> s = load_point_impostor(f.path);
-  ASSERT_TRUE(s);
+  const BakedScene b = load_baked(f.path);
+  ASSERT_EQ(b.kind, BakedScene::kPoints);
+  const PointImpostorScene* s = &b.points;
   EXPECT_FLOAT_EQ(s->pixel, f.stats.pixel);
   ASSERT_EQ(s->positions.size(), f.points.size());
   EXPECT_TRUE(s->positions == f.points.positions);
@@ -89,7 +95,7 @@ double covered_share(const Image& mesh, const Image& other) {
 
 TEST(PointImpostor, ThinnedPointsCoverTheMeshAndFadeToItWhenNear) {
   Fixture f;
-  const PointImpostorScene scene = *load_point_impostor(f.path);
+  const PointImpostorScene scene = load_baked(f.path).points;
   const MeshScene mesh = mesh_scene(f.mesh, "sphere");
   HeadlessContext context;
   const int size = 256;
@@ -97,7 +103,9 @@ TEST(PointImpostor, ThinnedPointsCoverTheMeshAndFadeToItWhenNear) {
   points_r.set_scene(scene, &mesh);
   mesh_r.set_scene(mesh);
   const Sphere sphere = bounding_sphere(mesh.bounds);
-  const double d_switch = scene.pixel * size / (2 * std::tan(15 * 3.14159265358979323846 / 180));
+  Camera ref;
+  ref.height = size;
+  const double d_switch = scene.pixel * ref.focal_pixels();  // fovy 30, as the cameras below
   DrawSettings s;
   // Far: a fraction of the points, still covering the sphere's disc.
   for (double factor : {1.5, 3.0}) {
