@@ -15,6 +15,7 @@
 #include "core/file_io.h"
 #include "core/memory.h"
 #include "io/model_io.h"
+#include "runtime_gl/any_scene.h"
 #include "runtime_gl/draw_gl11.h"
 #include "runtime_gl/egl_context.h"
 #include "runtime_gl/image_ops.h"
@@ -31,62 +32,6 @@ using cli::CommandSpec;
 using cli::OptionSpec;
 using cli::ParsedArgs;
 using nlohmann::ordered_json;
-
-// Whatever a file holds, ready to draw.
-struct AnyScene {
-  enum Kind { kImpostor, kSplats, kMesh, kPoints, kCluster } kind = kImpostor;
-  ClusterScene cluster;
-  ImpostorScene impostor;
-  SplatScene splats;
-  MeshScene mesh;
-  PointImpostorScene points;
-  std::optional<MeshScene> fade_mesh;  // kPoints: the mesh it fades to when near (--mesh)
-  Bounds bounds() const {
-    return kind == kImpostor  ? impostor.bounds
-           : kind == kSplats  ? splats.bounds
-           : kind == kPoints  ? points.bounds
-           : kind == kCluster ? cluster.bounds
-                              : mesh.bounds;
-  }
-  std::string describe() const {
-    if (kind == kImpostor) return std::to_string(impostor.items.size()) + " quads";
-    if (kind == kPoints) return std::to_string(points.positions.size()) + " impostor points";
-    if (kind == kCluster)
-      return std::to_string(cluster.mesh.indices.size() / 3) + " triangles, " + std::to_string(cluster.thickness.size()) +
-             " thick edges, " + std::to_string(cluster.points.size()) + " points";
-    if (kind == kSplats) return std::to_string(splats.positions.size()) + " points";
-    return std::to_string(mesh.indices.size() / 3) + " triangles";
-  }
-  void attach(Renderer& r) const {
-    if (kind == kImpostor) r.set_scene(impostor);
-    else if (kind == kPoints) r.set_scene(points, fade_mesh ? &*fade_mesh : nullptr);
-    else if (kind == kCluster) r.set_scene(cluster);
-    else if (kind == kSplats) r.set_scene(splats);
-    else r.set_scene(mesh);
-  }
-};
-
-AnyScene load_scene(const std::string& path) {
-  AnyScene s;
-  const std::string ext = file_extension(path);
-  if (ext == "glb" || ext == "gltf") {
-    BakedScene b = load_baked(path);
-    s.kind = b.kind == BakedScene::kPoints ? AnyScene::kPoints : b.kind == BakedScene::kCluster ? AnyScene::kCluster : AnyScene::kImpostor;
-    s.impostor = std::move(b.impostor);
-    s.points = std::move(b.points);
-    s.cluster = std::move(b.cluster);
-    return s;
-  }
-  Model m = read_model(path);
-  if (m.is_mesh) {
-    s.kind = AnyScene::kMesh;
-    s.mesh = mesh_scene(m.mesh, path);
-  } else {
-    s.kind = AnyScene::kSplats;
-    s.splats = splat_scene(std::move(m.points), path);
-  }
-  return s;
-}
 
 // --- option parsing ---------------------------------------------------------------------------
 
@@ -282,25 +227,6 @@ ordered_json metrics_json(const ViewMetrics& m) {
           {"mae", canonical_double(static_cast<float>(m.mae))},
           {"holes", canonical_double(static_cast<float>(m.holes))},
           {"see_through", canonical_double(static_cast<float>(m.see_through))}};
-}
-
-ViewMetrics mean_of(const std::vector<ViewMetrics>& v) {
-  ViewMetrics m{0, 0, 0, 0, 0, 0};
-  for (const ViewMetrics& x : v) m.psnr += x.psnr, m.iou += x.iou, m.mae += x.mae, m.holes += x.holes, m.see_through += x.see_through;
-  const double n = static_cast<double>(std::max<std::size_t>(1, v.size()));
-  m.psnr /= n, m.iou /= n, m.mae /= n, m.holes /= n, m.see_through /= n;
-  return m;
-}
-
-RenderPair render_pair(Renderer& r, const Camera& c, DrawSettings s) {
-  RenderPair p;
-  s.background = {0, 0, 0};
-  r.draw(c, s);
-  p.over_black = r.read_pixels();
-  s.background = {255, 255, 255};
-  r.draw(c, s);
-  p.over_white = r.read_pixels();
-  return p;
 }
 
 int run_eval(const ParsedArgs& a) {

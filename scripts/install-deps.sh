@@ -14,6 +14,7 @@ packages=(
   libeigen3-dev                                   # sparse matrices, eigen-solvers
   libpcl-dev                                      # k-nearest neighbours (KdTree)
   libcgal-dev                                     # 2D Delaunay triangulations
+  libssl-dev                                      # SHA-256 (OpenSSL libcrypto): batch content keys
   libegl-dev libgl-dev libegl-mesa0 libgl1-mesa-dri libglx-mesa0  # headless OpenGL on Mesa llvmpipe
   libx11-dev xvfb xauth                           # qf-render view's window, tested under Xvfb
   fonts-dejavu-core                               # captions of the demo's side-by-side picture

@@ -1,6 +1,7 @@
-// The bake command (the main job): a point set in, one .glb per chosen level, a manifest and a
-// report out. Everything is written into a temporary folder inside OUTDIR and moved into place
-// at the end, the manifest last, so a failed or killed bake leaves no half-written file.
+// The bake command (the main job): a point set or mesh in, one .glb per chosen level (and the mesh
+// outputs), a manifest and a report out (pipeline/asset). Everything is written into a temporary
+// folder inside OUTDIR and moved into place, the manifest last, so a failed or killed bake leaves
+// no half-written file.
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 
@@ -12,7 +13,7 @@
 #include "cli/commands.h"
 #include "core/error.h"
 #include "core/file_io.h"
-#include "pipeline/bake.h"
+#include "pipeline/asset.h"
 
 namespace qf::cli {
 
@@ -44,11 +45,9 @@ CommandSpec bake_spec() {
   return spec;
 }
 
-int run_bake(const ParsedArgs& args) {
-  const std::string& in = args.positional[0];
-  if (!args.has("output")) throw UsageError("bake needs -o OUTDIR (see qf-bake bake --help)");
-  const std::string outdir = args.get("output");
-  BakeOptions o;
+AssetOptions read_asset_options(const ParsedArgs& args) {
+  AssetOptions a;
+  BakeOptions& o = a.bake;
   o.analysis = read_analysis_options(args);
   o.domains.tau = args.get_double("tau", o.domains.tau, 0.0, 1.0);
   o.merge = args.flag("merge");
@@ -77,138 +76,46 @@ int run_bake(const ParsedArgs& args) {
   o.cache_dir = read_cache_dir(args);
   o.lod_file = args.flag("lod-file");
   o.lod_screen_height = args.get_double("lod-screen-height", o.lod_screen_height, 1.0, 100000.0);
+  a.read.drop_nonfinite = args.flag("drop-nonfinite");
+  a.sample = read_sample_options(args);
+  a.point_seed = static_cast<std::uint64_t>(args.get_int("point-seed", 1, 0, 1ll << 62));
+  a.point_impostor = !args.flag("no-points");
+  a.mesh_lods = !args.flag("no-mesh-lods");
+  return a;
+}
 
-  ReadReport read_report;
-  SampleStats sampled;
-  TriangleMesh mesh;
-  const PointSet points = load_points(in, args, "bake", read_report, &sampled, &mesh);
-  // Mesh inputs: vertex-clustering LODs for near and middle distances beside the impostors.
-  std::vector<LodMesh> mesh_lods;
-  if (!sampled.backend.empty() && !args.flag("no-mesh-lods")) {
-    const VertexGrading grading = grade_vertices(mesh);
-    ClusterOptions co;
-    for (double c : default_cluster_cells(mesh)) {
-      co.cell = static_cast<float>(c);
-      mesh_lods.push_back(cluster_mesh(mesh, grading, co));
-    }
-  }
-  BakeResult r;
+AssetBake bake_asset_or_usage_error(const std::string& path, const AssetOptions& options, const std::string& input_name) {
   try {
-    r = bake(points, o, in);
-  } catch (const std::out_of_range& e) {
+    return bake_asset(path, options, input_name);
+  } catch (const std::out_of_range& e) {  // a --levels number beyond the hierarchy
     throw UsageError(std::string("--levels: ") + e.what());
   }
+}
 
-  // Write into a private folder inside OUTDIR, then move the files into place, manifest last.
-  write_folder_atomically(outdir, "qf-bake", [&](const std::string& staging, std::vector<std::string>& files) {
-    const std::string stem = std::filesystem::path(in).stem().string();
-    nlohmann::json levels = nlohmann::json::array();
-    for (const BakedLevel& l : r.levels) {
-      const std::string name = stem + "_L" + std::to_string(l.level) + ".glb";
-      write_bytes_atomically(staging + "/" + name, l.glb);
-      files.push_back(name);
-      levels.push_back({{"file", name},
-                        {"level", l.level},
-                        {"primitives", l.primitives},
-                        {"texels", l.texels},
-                        {"atlas_images", l.atlas_images},
-                        {"error", canonical_double(static_cast<float>(l.error))},
-                        {"relative_error", canonical_double(static_cast<float>(l.relative_error))},
-                        {"max_screen_pixels", static_cast<long long>(l.max_screen_pixels)}});
-    }
-    std::string lod_name;
-    if (!r.lod_glb.empty()) {
-      lod_name = stem + "_lods.glb";
-      write_bytes_atomically(staging + "/" + lod_name, r.lod_glb);
-      files.push_back(lod_name);
-    }
-    // Mesh inputs: the sampled points, randomly permuted, as a point impostor.
-    nlohmann::json point_entry;
-    if (!sampled.backend.empty() && !args.flag("no-points")) {
-      PointImpostorInfo info;
-      info.pixel = sampled.pixel;
-      info.seed = static_cast<std::uint64_t>(args.get_int("point-seed", 1, 0, 1ll << 62));
-      const std::string name = stem + "_points.glb";
-      write_bytes_atomically(staging + "/" + name, encode_point_glb(permuted(points, point_permutation(points.size(), info.seed)), info));
-      files.push_back(name);
-      point_entry = {{"file", name},
-                     {"points", points.size()},
-                     {"pixel_size", canonical_double(info.pixel)},
-                     {"seed", info.seed},
-                     {"switch_distance", canonical_double(static_cast<float>(point_switch_distance(info)))},
-                     {"switch_screen_height", info.reference_height},
-                     {"switch_fov_degrees", canonical_double(info.reference_fov_degrees)}};
-    }
-    nlohmann::json mesh_levels;
-    if (!mesh_lods.empty()) mesh_levels = write_cluster_levels(mesh_lods, staging, stem, files);
-    nlohmann::json manifest{{"input", in},
-                            {"points", r.points},
-                            {"bounding_box_diagonal", canonical_double(r.diagonal)},
-                            {"levels", levels},
-                            {"generator", "quasiflat qf-bake"}};
-    if (!point_entry.is_null()) manifest["point_impostor"] = point_entry;
-    if (!mesh_levels.is_null())
-      manifest["mesh_lods"] = {{"levels", mesh_levels},
-                               {"lod_rule", "largest cell_width <= X * R, R = 2 D tan(fov/2) / window height, X = 5; "
-                                            "thick line width = _THICKNESS / R pixels"}};
-    if (!lod_name.empty()) manifest["lod_file"] = {{"file", lod_name}, {"screen_height", o.lod_screen_height}};
-    nlohmann::json stages = nlohmann::json::array();
-    for (const StageTime& t : r.times) stages.push_back({{"stage", t.stage},
-                                                                    {"seconds", canonical_double(static_cast<float>(t.seconds))},
-                                                                    {"resident_mb", canonical_double(static_cast<float>(t.resident_bytes / 1048576.0))},
-                                                                    {"peak_mb", canonical_double(static_cast<float>(t.peak_bytes / 1048576.0))}});
-    // Mesh inputs: how they were sampled (null for point sets).
-    nlohmann::json sampling;
-    if (!sampled.backend.empty()) {
-      const SampleOptions so = read_sample_options(args);
-      sampling = {{"ldi_size", so.ldi_size},
-                  {"backend_requested", so.backend},
-                  {"backend", sampled.backend},
-                  {"per_axis_triangles", so.per_axis_triangles},
-                  {"pixel", canonical_double(sampled.pixel)},
-                  {"layers", sampled.layers},
-                  {"points_per_axis", sampled.points},
-                  {"degenerate_triangles", sampled.degenerate_triangles},
-                  {"seconds", canonical_double(static_cast<float>(sampled.seconds))}};
-      if (!sampled.fallback.empty()) r.warnings.push_back(sampled.fallback);
-    }
-    nlohmann::json report{{"input", in},
-                          {"format", read_report.format},
-                          {"points", r.points},
-                          {"dropped_nonfinite", read_report.dropped_nonfinite},
-                          {"hierarchy_levels", r.hierarchy_levels},
-                          {"components", r.components},
-                          {"cache", r.cache},
-                          {"settings",
-                           {{"k", o.analysis.neighborhoods.k},
-                            {"tau", o.domains.tau},
-                            {"merge", o.merge},
-                            {"texel_factor", canonical_double(o.texture.texel_factor)},
-                            {"max_texture", o.texture.max_side},
-                            {"lod_file", o.lod_file}}},
-                          {"levels", levels},
-                          {"stages", stages},
-                          {"sampling", sampling},
-                          {"warnings", r.warnings}};
-    write_file_atomically(staging + "/report.json", [&](std::ostream& out) { out << report.dump(2) << "\n"; });
-    write_file_atomically(staging + "/manifest.json", [&](std::ostream& out) { out << manifest.dump(2) << "\n"; });
-    files.push_back("report.json");
-    files.push_back("manifest.json");
-  });
-  if (!args.flag("quiet")) {
-    std::fprintf(stderr, "qf-bake: %s (%zu points) -> %s, hierarchy of %zu levels (cache: %s)\n", in.c_str(), r.points,
-                 outdir.c_str(), r.hierarchy_levels, r.cache.c_str());
-    for (const BakedLevel& l : r.levels)
-      std::fprintf(stderr, "  level %zu: %zu primitives, %zu texels, error %.3g (%.2g of the diagonal), %zu bytes\n", l.level,
-                   l.primitives, l.texels, l.error, l.relative_error, l.glb.size());
-    double total = 0;
-    for (const StageTime& t : r.times) total += t.seconds;
-    std::fprintf(stderr, "  time: %.3f s\n", total);
-    if (!sampled.backend.empty())
-      std::fprintf(stderr, "  sampled: LDI %d (%s), pixel %.4g, layers %d/%d/%d, %.3f s\n", read_sample_options(args).ldi_size,
-                   sampled.backend.c_str(), sampled.pixel, sampled.layers[0], sampled.layers[1], sampled.layers[2], sampled.seconds);
-    for (const std::string& w : r.warnings) std::fprintf(stderr, "  warning: %s\n", w.c_str());
-  }
+void print_bake_summary(const AssetBake& a, const std::string& in, const std::string& outdir) {
+  const BakeResult& r = a.result;
+  std::fprintf(stderr, "qf-bake: %s (%zu points) -> %s, hierarchy of %zu levels (cache: %s)\n", in.c_str(), r.points,
+               outdir.c_str(), r.hierarchy_levels, r.cache.c_str());
+  for (const BakedLevel& l : r.levels)
+    std::fprintf(stderr, "  level %zu: %zu primitives, %zu texels, error %.3g (%.2g of the diagonal)\n", l.level, l.primitives,
+                 l.texels, l.error, l.relative_error);
+  double total = 0;
+  for (const StageTime& t : r.times) total += t.seconds;
+  std::fprintf(stderr, "  time: %.3f s, %zu files\n", total + a.sampled.seconds, a.files.size() + 2);
+  if (!a.sampled.backend.empty())
+    std::fprintf(stderr, "  sampled: %s, pixel %.4g, layers %d/%d/%d, %.3f s\n", a.sampled.backend.c_str(), a.sampled.pixel,
+                 a.sampled.layers[0], a.sampled.layers[1], a.sampled.layers[2], a.sampled.seconds);
+  for (const std::string& w : r.warnings) std::fprintf(stderr, "  warning: %s\n", w.c_str());
+}
+
+int run_bake(const ParsedArgs& args) {
+  const std::string& in = args.positional[0];
+  if (!args.has("output")) throw UsageError("bake needs -o OUTDIR (see qf-bake bake --help)");
+  const std::string outdir = args.get("output");
+  const AssetOptions options = read_asset_options(args);
+  const AssetBake a = bake_asset_or_usage_error(in, options, in);
+  write_asset(outdir, a.files, a.manifest, a.report);
+  if (!args.flag("quiet")) print_bake_summary(a, in, outdir);
   return 0;
 }
 

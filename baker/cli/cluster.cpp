@@ -13,43 +13,9 @@
 #include "cli/commands.h"
 #include "core/error.h"
 #include "core/file_io.h"
-#include "gltf/glb.h"
+#include "pipeline/asset.h"
 
 namespace qf::cli {
-
-std::vector<double> default_cluster_cells(const TriangleMesh& mesh) {
-  std::vector<double> cells;
-  for (double f : {128.0, 64.0, 32.0, 16.0, 8.0}) cells.push_back(mesh.bounds().diagonal() / f);
-  return cells;
-}
-
-nlohmann::json write_cluster_levels(const std::vector<LodMesh>& lods, const std::string& dir, const std::string& stem,
-                                    std::vector<std::string>& files, bool draco) {
-  nlohmann::json levels = nlohmann::json::array();
-  for (std::size_t i = 0; i < lods.size(); ++i) {
-    const LodMesh& l = lods[i];
-    const std::string name = stem + "_C" + std::to_string(i) + ".glb";
-    const std::vector<std::uint8_t> glb = encode_cluster_glb(l);
-    write_bytes_atomically(dir + "/" + name, glb);
-    files.push_back(name);
-    levels.push_back({{"file", name},
-                      {"cell_width", canonical_double(l.cell)},
-                      {"vertices", l.positions.size()},
-                      {"triangles", l.triangles.size()},
-                      {"edges", l.edges.size()},
-                      {"points", l.points.size()}});
-    if (draco) {
-      const std::string dname = stem + "_C" + std::to_string(i) + ".draco.glb";
-      const std::vector<std::uint8_t> d = encode_cluster_glb(l, {}, true);
-      write_bytes_atomically(dir + "/" + dname, d);
-      files.push_back(dname);
-      levels.back()["draco_file"] = dname;
-      levels.back()["bytes"] = glb.size();
-      levels.back()["draco_bytes"] = d.size();
-    }
-  }
-  return levels;
-}
 
 CommandSpec cluster_spec() {
   return {"cluster", "MESH -o OUTDIR [options]",
@@ -109,23 +75,21 @@ int run_cluster(const ParsedArgs& args) {
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-  write_folder_atomically(outdir, "qf-cluster", [&](const std::string& staging, std::vector<std::string>& files) {
-    const std::string stem = std::filesystem::path(in).stem().string();
-    const nlohmann::json levels = write_cluster_levels(lods, staging, stem, files, args.flag("draco"));
-    nlohmann::json manifest{{"input", in},
-                            {"triangles", mesh.triangles.size()},
-                            {"vertices", mesh.positions.size()},
-                            {"bounding_box_diagonal", canonical_double(diagonal)},
-                            {"method", o.uniform ? "uniform" : "floating"},
-                            {"shape", shape},
-                            {"assign", assign},
-                            {"lod_rule", "largest cell_width <= X * R, R = 2 D tan(fov/2) / window height, X = 5; "
-                                         "thick line width = _THICKNESS / R pixels"},
-                            {"levels", levels},
-                            {"generator", "quasiflat qf-bake cluster"}};
-    write_file_atomically(staging + "/manifest.json", [&](std::ostream& out) { out << manifest.dump(2) << "\n"; });
-    files.push_back("manifest.json");
-  });
+  const std::string stem = std::filesystem::path(in).stem().string();
+  std::vector<OutputFile> files;
+  const nlohmann::json levels = cluster_level_files(lods, stem, args.flag("draco"), files);
+  const nlohmann::json manifest{{"input", in},
+                                {"triangles", mesh.triangles.size()},
+                                {"vertices", mesh.positions.size()},
+                                {"bounding_box_diagonal", canonical_double(diagonal)},
+                                {"method", o.uniform ? "uniform" : "floating"},
+                                {"shape", shape},
+                                {"assign", assign},
+                                {"lod_rule", "largest cell_width <= X * R, R = 2 D tan(fov/2) / window height, X = 5; "
+                                             "thick line width = _THICKNESS / R pixels"},
+                                {"levels", levels},
+                                {"generator", "quasiflat qf-bake cluster"}};
+  write_asset(outdir, files, manifest, nullptr, "qf-cluster");
   if (!args.flag("quiet")) {
     std::fprintf(stderr, "qf-bake cluster: %s (%zu triangles) -> %s, %zu levels in %.3f s\n", in.c_str(), mesh.triangles.size(),
                  outdir.c_str(), lods.size(), seconds);

@@ -82,17 +82,11 @@ PointSet load_points(const std::string& path, const ParsedArgs& args, const std:
   ReadOptions ro;
   ro.drop_nonfinite = args.flag("drop-nonfinite");
   const SampleOptions so = read_sample_options(args);  // usage errors before reading
-  Model model = read_model(path, ro, &report);
-  if (model.is_mesh) {
-    SampleStats stats;
-    PointSet points = sample_mesh(model.mesh, so, path, &stats);
-    if (!stats.fallback.empty()) std::cerr << "qf-bake " << command << ": warning: " << stats.fallback << "\n";
-    if (sampled) *sampled = stats;
-    if (mesh) *mesh = std::move(model.mesh);
-    return points;
-  }
-  if (model.points.size() == 0) throw InputError(command + ".empty", path, "", "holds no points");
-  return std::move(model.points);
+  SampleStats stats;
+  PointSet points = load_point_set(path, ro, so, command, report, &stats, mesh);
+  if (!stats.fallback.empty()) std::cerr << "qf-bake " << command << ": warning: " << stats.fallback << "\n";
+  if (sampled) *sampled = stats;
+  return points;
 }
 
 std::vector<OptionSpec> cache_option_specs() {
@@ -172,6 +166,8 @@ const std::vector<Command>& commands() {
       {decompose_spec(), run_decompose},
       {bake_spec(), run_bake},
       {cluster_spec(), run_cluster},
+      {batch_spec(), run_batch},
+      {merge_reports_spec(), run_merge_reports},
   };
   return table;
 }

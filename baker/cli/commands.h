@@ -11,6 +11,7 @@
 #include "domains/merge.h"
 #include "cli/args.h"
 #include "io/model_io.h"
+#include "pipeline/asset.h"
 #include "sample/sample.h"
 
 namespace qf::cli {
@@ -61,13 +62,15 @@ CommandSpec decompose_spec();
 int run_decompose(const ParsedArgs& args);
 CommandSpec bake_spec();
 int run_bake(const ParsedArgs& args);
+// The bake's options (bake_spec) as the pipeline's; UsageError on bad values. Shared with batch.
+AssetOptions read_asset_options(const ParsedArgs& args);
+// bake_asset, with a --levels number beyond the hierarchy reported as a UsageError.
+AssetBake bake_asset_or_usage_error(const std::string& path, const AssetOptions& options, const std::string& input_name);
+CommandSpec batch_spec();
+int run_batch(const ParsedArgs& args);
+CommandSpec merge_reports_spec();
+int run_merge_reports(const ParsedArgs& args);
 CommandSpec cluster_spec();
-// The cluster levels' default cell widths (bounding-box diagonal / 128, 64, 32, 16, 8), and writing
-// levels as DIR/STEM_C<i>.glb (and STEM_C<i>.draco.glb with `draco`; names appended to `files`);
-// returns their manifest entries.
-std::vector<double> default_cluster_cells(const TriangleMesh& mesh);
-nlohmann::json write_cluster_levels(const std::vector<LodMesh>& lods, const std::string& dir, const std::string& stem,
-                                    std::vector<std::string>& files, bool draco = false);
 int run_cluster(const ParsedArgs& args);
 
 }  // namespace qf::cli

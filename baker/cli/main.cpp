@@ -1,5 +1,6 @@
 // qf-bake entry point: subcommand dispatch and the mapping of errors to exit codes
 // (0 ok, 1 bad input, 2 bad usage, 3 internal error).
+#include <algorithm>
 #include <iostream>
 
 #include "cli/args.h"
@@ -21,7 +22,7 @@ void print_overview(std::ostream& out) {
          "       qf-bake --version\n\ncommands:\n";
   for (const qf::cli::Command& c : qf::cli::commands()) {
     std::string name = "  " + c.spec.name;
-    name.resize(14, ' ');
+    name.resize(std::max<std::size_t>(name.size() + 2, 17), ' ');
     out << name << c.spec.summary << "\n";
   }
   out << "\nexit codes: 0 ok, 1 bad input (the message names the file, the line or byte, and what was\n"

@@ -2,6 +2,7 @@
 #include "core/file_io.h"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -82,9 +83,35 @@ void write_bytes_atomically(const std::string& path, const std::vector<std::uint
   });
 }
 
+namespace {
+
+// True for a pid that names no running process on this machine.
+bool process_gone(const std::string& digits) {
+  if (digits.empty() || digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) return false;
+  return ::kill(static_cast<pid_t>(std::stol(digits)), 0) != 0 && errno == ESRCH;
+}
+
+}  // namespace
+
+void remove_stale_temporaries(const std::string& dir) {
+  std::error_code ec;
+  for (std::filesystem::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    const std::size_t tmp = name.rfind(".tmp-");
+    const std::size_t dash = name.rfind('-');
+    const bool staging = name.size() > 1 && name[0] == '.' && dash != std::string::npos && it->is_directory(ec);
+    if (tmp != std::string::npos && process_gone(name.substr(tmp + 5))) {
+      std::filesystem::remove(it->path(), ec);
+    } else if (staging && process_gone(name.substr(dash + 1))) {
+      std::filesystem::remove_all(it->path(), ec);
+    }
+  }
+}
+
 void write_folder_atomically(const std::string& outdir, const std::string& tag,
                              const std::function<void(const std::string& staging, std::vector<std::string>& files)>& fill) {
   std::filesystem::create_directories(outdir);
+  remove_stale_temporaries(outdir);
   const std::string staging = outdir + "/." + tag + "-" + std::to_string(::getpid());
   std::filesystem::create_directories(staging);
   try {

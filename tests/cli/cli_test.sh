@@ -23,7 +23,7 @@ expect 0 "--version" -- "$bake" --version
 grep -q '^qf-bake [0-9]' "$work/out" && ok || bad "--version prints 'qf-bake X.Y.Z'"
 expect 0 "--help" -- "$bake" --help
 cp "$work/out" "$work/overview"
-for cmd in info convert generate analyze decompose bake cluster; do
+for cmd in info convert generate analyze decompose bake cluster batch merge-reports; do
   grep -q "^  $cmd " "$work/overview" && ok || bad "--help lists $cmd"
   expect 0 "$cmd --help" -- "$bake" "$cmd" --help
   grep -q "usage: qf-bake $cmd" "$work/out" && ok || bad "$cmd --help shows usage"

@@ -1,0 +1,227 @@
+// One asset end to end: read (and sample a mesh), bake the impostor levels, add the mesh-only
+// outputs, and describe it all in a manifest and a report.
+#include "pipeline/asset.h"
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <ostream>
+#include <set>
+
+#include "core/error.h"
+#include "core/file_io.h"
+#include "gltf/glb.h"
+
+namespace qf {
+
+PointSet load_point_set(const std::string& path, const ReadOptions& read, const SampleOptions& sample,
+                        const std::string& command, ReadReport& report, SampleStats* sampled, TriangleMesh* mesh) {
+  Model model = read_model(path, read, &report);
+  if (model.is_mesh) {
+    SampleStats stats;
+    PointSet points = sample_mesh(model.mesh, sample, path, &stats);
+    if (sampled) *sampled = stats;
+    if (mesh) *mesh = std::move(model.mesh);
+    return points;
+  }
+  if (model.points.size() == 0) throw InputError(command + ".empty", path, "", "holds no points");
+  return std::move(model.points);
+}
+
+std::vector<double> default_cluster_cells(const TriangleMesh& mesh) {
+  std::vector<double> cells;
+  for (double f : {128.0, 64.0, 32.0, 16.0, 8.0}) cells.push_back(mesh.bounds().diagonal() / f);
+  return cells;
+}
+
+nlohmann::json cluster_level_files(const std::vector<LodMesh>& lods, const std::string& stem, bool draco,
+                                   std::vector<OutputFile>& files) {
+  nlohmann::json levels = nlohmann::json::array();
+  for (std::size_t i = 0; i < lods.size(); ++i) {
+    const LodMesh& l = lods[i];
+    const std::string name = stem + "_C" + std::to_string(i) + ".glb";
+    files.push_back({name, encode_cluster_glb(l)});
+    levels.push_back({{"file", name},
+                      {"cell_width", canonical_double(l.cell)},
+                      {"vertices", l.positions.size()},
+                      {"triangles", l.triangles.size()},
+                      {"edges", l.edges.size()},
+                      {"points", l.points.size()}});
+    if (draco) {
+      const std::string dname = stem + "_C" + std::to_string(i) + ".draco.glb";
+      const std::size_t plain = files.back().bytes.size();
+      files.push_back({dname, encode_cluster_glb(l, {}, true)});
+      levels.back()["draco_file"] = dname;
+      levels.back()["bytes"] = plain;
+      levels.back()["draco_bytes"] = files.back().bytes.size();
+    }
+  }
+  return levels;
+}
+
+namespace {
+
+nlohmann::json level_entry(const BakedLevel& l, const std::string& file) {
+  return {{"file", file},
+          {"level", l.level},
+          {"primitives", l.primitives},
+          {"texels", l.texels},
+          {"atlas_images", l.atlas_images},
+          {"error", canonical_double(static_cast<float>(l.error))},
+          {"relative_error", canonical_double(static_cast<float>(l.relative_error))},
+          {"max_screen_pixels", static_cast<long long>(l.max_screen_pixels)}};
+}
+
+nlohmann::json stage_entry(const StageTime& t) {
+  return {{"stage", t.stage},
+          {"seconds", canonical_double(static_cast<float>(t.seconds))},
+          {"resident_mb", canonical_double(static_cast<float>(t.resident_bytes / 1048576.0))},
+          {"peak_mb", canonical_double(static_cast<float>(t.peak_bytes / 1048576.0))}};
+}
+
+}  // namespace
+
+AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::string& input_name) {
+  AssetBake a;
+  const std::string stem = std::filesystem::path(input_name).stem().string();
+  // 1. Points (a mesh is sampled).
+  TriangleMesh mesh;
+  const PointSet points = load_point_set(path, o.read, o.sample, "bake", a.read, &a.sampled, &mesh);
+  const bool is_mesh = !a.sampled.backend.empty();
+  // 2. Mesh inputs: vertex-clustering LODs for near and middle distances beside the impostors.
+  std::vector<LodMesh> mesh_lods;
+  const auto cluster_start = std::chrono::steady_clock::now();
+  if (is_mesh && o.mesh_lods) {
+    const VertexGrading grading = grade_vertices(mesh);
+    ClusterOptions co;
+    for (double c : default_cluster_cells(mesh)) {
+      co.cell = static_cast<float>(c);
+      mesh_lods.push_back(cluster_mesh(mesh, grading, co));
+    }
+  }
+  const double cluster_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - cluster_start).count();
+  // 3. The impostor levels.
+  a.result = bake(points, o.bake, path);
+  BakeResult& r = a.result;
+  nlohmann::json levels = nlohmann::json::array();
+  for (BakedLevel& l : r.levels) {
+    const std::string name = stem + "_L" + std::to_string(l.level) + ".glb";
+    levels.push_back(level_entry(l, name));
+    a.files.push_back({name, std::move(l.glb)});
+    l.glb.clear();
+  }
+  nlohmann::json manifest{{"input", input_name},
+                          {"points", r.points},
+                          {"bounding_box_diagonal", canonical_double(r.diagonal)},
+                          {"levels", levels},
+                          {"generator", "quasiflat qf-bake"}};
+  if (!r.lod_glb.empty()) {
+    const std::string name = stem + "_lods.glb";
+    a.files.push_back({name, std::move(r.lod_glb)});
+    r.lod_glb.clear();
+    manifest["lod_file"] = {{"file", name}, {"screen_height", o.bake.lod_screen_height}};
+  }
+  // 4. Mesh inputs: the sampled points, randomly permuted, as a point impostor; the cluster LODs.
+  if (is_mesh && o.point_impostor) {
+    PointImpostorInfo info;
+    info.pixel = a.sampled.pixel;
+    info.seed = o.point_seed;
+    const std::string name = stem + "_points.glb";
+    a.files.push_back({name, encode_point_glb(permuted(points, point_permutation(points.size(), info.seed)), info)});
+    manifest["point_impostor"] = {{"file", name},
+                                  {"points", points.size()},
+                                  {"pixel_size", canonical_double(info.pixel)},
+                                  {"seed", info.seed},
+                                  {"switch_distance", canonical_double(static_cast<float>(point_switch_distance(info)))},
+                                  {"switch_screen_height", info.reference_height},
+                                  {"switch_fov_degrees", canonical_double(info.reference_fov_degrees)}};
+  }
+  if (!mesh_lods.empty()) {
+    manifest["mesh_lods"] = {{"levels", cluster_level_files(mesh_lods, stem, false, a.files)},
+                             {"lod_rule", "largest cell_width <= X * R, R = 2 D tan(fov/2) / window height, X = 5; "
+                                          "thick line width = _THICKNESS / R pixels"}};
+    r.times.push_back({"mesh lods", cluster_seconds, 0, 0});
+  }
+  // 5. The report: what was read, the settings, the figures, per-stage time and memory.
+  nlohmann::json stages = nlohmann::json::array();
+  for (const StageTime& t : r.times) stages.push_back(stage_entry(t));
+  nlohmann::json sampling;  // null for point sets
+  if (is_mesh) {
+    sampling = {{"ldi_size", o.sample.ldi_size},
+                {"backend_requested", o.sample.backend},
+                {"backend", a.sampled.backend},
+                {"per_axis_triangles", o.sample.per_axis_triangles},
+                {"pixel", canonical_double(a.sampled.pixel)},
+                {"layers", a.sampled.layers},
+                {"points_per_axis", a.sampled.points},
+                {"degenerate_triangles", a.sampled.degenerate_triangles},
+                {"seconds", canonical_double(static_cast<float>(a.sampled.seconds))}};
+    if (!a.sampled.fallback.empty()) r.warnings.push_back(a.sampled.fallback);
+  }
+  a.report = {{"input", input_name},
+              {"format", a.read.format},
+              {"points", r.points},
+              {"dropped_nonfinite", a.read.dropped_nonfinite},
+              {"hierarchy_levels", r.hierarchy_levels},
+              {"components", r.components},
+              {"cache", r.cache},
+              {"settings",
+               {{"k", o.bake.analysis.neighborhoods.k},
+                {"tau", o.bake.domains.tau},
+                {"merge", o.bake.merge},
+                {"texel_factor", canonical_double(o.bake.texture.texel_factor)},
+                {"max_texture", o.bake.texture.max_side},
+                {"lod_file", o.bake.lod_file}}},
+              {"levels", levels},
+              {"stages", stages},
+              {"sampling", sampling},
+              {"warnings", r.warnings}};
+  a.manifest = std::move(manifest);
+  return a;
+}
+
+namespace {
+
+// The file names a manifest lists under "files" (none when it cannot be read).
+std::set<std::string> listed_files(const std::string& manifest_path) {
+  std::set<std::string> out;
+  std::ifstream in(manifest_path);
+  if (!in) return out;
+  const nlohmann::json m = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+  if (!m.is_object() || !m.contains("files") || !m["files"].is_array()) return out;
+  for (const auto& f : m["files"])
+    if (f.is_object() && f.contains("name") && f["name"].is_string()) out.insert(f["name"].get<std::string>());
+  return out;
+}
+
+}  // namespace
+
+void write_asset(const std::string& outdir, const std::vector<OutputFile>& files, nlohmann::json manifest,
+                 const nlohmann::json& report, const std::string& tag) {
+  const std::set<std::string> before = listed_files(outdir + "/manifest.json");
+  nlohmann::json listed = nlohmann::json::array();
+  for (const OutputFile& f : files) listed.push_back({{"name", f.name}, {"bytes", f.bytes.size()}});
+  manifest["files"] = listed;
+  write_folder_atomically(outdir, tag, [&](const std::string& staging, std::vector<std::string>& names) {
+    for (const OutputFile& f : files) {
+      write_bytes_atomically(staging + "/" + f.name, f.bytes);
+      names.push_back(f.name);
+    }
+    if (!report.is_null()) {
+      write_file_atomically(staging + "/report.json", [&](std::ostream& out) { out << report.dump(2) << "\n"; });
+      names.push_back("report.json");
+    }
+    write_file_atomically(staging + "/manifest.json", [&](std::ostream& out) { out << manifest.dump(2) << "\n"; });
+    names.push_back("manifest.json");
+  });
+  // Only after the new manifest is in place: a kill before this leaves extra files, never missing ones.
+  for (const std::string& old : before) {
+    bool kept = false;
+    for (const OutputFile& f : files) kept = kept || f.name == old;
+    std::error_code ec;
+    if (!kept && old.find('/') == std::string::npos && old != "manifest.json" && old != "report.json")
+      std::filesystem::remove(outdir + "/" + old, ec);
+  }
+}
+
+}  // namespace qf

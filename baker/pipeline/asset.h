@@ -1,0 +1,71 @@
+// One asset end to end, the unit of work of `qf-bake bake` and of a batch: an input file (point set
+// or mesh) -> the bytes of every output file with the asset's manifest and report -> a folder.
+//   point set:  impostor levels (STEM_L<l>.glb), optionally STEM_lods.glb (MSFT_lod)
+//   mesh:       sampled into points first (depth peeling), then the same, plus the sampled points
+//               as a point impostor (STEM_points.glb) and vertex-clustering LODs (STEM_C<i>.glb)
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "clustering/clustering.h"
+#include "io/model_io.h"
+#include "pipeline/bake.h"
+#include "sample/sample.h"
+
+namespace qf {
+
+struct AssetOptions {
+  BakeOptions bake;
+  ReadOptions read;
+  SampleOptions sample;          // mesh inputs
+  bool point_impostor = true;    // mesh inputs: STEM_points.glb
+  std::uint64_t point_seed = 1;  // its permutation
+  bool mesh_lods = true;         // mesh inputs: STEM_C<i>.glb at default_cluster_cells
+};
+
+struct OutputFile {
+  std::string name;  // inside the asset's folder
+  std::vector<std::uint8_t> bytes;
+};
+
+struct AssetBake {
+  std::vector<OutputFile> files;  // every output but report.json and manifest.json, in write order
+  nlohmann::json manifest;        // what runtimes read; identical for identical input and settings
+  nlohmann::json report;          // settings, counts, stage times and memory, warnings
+  BakeResult result;              // the bake's figures (level .glb bytes moved into `files`)
+  SampleStats sampled;            // backend empty for point-set inputs
+  ReadReport read;
+};
+
+// Reads `path` as a point set; a mesh is sampled by depth peeling (its figures in `sampled`, the
+// mesh itself in `mesh`, when given; sampled->backend stays empty for point sets). Throws the
+// readers' InputErrors, and InputError `<command>.empty` for a set without points.
+PointSet load_point_set(const std::string& path, const ReadOptions& read, const SampleOptions& sample,
+                        const std::string& command, ReadReport& report, SampleStats* sampled = nullptr,
+                        TriangleMesh* mesh = nullptr);
+
+// Bakes one asset. `input_name` is how the manifest and report name the input (the path as the
+// user wrote it); output files are named after its stem.
+AssetBake bake_asset(const std::string& path, const AssetOptions& options, const std::string& input_name);
+
+// The cluster levels' default cell widths: bounding-box diagonal / 128, 64, 32, 16, 8.
+std::vector<double> default_cluster_cells(const TriangleMesh& mesh);
+
+// Cluster levels as files STEM_C<i>.glb (and STEM_C<i>.draco.glb with `draco`), appended to
+// `files`; returns their manifest entries.
+nlohmann::json cluster_level_files(const std::vector<LodMesh>& lods, const std::string& stem, bool draco,
+                                   std::vector<OutputFile>& files);
+
+// Writes `files`, then `report` (when not null) and `manifest` into `outdir` so that none is ever
+// seen half-written (core/file_io write_folder_atomically; manifest.json last). The manifest gets a
+// "files" list (name and size of every file above); files that the folder's previous manifest
+// listed and the new one does not are removed afterwards, so a rebake with other levels leaves no
+// stale level behind.
+void write_asset(const std::string& outdir, const std::vector<OutputFile>& files, nlohmann::json manifest,
+                 const nlohmann::json& report, const std::string& tag = "qf-bake");
+
+}  // namespace qf

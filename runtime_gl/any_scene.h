@@ -1,0 +1,39 @@
+// Whatever file qf-render or qf-diff is given, loaded ready to draw (a baked .glb of any kind, a
+// point set as splats, a mesh), and the paired renders over black and white the fidelity metrics
+// are computed from (image_ops compare_renders).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "runtime_gl/draw_gl11.h"
+#include "runtime_gl/image_ops.h"
+#include "runtime_gl/loader.h"
+
+namespace qf::render {
+
+struct AnyScene {
+  enum Kind { kImpostor, kSplats, kMesh, kPoints, kCluster } kind = kImpostor;
+  ClusterScene cluster;
+  ImpostorScene impostor;
+  SplatScene splats;
+  MeshScene mesh;
+  PointImpostorScene points;
+  std::optional<MeshScene> fade_mesh;  // kPoints: the mesh it fades to when near (--mesh)
+  Bounds bounds() const;
+  std::string describe() const;      // e.g. "273 quads", "37705 points"
+  void attach(Renderer& r) const;    // makes it the renderer's scene
+};
+
+// By extension: .glb/.gltf through load_baked, anything else through the model readers. Throws
+// InputError naming the file.
+AnyScene load_scene(const std::string& path);
+
+// The scene drawn from `c` over black and over white (coverage = 1 - (W - B) / 255).
+RenderPair render_pair(Renderer& r, const Camera& c, DrawSettings s);
+
+// The mean of each metric over views.
+ViewMetrics mean_of(const std::vector<ViewMetrics>& v);
+
+}  // namespace qf::render
