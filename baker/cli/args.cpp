@@ -97,7 +97,7 @@ ParsedArgs parse_args(const CommandSpec& spec, const std::vector<std::string>& a
 }
 
 std::string help_text(const CommandSpec& spec) {
-  std::string s = "usage: " + spec.program + " " + spec.name + " " + spec.usage + "\n\n" + spec.summary + "\n";
+  std::string s = "usage: " + spec.program + (spec.name.empty() ? "" : " " + spec.name) + " " + spec.usage + "\n\n" + spec.summary + "\n";
   if (!spec.details.empty()) s += "\n" + spec.details + "\n";
   if (!spec.options.empty()) s += "\noptions:\n";
   for (const OptionSpec& o : spec.options) {

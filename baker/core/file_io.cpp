@@ -3,6 +3,7 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/file.h>
 #include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -85,10 +86,26 @@ void write_bytes_atomically(const std::string& path, const std::vector<std::uint
 
 namespace {
 
-// True for a pid that names no running process on this machine.
+// True for a pid that names no live process on this machine. A zombie (exited, not yet reaped:
+// in containers whose init reaps nothing, for ever) counts as gone.
 bool process_gone(const std::string& digits) {
   if (digits.empty() || digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) return false;
-  return ::kill(static_cast<pid_t>(std::stol(digits)), 0) != 0 && errno == ESRCH;
+  if (::kill(static_cast<pid_t>(std::stol(digits)), 0) != 0) return errno == ESRCH;
+  std::ifstream stat("/proc/" + digits + "/stat");
+  std::string line;
+  std::getline(stat, line);
+  const std::size_t paren = line.rfind(')');  // "pid (comm) S ...": comm may hold spaces
+  return paren != std::string::npos && paren + 2 < line.size() && line[paren + 2] == 'Z';
+}
+
+// A staging folder's writer holds an exclusive lock on its ".lock" file while it works; the lock
+// goes with the process (kill -9 included), so a lock we can take marks an abandoned folder.
+bool staging_abandoned(const std::filesystem::path& dir, const std::string& pid) {
+  const int fd = ::open((dir / ".lock").c_str(), O_RDWR | O_CLOEXEC);
+  if (fd < 0) return process_gone(pid);  // killed before the lock existed
+  const bool free = ::flock(fd, LOCK_EX | LOCK_NB) == 0;
+  ::close(fd);
+  return free;
 }
 
 }  // namespace
@@ -100,10 +117,10 @@ void remove_stale_temporaries(const std::string& dir) {
     const std::size_t tmp = name.rfind(".tmp-");
     const std::size_t dash = name.rfind('-');
     const bool staging = name.size() > 1 && name[0] == '.' && dash != std::string::npos && it->is_directory(ec);
-    if (tmp != std::string::npos && process_gone(name.substr(tmp + 5))) {
+    if (staging) {
+      if (staging_abandoned(it->path(), name.substr(dash + 1))) std::filesystem::remove_all(it->path(), ec);
+    } else if (tmp != std::string::npos && process_gone(name.substr(tmp + 5))) {
       std::filesystem::remove(it->path(), ec);
-    } else if (staging && process_gone(name.substr(dash + 1))) {
-      std::filesystem::remove_all(it->path(), ec);
     }
   }
 }
@@ -114,6 +131,8 @@ void write_folder_atomically(const std::string& outdir, const std::string& tag,
   remove_stale_temporaries(outdir);
   const std::string staging = outdir + "/." + tag + "-" + std::to_string(::getpid());
   std::filesystem::create_directories(staging);
+  const int lock = ::open((staging + "/.lock").c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (lock >= 0) ::flock(lock, LOCK_EX);
   try {
     std::vector<std::string> files;
     fill(staging, files);
@@ -122,8 +141,10 @@ void write_folder_atomically(const std::string& outdir, const std::string& tag,
   } catch (...) {
     std::error_code ec;
     std::filesystem::remove_all(staging, ec);
+    if (lock >= 0) ::close(lock);
     throw;
   }
+  if (lock >= 0) ::close(lock);
 }
 
 std::string file_extension(const std::string& path) {

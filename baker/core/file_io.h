@@ -59,9 +59,10 @@ void write_bytes_atomically(const std::string& path, const std::vector<std::uint
 void write_folder_atomically(const std::string& outdir, const std::string& tag,
                              const std::function<void(const std::string& staging, std::vector<std::string>& files)>& fill);
 
-// Removes what killed writers left in `dir`: temporary files "<name>.tmp-<pid>" and staging
-// folders ".<tag>-<pid>" whose process no longer runs on this machine. write_folder_atomically
-// calls it, so a rerun after a kill starts clean.
+// Removes what killed writers left in `dir`: staging folders ".<tag>-<pid>" whose writer no longer
+// holds their lock (write_folder_atomically locks its folder while it works; the lock dies with the
+// process), and temporary files "<name>.tmp-<pid>" whose process is gone from this machine.
+// write_folder_atomically calls it, so a rerun after a kill starts clean.
 void remove_stale_temporaries(const std::string& dir);
 
 // Lower-case extension without the dot ("ply" for "a/b.PLY"), or "" if none.

@@ -121,7 +121,13 @@ listing "$work/killed" | cmp -s - "$work/full.sums" && ok || bad "killed + rerun
 [[ -z $(find "$work/killed" -name '.qf-*' -o -name '*.tmp-*') ]] && ok || bad "no staging left after the rerun: $(find "$work/killed" -name '.qf-*' -o -name '*.tmp-*')"
 export QF_CACHE=$work/cache
 
-# --- 7. bad manifests: the file, the location and what was expected ---
+# --- 7. --eval: fidelity per level from qf-render eval (beside qf-bake) ---
+printf '{"assets": ["in/octa.ply"], "defaults": {"primitives": 20}}' >"$work/eval.json"
+"$bake" batch "$work/eval.json" -o "$work/out-eval" --eval --eval-views 2 -q; rc=$?
+[[ $rc -eq 0 && $(field "$work/out-eval/batch-report.json" 'all(10 < e["psnr"] < 99 and 0.5 < e["iou"] <= 1 for e in r["assets"][0]["eval"])') == True ]] && ok ||
+  bad "--eval puts PSNR and IoU per level into the report (exit $rc)"
+
+# --- 8. bad manifests: the file, the location and what was expected ---
 badm() {  # badm JSON PATTERN
   printf '%s' "$1" >"$work/m.json"
   "$bake" batch "$work/m.json" -o "$work/out3" 2>"$work/err"; local rc=$?

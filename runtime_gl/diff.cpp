@@ -1,0 +1,421 @@
+// qf-diff's comparisons: byte identity, the structure of changed .glb files, and renders of both.
+#include "runtime_gl/diff.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+#include <sstream>
+
+#include "core/error.h"
+#include "core/file_io.h"
+#include "gl/egl.h"
+#include "runtime_gl/any_scene.h"
+#include "runtime_gl/camera.h"
+
+namespace qf::render {
+namespace {
+
+using Json = nlohmann::json;
+using OJson = nlohmann::ordered_json;
+namespace fs = std::filesystem;
+
+double round_to(double v, int digits) {
+  const double scale = std::pow(10.0, digits);
+  return std::round(v * scale) / scale;
+}
+
+// --- files -------------------------------------------------------------------------------------
+
+// Files a bake writes that are compared: not the reports (they hold times), not hidden staging.
+bool compared(const fs::path& rel) {
+  for (const fs::path& part : rel)
+    if (!part.empty() && part.string()[0] == '.') return false;
+  const std::string name = rel.filename().string();
+  return name != "report.json" && name.rfind("batch-report", 0) != 0 && name.find(".tmp-") == std::string::npos;
+}
+
+std::vector<std::string> list_files(const std::string& dir) {
+  std::vector<std::string> out;
+  for (const fs::directory_entry& e : fs::recursive_directory_iterator(dir)) {
+    if (!e.is_regular_file()) continue;
+    const fs::path rel = fs::relative(e.path(), dir);
+    if (compared(rel)) out.push_back(rel.generic_string());
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+bool same_bytes(ByteView a, ByteView b) { return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size()) == 0); }
+
+// The JSON chunk of a .glb (glTF 2.0 binary: 12-byte header, then chunks of length, type, data).
+Json glb_json(ByteView b, const std::string& path) {
+  auto u32 = [&](std::size_t at) {
+    return std::uint32_t(b[at]) | std::uint32_t(b[at + 1]) << 8 | std::uint32_t(b[at + 2]) << 16 | std::uint32_t(b[at + 3]) << 24;
+  };
+  if (b.size() < 20 || u32(0) != 0x46546C67u) throw InputError("diff.glb", path, "byte 0", "not a binary glTF file (no 'glTF' magic)");
+  const std::uint32_t length = u32(12);
+  if (u32(16) != 0x4E4F534Au || 20ull + length > b.size()) throw InputError("diff.glb", path, "byte 12", "the first chunk is not a complete JSON chunk");
+  try {
+    return Json::parse(b.data() + 20, b.data() + 20 + length);
+  } catch (const Json::parse_error& e) {
+    throw InputError("diff.glb", path, at_byte(20 + e.byte), std::string("the JSON chunk does not parse: ") + e.what());
+  }
+}
+
+// --- structure ---------------------------------------------------------------------------------
+
+struct Quads {
+  long long level = -1;
+  std::vector<long long> domain;
+  std::vector<Vec3f> center, normal;
+  std::vector<double> error;
+  std::set<std::pair<long long, long long>> edges;  // by domain, smaller first
+};
+
+std::optional<Quads> impostor_quads(const Json& j) {
+  if (!j.contains("extensions") || !j["extensions"].contains("QF_impostor_level")) return std::nullopt;
+  const Json& e = j["extensions"]["QF_impostor_level"];
+  Quads q;
+  q.level = e.value("level", -1LL);
+  const std::size_t n = e.value("quadCount", std::size_t{0});
+  if (!e.contains("domain") || e["domain"].size() != n) return q;
+  for (std::size_t k = 0; k < n; ++k) {
+    q.domain.push_back(e["domain"][k].get<long long>());
+    q.center.push_back({e["center"][3 * k].get<float>(), e["center"][3 * k + 1].get<float>(), e["center"][3 * k + 2].get<float>()});
+    q.normal.push_back({e["normal"][3 * k].get<float>(), e["normal"][3 * k + 1].get<float>(), e["normal"][3 * k + 2].get<float>()});
+    q.error.push_back(e["error"][k].get<double>());
+  }
+  const Json& off = e["neighborOffsets"];
+  for (std::size_t k = 0; k + 1 < off.size() && k < n; ++k)
+    for (std::size_t i = off[k].get<std::size_t>(); i < off[k + 1].get<std::size_t>(); ++i) {
+      const long long a = q.domain[k], b = q.domain[e["neighbors"][i].get<std::size_t>()];
+      q.edges.insert({std::min(a, b), std::max(a, b)});
+    }
+  return q;
+}
+
+// Quads matched by domain (the basis function they show): added, removed, and how the matched
+// ones moved (centre, normal) and how their errors changed.
+OJson quad_diff(const Quads& a, const Quads& b, double diagonal, double& change_share) {
+  std::map<long long, std::size_t> in_a, in_b;
+  for (std::size_t k = 0; k < a.domain.size(); ++k) in_a[a.domain[k]] = k;
+  for (std::size_t k = 0; k < b.domain.size(); ++k) in_b[b.domain[k]] = k;
+  std::size_t added = 0, removed = 0, matched = 0;
+  double max_shift = 0, sum_shift = 0, max_angle = 0, sum_angle = 0, max_error_change = 0;
+  for (const auto& [d, ka] : in_a) {
+    const auto it = in_b.find(d);
+    if (it == in_b.end()) {
+      ++removed;
+      continue;
+    }
+    const std::size_t kb = it->second;
+    ++matched;
+    const double shift = length(b.center[kb] - a.center[ka]);
+    const double angle = std::acos(std::clamp(double(dot(a.normal[ka], b.normal[kb])), -1.0, 1.0)) * 180.0 / M_PI;
+    max_shift = std::max(max_shift, shift), sum_shift += shift;
+    max_angle = std::max(max_angle, angle), sum_angle += angle;
+    max_error_change = std::max(max_error_change, std::abs(b.error[kb] - a.error[ka]));
+  }
+  for (const auto& [d, kb] : in_b) added += in_a.count(d) ? 0 : 1;
+  std::size_t edges_added = 0, edges_removed = 0;
+  for (const auto& e : b.edges) edges_added += a.edges.count(e) ? 0 : 1;
+  for (const auto& e : a.edges) edges_removed += b.edges.count(e) ? 0 : 1;
+  auto mean = [](const std::vector<double>& v) {
+    double s = 0;
+    for (double x : v) s += x;
+    return v.empty() ? 0.0 : s / double(v.size());
+  };
+  change_share = double(added + removed) / double(std::max<std::size_t>(1, a.domain.size()));
+  const double m = double(std::max<std::size_t>(1, matched));
+  return {{"level", {a.level, b.level}},
+          {"quads", {a.domain.size(), b.domain.size()}},
+          {"quads_matched", matched},
+          {"quads_added", added},
+          {"quads_removed", removed},
+          {"neighbor_edges", {a.edges.size(), b.edges.size()}},
+          {"edges_added", edges_added},
+          {"edges_removed", edges_removed},
+          {"center_shift_max", round_to(max_shift, 7)},
+          {"center_shift_mean", round_to(sum_shift / m, 7)},
+          {"center_shift_max_of_diagonal", round_to(diagonal > 0 ? max_shift / diagonal : 0, 7)},
+          {"normal_angle_max_degrees", round_to(max_angle, 4)},
+          {"normal_angle_mean_degrees", round_to(sum_angle / m, 4)},
+          {"mean_error", {round_to(mean(a.error), 8), round_to(mean(b.error), 8)}},
+          {"error_change_max", round_to(max_error_change, 8)}};
+}
+
+// What a .glb holds, for files without our impostor extension.
+OJson contents(const AnyScene& s) {
+  if (s.kind == AnyScene::kPoints) return {{"kind", "point impostor"}, {"points", s.points.positions.size()}};
+  if (s.kind == AnyScene::kCluster)
+    return {{"kind", "cluster LOD"},
+            {"cell_width", s.cluster.cell},
+            {"triangles", s.cluster.mesh.indices.size() / 3},
+            {"thick_edges", s.cluster.thickness.size()},
+            {"points", s.cluster.points.size()}};
+  return {{"kind", "quads"}, {"quads", s.impostor.items.size()}};
+}
+
+// Texels of a scene's textures: count, covered share (alpha > 0), mean RGBA of covered texels;
+// and, when both have the same images, the share of texels changed beyond the tolerance.
+OJson texel_stats(const std::vector<Image>& images) {
+  std::size_t texels = 0, covered = 0;
+  double sum[4] = {0, 0, 0, 0};
+  for (const Image& im : images) {
+    texels += std::size_t(im.width) * std::size_t(im.height);
+    for (std::size_t i = 0; i + 3 < im.rgba.size(); i += 4) {
+      if (im.rgba[i + 3] == 0) continue;
+      ++covered;
+      for (int c = 0; c < 4; ++c) sum[c] += im.rgba[i + c];
+    }
+  }
+  OJson mean = OJson::array();
+  for (double s : sum) mean.push_back(round_to(covered ? s / double(covered) : 0.0, 3));
+  return {{"images", images.size()}, {"texels", texels}, {"covered_share", round_to(texels ? double(covered) / double(texels) : 0.0, 6)},
+          {"mean_rgba_covered", mean}};
+}
+
+// Share of texels changed by more than `tolerance` levels in a channel; -1 when the images differ in size.
+double texel_change(const std::vector<Image>& a, const std::vector<Image>& b, int tolerance) {
+  if (a.size() != b.size()) return -1;
+  std::size_t total = 0, changed = 0;
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    if (a[k].width != b[k].width || a[k].height != b[k].height) return -1;
+    for (std::size_t i = 0; i + 3 < a[k].rgba.size(); i += 4) {
+      ++total;
+      for (int c = 0; c < 4; ++c)
+        if (std::abs(int(a[k].rgba[i + c]) - int(b[k].rgba[i + c])) > tolerance) {
+          ++changed;
+          break;
+        }
+    }
+  }
+  return total ? double(changed) / double(total) : 0.0;
+}
+
+// --- images ------------------------------------------------------------------------------------
+
+struct ImageDiff {
+  OJson json;
+  bool within = true;
+};
+
+ImageDiff image_diff(const AnyScene& a, const AnyScene& b, const std::string& name, const DiffOptions& o) {
+  static std::unique_ptr<HeadlessContext> context;  // one GL context for every file of a run
+  if (!context) context = std::make_unique<HeadlessContext>();
+  const int w = o.size;
+  Renderer ra(w, w), rb(w, w);
+  a.attach(ra);
+  b.attach(rb);
+  Bounds both = a.bounds();
+  if (!b.bounds().empty()) both.add(b.bounds().min), both.add(b.bounds().max);
+  const Sphere sphere = bounding_sphere(both);
+  const Rgb8 background{128, 128, 128};
+  DrawSettings settings;
+  std::vector<ViewMetrics> metrics;
+  std::vector<float> exr;
+  std::vector<Image> sheet;
+  double min_psnr = 1e9, max_changed = 0;
+  OJson per_view = OJson::array();
+  for (int i = 0; i < o.views; ++i) {
+    const Camera cam = orbit_camera(sphere, sphere_direction(i, o.views), 0, w, w);
+    std::vector<float> diff;
+    const ViewMetrics m = compare_renders(render_pair(ra, cam, settings), render_pair(rb, cam, settings), background, &diff);
+    std::size_t changed = 0;
+    const float tol = float(o.thresholds.pixel_tolerance) / 255.0f;
+    for (std::size_t p = 0; p + 2 < diff.size(); p += 3) changed += std::max({diff[p], diff[p + 1], diff[p + 2]}) > tol ? 1 : 0;
+    const double share = double(changed) / double(std::size_t(w) * std::size_t(w));
+    metrics.push_back(m);
+    min_psnr = std::min(min_psnr, m.psnr);
+    max_changed = std::max(max_changed, share);
+    per_view.push_back({{"psnr", round_to(m.psnr, 3)}, {"iou", round_to(m.iou, 5)}, {"changed_share", round_to(share, 6)}});
+    exr.insert(exr.end(), diff.begin(), diff.end());
+    sheet.push_back(to_8bit(diff, w, w, 4));
+  }
+  ImageDiff out;
+  const ViewMetrics mean = mean_of(metrics);
+  out.json = {{"views", o.views},
+              {"size", w},
+              {"psnr_min", round_to(min_psnr, 3)},
+              {"psnr_mean", round_to(mean.psnr, 3)},
+              {"iou_mean", round_to(mean.iou, 5)},
+              {"changed_share_max", round_to(max_changed, 6)},
+              {"per_view", per_view}};
+  out.within = min_psnr >= o.thresholds.min_psnr && max_changed <= o.thresholds.max_changed;
+  if (!o.images.empty()) {
+    fs::create_directories(o.images);
+    std::string stem = name;
+    std::replace(stem.begin(), stem.end(), '/', '_');
+    const std::string prefix = o.images + "/" + stem + ".diff";
+    save_exr(prefix + ".exr", exr, w, w * o.views);
+    save_png(prefix + ".png", contact_sheet(sheet, int(std::ceil(std::sqrt(double(o.views)))), {0, 0, 0}));
+    out.json["images"] = {prefix + ".exr", prefix + ".png"};
+  }
+  return out;
+}
+
+// --- one pair of files -------------------------------------------------------------------------
+
+// Keys whose values differ between two JSON values, as JSON pointers (at most `limit`).
+void json_changes(const Json& a, const Json& b, const std::string& at, OJson& out, std::size_t limit) {
+  if (out.size() >= limit || a == b) return;
+  if (a.is_object() && b.is_object()) {
+    std::set<std::string> keys;
+    for (const auto& [k, v] : a.items()) keys.insert(k);
+    for (const auto& [k, v] : b.items()) keys.insert(k);
+    for (const std::string& k : keys)
+      json_changes(a.contains(k) ? a[k] : Json(), b.contains(k) ? b[k] : Json(), at + "/" + k, out, limit);
+  } else if (a.is_array() && b.is_array() && a.size() == b.size()) {
+    for (std::size_t i = 0; i < a.size(); ++i) json_changes(a[i], b[i], at + "/" + std::to_string(i), out, limit);
+  } else {
+    out.push_back(at.empty() ? "/" : at);
+  }
+}
+
+OJson diff_pair(const std::string& name, const std::string& pa, const std::string& pb, const DiffOptions& o) {
+  const InputFile fa(pa), fb(pb);
+  OJson r{{"name", name}};
+  if (same_bytes(fa.bytes(), fb.bytes())) {
+    r["status"] = "identical";
+    r["within_thresholds"] = true;
+    return r;
+  }
+  r["status"] = "changed";
+  r["bytes"] = {fa.bytes().size(), fb.bytes().size()};
+  const std::string ext = file_extension(name);
+  if (ext == "json") {
+    const ByteView a = fa.bytes(), b = fb.bytes();
+    const Json ja = Json::parse(a.data(), a.data() + a.size(), nullptr, false), jb = Json::parse(b.data(), b.data() + b.size(), nullptr, false);
+    OJson changes = OJson::array();
+    json_changes(ja, jb, "", changes, 50);
+    r["changed_keys"] = changes;
+    r["within_thresholds"] = true;  // a manifest changes with its levels; those decide
+    return r;
+  }
+  if (ext != "glb") {
+    r["within_thresholds"] = false;  // nothing to measure it by: any change counts
+    return r;
+  }
+  bool within = true;
+  const Json ja = glb_json(fa.bytes(), pa), jb = glb_json(fb.bytes(), pb);
+  const AnyScene sa = load_scene(pa), sb = load_scene(pb);
+  const std::optional<Quads> qa = impostor_quads(ja), qb = impostor_quads(jb);
+  if (qa && qb) {
+    double change = 0;
+    r["structure"] = quad_diff(*qa, *qb, sa.bounds().diagonal(), change);
+    within = within && qa->level == qb->level && change <= o.thresholds.max_quad_change;
+  } else {
+    r["structure"] = {{"old", contents(sa)}, {"new", contents(sb)}};
+    within = within && contents(sa) == contents(sb);
+  }
+  if (sa.kind == AnyScene::kImpostor && sb.kind == AnyScene::kImpostor) {
+    const double changed = texel_change(sa.impostor.textures, sb.impostor.textures, o.thresholds.pixel_tolerance);
+    r["texels"] = {{"old", texel_stats(sa.impostor.textures)}, {"new", texel_stats(sb.impostor.textures)}};
+    if (changed >= 0) r["texels"]["changed_share"] = round_to(changed, 6);
+    if (!o.render) within = within && changed >= 0 && changed <= o.thresholds.max_changed;
+  }
+  if (o.render) {
+    const ImageDiff im = image_diff(sa, sb, name, o);
+    r["images"] = im.json;
+    within = within && im.within;
+  }
+  r["within_thresholds"] = within;
+  return r;
+}
+
+}  // namespace
+
+OJson diff_bakes(const std::string& old_path, const std::string& new_path, const DiffOptions& o) {
+  const bool da = fs::is_directory(old_path), db = fs::is_directory(new_path);
+  if (da != db) throw UsageError("qf-diff compares two files or two folders, not a file with a folder");
+  OJson report{{"old", old_path}, {"new", new_path}, {"kind", da ? "folders" : "files"}};
+  report["thresholds"] = {{"min_psnr", o.thresholds.min_psnr},
+                          {"max_changed_share", o.thresholds.max_changed},
+                          {"pixel_tolerance", o.thresholds.pixel_tolerance},
+                          {"max_quad_change_share", o.thresholds.max_quad_change},
+                          {"render", o.render}};
+  OJson files = OJson::array();
+  std::size_t identical = 0, changed = 0, added = 0, removed = 0;
+  bool within = true;
+  if (!da) {
+    files.push_back(diff_pair(fs::path(new_path).filename().string(), old_path, new_path, o));
+  } else {
+    const std::vector<std::string> a = list_files(old_path), b = list_files(new_path);
+    std::set<std::string> all(a.begin(), a.end());
+    all.insert(b.begin(), b.end());
+    for (const std::string& name : all) {
+      const bool in_a = std::binary_search(a.begin(), a.end(), name), in_b = std::binary_search(b.begin(), b.end(), name);
+      if (in_a && in_b) files.push_back(diff_pair(name, old_path + "/" + name, new_path + "/" + name, o));
+      else files.push_back({{"name", name}, {"status", in_a ? "removed" : "added"}, {"within_thresholds", false}});
+    }
+  }
+  for (const OJson& f : files) {
+    const std::string s = f["status"];
+    identical += s == "identical", changed += s == "changed", added += s == "added", removed += s == "removed";
+    within = within && f["within_thresholds"].get<bool>();
+  }
+  report["summary"] = {{"identical", identical}, {"changed", changed}, {"added", added}, {"removed", removed}};
+  report["verdict"] = changed + added + removed == 0 ? "identical" : within ? "within thresholds" : "different";
+  report["files"] = files;
+  return report;
+}
+
+std::string diff_text(const OJson& r) {
+  std::ostringstream out;
+  const OJson& s = r["summary"];
+  out << "qf-diff: " << r["old"].get<std::string>() << " -> " << r["new"].get<std::string>() << ": " << s["identical"] << " identical, "
+      << s["changed"] << " changed, " << s["added"] << " added, " << s["removed"] << " removed\n";
+  for (const OJson& f : r["files"]) {
+    const std::string status = f["status"];
+    if (status == "identical") continue;
+    out << "  " << status << " " << f["name"].get<std::string>();
+    if (status != "changed") {
+      out << "\n";
+      continue;
+    }
+    out << (f["within_thresholds"].get<bool>() ? " (within thresholds)" : " (BEYOND thresholds)") << "\n";
+    if (f.contains("changed_keys")) {
+      out << "    keys:";
+      for (const OJson& k : f["changed_keys"]) out << " " << k.get<std::string>();
+      out << "\n";
+    }
+    if (f.contains("structure")) {
+      const OJson& st = f["structure"];
+      if (st.contains("quads")) {
+        out << "    level " << st["level"][0] << " -> " << st["level"][1] << ", quads " << st["quads"][0] << " -> " << st["quads"][1] << " (+"
+            << st["quads_added"] << " -" << st["quads_removed"] << " by domain), neighbour edges " << st["neighbor_edges"][0] << " -> "
+            << st["neighbor_edges"][1] << " (+" << st["edges_added"] << " -" << st["edges_removed"] << ")\n";
+        out << "    planes of matched quads: centre shift max " << st["center_shift_max"] << " (" << st["center_shift_max_of_diagonal"]
+            << " of the diagonal), normal angle max " << st["normal_angle_max_degrees"] << " deg; mean error " << st["mean_error"][0]
+            << " -> " << st["mean_error"][1] << "\n";
+      } else {
+        out << "    " << st["old"].dump() << " -> " << st["new"].dump() << "\n";
+      }
+    }
+    if (f.contains("texels")) {
+      const OJson& t = f["texels"];
+      out << "    texels " << t["old"]["texels"] << " -> " << t["new"]["texels"] << ", covered " << t["old"]["covered_share"] << " -> "
+          << t["new"]["covered_share"];
+      if (t.contains("changed_share")) out << ", changed " << t["changed_share"];
+      out << "\n";
+    }
+    if (f.contains("images")) {
+      const OJson& im = f["images"];
+      out << "    images (" << im["views"] << " views, " << im["size"] << " px): PSNR min " << im["psnr_min"] << " dB, mean " << im["psnr_mean"]
+          << " dB; changed pixels max " << im["changed_share_max"];
+      if (im.contains("images")) out << "; " << im["images"][1].get<std::string>();
+      out << "\n";
+    }
+  }
+  const OJson& t = r["thresholds"];
+  out << "verdict: " << r["verdict"].get<std::string>() << " (thresholds: PSNR >= " << t["min_psnr"] << " dB, changed pixels <= "
+      << t["max_changed_share"] << ", quads added/removed <= " << t["max_quad_change_share"] << ")\n";
+  return out.str();
+}
+
+}  // namespace qf::render

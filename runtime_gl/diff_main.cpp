@@ -1,0 +1,84 @@
+// qf-diff OLD NEW: how two bakes differ (runtime_gl/diff.h), for people (text) or CI (--json).
+// Exit codes: 0 identical or within the thresholds, 1 beyond them, 2 bad usage or unreadable
+// input (a comparison that could not be made is not a pass), 3 internal error.
+#include <iostream>
+
+#include "cli/args.h"
+#include "core/error.h"
+#include "core/file_io.h"
+#include "core/memory.h"
+#include "runtime_gl/diff.h"
+
+#ifndef QF_VERSION
+#define QF_VERSION "0.0.0"
+#endif
+
+namespace {
+
+qf::cli::CommandSpec diff_spec() {
+  qf::cli::CommandSpec s;
+  s.program = "qf-diff";
+  s.name = "";
+  s.usage = "OLD NEW [options]";
+  s.summary = "compare two bakes: two .glb files or two output folders";
+  s.details =
+      "First whether they are byte-identical. If not, for each changed .glb a structural diff: level,\n"
+      "quads matched by domain (added, removed), neighbour-graph edges, how the matched quads' planes\n"
+      "moved and their errors changed, texel statistics (and the share of texels changed when the\n"
+      "atlases have the same sizes); then an image diff: both drawn by runtime_gl from --views canonical\n"
+      "views framing both (PSNR, share of changed pixels; EXR and PNG difference images with --images).\n"
+      "Folders pair their files by relative path; report.json and batch-report*.json (times) and\n"
+      "hidden files are left out; added or removed files are beyond any threshold.\n"
+      "Exit status: 0 identical or within the thresholds, 1 beyond them, 2 bad usage or unreadable input.";
+  s.options = {{"json", 0, "", "", "print the report as JSON (default: text)"},
+               {"min-psnr", 0, "DB", "40", "a changed .glb passes when every view's PSNR is at least DB"},
+               {"max-changed", 0, "SHARE", "0.005", "... and at most this share of each view's pixels changed"},
+               {"pixel-tolerance", 0, "LEVELS", "2", "a pixel (texel) changed when a channel differs by more (0..255)"},
+               {"max-quad-change", 0, "SHARE", "0", "... and at most this share of a level's quads added or removed"},
+               {"views", 0, "N", "6", "canonical views per .glb"},
+               {"size", 0, "PX", "128", "image side of each view"},
+               {"images", 0, "DIR", "", "write DIR/NAME.diff.exr (float |old - new|, views stacked) and .diff.png (x4) per changed .glb"},
+               {"no-render", 0, "", "", "bytes and structure only: texel changes take the place of pixel changes"}};
+  s.min_positional = s.max_positional = 2;
+  return s;
+}
+
+int run(const std::vector<std::string>& argv) {
+  const qf::cli::CommandSpec spec = diff_spec();
+  for (const std::string& a : argv) {
+    if (a == "--") break;
+    if (a == "--help" || a == "-h") return std::cout << qf::cli::help_text(spec), 0;
+    if (a == "--version") return std::cout << "qf-diff " QF_VERSION "\n", 0;
+  }
+  const qf::cli::ParsedArgs args = qf::cli::parse_args(spec, argv);
+  qf::render::DiffOptions o;
+  o.thresholds.min_psnr = args.get_double("min-psnr", o.thresholds.min_psnr, 0, 1000);
+  o.thresholds.max_changed = args.get_double("max-changed", o.thresholds.max_changed, 0, 1);
+  o.thresholds.pixel_tolerance = static_cast<int>(args.get_int("pixel-tolerance", o.thresholds.pixel_tolerance, 0, 255));
+  o.thresholds.max_quad_change = args.get_double("max-quad-change", o.thresholds.max_quad_change, 0, 1);
+  o.views = static_cast<int>(args.get_int("views", o.views, 1, 1000));
+  o.size = static_cast<int>(args.get_int("size", o.size, 8, 4096));
+  o.images = args.get("images");
+  o.render = !args.flag("no-render");
+  const nlohmann::ordered_json report = qf::render::diff_bakes(args.positional[0], args.positional[1], o);
+  if (args.flag("json")) std::cout << report.dump(2) << "\n";
+  else std::cout << qf::render::diff_text(report);
+  return report["verdict"] == "different" ? 1 : 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::ios::sync_with_stdio(false);
+  qf::keep_freed_memory();
+  const std::vector<std::string> args(argv + 1, argv + argc);
+  // Exit 1 means "different": an input that cannot be read is reported as 2, not as a difference.
+  return qf::cli::run_with_exit_codes("qf-diff", [&] {
+    try {
+      return run(args);
+    } catch (const qf::InputError& e) {
+      std::cerr << "qf-diff: error: " << e.what() << "\n";
+      return static_cast<int>(qf::ExitCode::kUsage);
+    }
+  });
+}

@@ -1,0 +1,66 @@
+#!/usr/bin/env bash
+# qf-diff end to end: identical bakes say identical (files and folders, text and JSON, exit 0);
+# bakes differing in one setting report their level, quad, edge, plane, texel and image changes
+# and exit 1 beyond the thresholds, 0 within looser ones; added/removed files; difference images;
+# usage errors exit 2.
+# usage: diff_test.sh QF_BAKE QF_DIFF
+set -u
+bake=$1 diff=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+pass=0 fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+field() { /usr/bin/python3 -c 'import json, sys; r = json.load(open(sys.argv[1])); print(eval(sys.argv[2]))' "$1" "$2"; }
+export QF_CACHE=$work/cache
+"$bake" generate octahedron -n 4000 -o "$work/octa.ply" -q
+"$bake" bake "$work/octa.ply" -o "$work/a" -n 100,20 -q
+"$bake" bake "$work/octa.ply" -o "$work/b" -n 100,20 -q --no-cache   # same bytes without the cache
+"$bake" bake "$work/octa.ply" -o "$work/c" -n 100,20 -q --tau 0.12
+level=$(cd "$work/a" && ls octa_L*.glb | head -1)
+
+# --- identical ---
+"$diff" "$work/a" "$work/b" >"$work/out"; rc=$?
+[[ $rc -eq 0 ]] && grep -q "^verdict: identical" "$work/out" && ok || bad "identical folders: exit $rc: $(cat "$work/out")"
+"$diff" "$work/a/$level" "$work/b/$level" --json >"$work/j"; rc=$?
+[[ $rc -eq 0 && $(field "$work/j" 'r["verdict"]') == identical ]] && ok || bad "identical files (--json): exit $rc"
+
+# --- one setting differs: beyond the default thresholds ---
+"$diff" "$work/a" "$work/c" --json --images "$work/img" >"$work/j"; rc=$?
+[[ $rc -eq 1 && $(field "$work/j" 'r["verdict"]') == different ]] && ok || bad "--tau 0.12 vs 0.05: exit $rc, expected 1"
+[[ $(field "$work/j" 'r["summary"]["changed"] >= 2 and r["summary"]["identical"] == 0') == True ]] && ok || bad "both levels and the manifest changed"
+f="[x for x in r['files'] if x['name'] == '$level'][0]"
+[[ $(field "$work/j" "$f['structure']['level'] == [${level//[!0-9]/}, ${level//[!0-9]/}] and $f['structure']['quads'][0] > 0") == True ]] && ok ||
+  bad "structure names the level and quad counts: $(field "$work/j" "$f.get('structure')")"
+[[ $(field "$work/j" "all(k in $f['structure'] for k in ['edges_added', 'center_shift_max', 'normal_angle_max_degrees', 'mean_error'])") == True ]] && ok ||
+  bad "structure has graph, plane and error changes"
+[[ $(field "$work/j" "$f['texels']['old']['texels'] > 0 and 'covered_share' in $f['texels']['new']") == True ]] && ok || bad "texel statistics"
+[[ $(field "$work/j" "$f['images']['psnr_min'] < 40 and $f['images']['changed_share_max'] > 0.005") == True ]] && ok ||
+  bad "image diff measures the change: $(field "$work/j" "$f['images']")"
+[[ -s $work/img/$level.diff.exr && -s $work/img/$level.diff.png ]] && ok || bad "difference images written: $(ls "$work/img")"
+[[ $(field "$work/j" "'/levels/0/error' in [x for x in r['files'] if x['name'] == 'manifest.json'][0]['changed_keys']") == True ]] && ok ||
+  bad "manifest key changes listed"
+"$diff" "$work/a" "$work/c" >"$work/out"; rc=$?
+[[ $rc -eq 1 ]] && grep -q "BEYOND thresholds" "$work/out" && grep -q "PSNR min" "$work/out" && grep -q "^verdict: different" "$work/out" && ok ||
+  bad "text report: exit $rc: $(head -5 "$work/out")"
+# looser thresholds: within
+"$diff" "$work/a" "$work/c" --min-psnr 5 --max-changed 1 --max-quad-change 1 >"$work/out"; rc=$?
+[[ $rc -eq 0 ]] && grep -q "^verdict: within thresholds" "$work/out" && ok || bad "loose thresholds pass: exit $rc: $(tail -2 "$work/out")"
+# structure only
+"$diff" "$work/a" "$work/c" --no-render --json >"$work/j"; rc=$?
+[[ $rc -eq 1 && $(field "$work/j" "'images' not in $f and $f['texels']['changed_share'] > 0") == True ]] && ok || bad "--no-render decides by texels (exit $rc)"
+
+# --- files added and removed ---
+"$bake" bake "$work/octa.ply" -o "$work/d" -n 100 -q
+"$diff" "$work/a" "$work/d" --json >"$work/j"; rc=$?
+[[ $rc -eq 1 && $(field "$work/j" 'r["summary"]["removed"]') == 1 ]] && ok || bad "a level less is reported as removed (exit $rc)"
+
+# --- usage ---
+"$diff" "$work/a" "$work/a/$level" >/dev/null 2>"$work/err"; [[ $? -eq 2 ]] && grep -q "not a file with a folder" "$work/err" && ok || bad "file vs folder: exit 2"
+"$diff" "$work/a/$level" "$work/none.glb" >/dev/null 2>"$work/err"; [[ $? -eq 2 ]] && grep -q "none.glb" "$work/err" && ok || bad "missing file: exit 2 naming it"
+printf 'not a glb' >"$work/x.glb"; cp "$work/x.glb" "$work/y.glb"; printf 'other' >"$work/y.glb"
+"$diff" "$work/x.glb" "$work/y.glb" >/dev/null 2>"$work/err"; [[ $? -eq 2 ]] && grep -q "x.glb: byte 0: not a binary glTF" "$work/err" && ok || bad "garbage .glb: exit 2: $(cat "$work/err")"
+"$diff" --help | grep -q -- "--min-psnr DB .*(default: 40)" && ok || bad "--help gives the defaults"
+
+echo "diff: $pass passed, $fail failed"
+[[ $fail -eq 0 ]]
