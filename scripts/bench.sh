@@ -5,12 +5,14 @@
 # whole bake (per stage: time, memory, resampler texels/s) on bunny00, kitten and a 1M-point torus.
 # mesh sampling (GL and CPU depth peeling at LDI 100 and 1000) on cow, elephant, fandisk, bunny00.
 # vertex clustering (vertices/s per level) on bunny00, the dragon and a 1M-triangle sphere.
-# usage: scripts/bench.sh [io|analysis|amg|render|bake|sample|cluster]...   (default: all)
+# batch: assets per minute on the CGAL model set with -j 1 and -j 2 (cold and warm hierarchy
+# cache), and the per-asset overhead of a rerun with nothing to do (10 models, 200 small sets).
+# usage: scripts/bench.sh [io|analysis|amg|render|bake|sample|cluster|batch]...   (default: all)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh >/dev/null
 what=("$@")
-[[ ${#what[@]} -eq 0 ]] && what=(io analysis amg render bake sample cluster)
+[[ ${#what[@]} -eq 0 ]] && what=(io analysis amg render bake sample cluster batch)
 for w in "${what[@]}"; do
   case $w in
     io) build/bin/qf-bench-io ;;
@@ -82,7 +84,36 @@ for w in "${what[@]}"; do
         done
       done
       rm -rf "$tmp" ;;
-    *) echo "unknown benchmark '$w' (io, analysis, amg, render, bake, sample, cluster)" >&2; exit 2 ;;
+    batch)
+      set -- bunny00.off fandisk.off elephant.off ChineseDragon-10kv.off sphere.ply kitten.xyz ball.ply b9_training.ply oni.pwn sphere_20k.xyz
+      models=$(scripts/fetch-models.sh "$@" | tail -1)
+      tmp=$(mktemp -d)
+      list=""; for m in "$@"; do list+="\"$models/$m\","; done
+      printf '{"assets": [%s]}\n' "${list%,}" >"$tmp/cgal.json"
+      python3 scripts/batch_table.py --header
+      for j in 1 2; do
+        rm -rf "$tmp/out" "$tmp/cache"
+        QF_CACHE=$tmp/cache build/bin/qf-bake batch "$tmp/cgal.json" -o "$tmp/out" -j $j -q
+        python3 scripts/batch_table.py "$tmp/out/batch-report.json" "CGAL set, cold cache"
+        rm -rf "$tmp/out"
+        QF_CACHE=$tmp/cache build/bin/qf-bake batch "$tmp/cgal.json" -o "$tmp/out" -j $j -q
+        python3 scripts/batch_table.py "$tmp/out/batch-report.json" "CGAL set, warm cache"
+      done
+      echo
+      echo "rerun with nothing to do: wall clock of the whole command (process start included) / assets"
+      start=$(date +%s.%N); QF_CACHE=$tmp/cache build/bin/qf-bake batch "$tmp/cgal.json" -o "$tmp/out" -q; end=$(date +%s.%N)
+      python3 scripts/batch_table.py --rerun "$tmp/out/batch-report.json" "CGAL set" "$(echo "$end - $start" | bc)"
+      list=""; for i in $(seq 1 200); do
+        build/bin/qf-bake generate sphere -n 400 --seed $i -o "$tmp/s$i.xyz" -q; list+="\"s$i.xyz\","
+      done
+      printf '{"defaults": {"primitives": 10}, "assets": [%s]}\n' "${list%,}" >"$tmp/small.json"
+      QF_CACHE=$tmp/cache build/bin/qf-bake batch "$tmp/small.json" -o "$tmp/small" -q
+      start=$(date +%s.%N); QF_CACHE=$tmp/cache build/bin/qf-bake batch "$tmp/small.json" -o "$tmp/small" -q; end=$(date +%s.%N)
+      python3 scripts/batch_table.py --rerun "$tmp/small/batch-report.json" "200 small sets" "$(echo "$end - $start" | bc)"
+      start=$(date +%s.%N); build/bin/qf-bake --version >/dev/null; end=$(date +%s.%N)
+      echo "process start-up alone (qf-bake --version): $(echo "($end - $start) * 1000" | bc | cut -d. -f1) ms"
+      rm -rf "$tmp" ;;
+    *) echo "unknown benchmark '$w' (io, analysis, amg, render, bake, sample, cluster, batch)" >&2; exit 2 ;;
   esac
   echo
 done
