@@ -19,39 +19,70 @@ std::uint64_t bucket_key(std::int64_t x, std::int64_t y, std::int64_t z) {
 }
 
 // The grid of cell-sized buckets, anchored at the origin (so adding geometry elsewhere moves no
-// bucket): a dense array of list heads over the used vertices' box when it has at most 4M buckets,
-// else a hash map. Cells of a bucket form a linked list through `next`.
+// bucket). Bucket heads live in a dense array over the used vertices' box when that box has few
+// buckets for the vertex count, else in a flat open-addressing table sized by the vertex count (at
+// fine cells a dense array would be mostly empty, and clearing it cost more than the clustering).
+// Cells of a bucket form a linked list through `next`.
 class BucketGrid {
  public:
-  BucketGrid(const Bounds& b, double cell) : cell_(cell) {
+  BucketGrid(const Bounds& b, double cell, std::size_t vertices) : inv_cell_(1.0 / cell) {
     std::uint64_t total = 1;
     for (int k = 0; k < 3; ++k) {
-      lo_[k] = static_cast<std::int64_t>(std::floor(b.min[k] / cell)) - 1;
-      n_[k] = static_cast<std::int64_t>(std::floor(b.max[k] / cell)) - lo_[k] + 2;
+      lo_[k] = coord(b.min[k]) - 1;
+      n_[k] = coord(b.max[k]) - lo_[k] + 2;
       total *= static_cast<std::uint64_t>(n_[k]);
     }
-    if (total <= (1u << 22)) dense_.assign(total, kNone);
+    if (total <= std::max<std::uint64_t>(4096, 16 * vertices)) {
+      dense_.assign(total, kNone);
+    } else {
+      std::size_t cap = 64;
+      while (cap < 2 * vertices) cap *= 2;  // at most one cell per vertex: never more than half full
+      slots_.assign(cap, Slot{kEmpty, kNone});
+    }
   }
-  std::int64_t coord(float x) const { return static_cast<std::int64_t>(std::floor(x / cell_)); }
+  // The bucket of a coordinate. Any monotonic map works (a centre within h of p then lies in the
+  // buckets of p - h .. p + h); a multiplication is 5x cheaper than the division by the cell.
+  std::int64_t coord(double x) const { return static_cast<std::int64_t>(std::floor(x * inv_cell_)); }
   std::uint32_t head(std::int64_t x, std::int64_t y, std::int64_t z) const {
     if (!dense_.empty()) return dense_[index(x, y, z)];
-    const auto it = sparse_.find(bucket_key(x, y, z));
-    return it == sparse_.end() ? kNone : it->second;
+    const std::uint64_t key = bucket_key(x, y, z);
+    for (std::size_t i = slot(key);; i = (i + 1) & (slots_.size() - 1)) {
+      if (slots_[i].key == key) return slots_[i].head;
+      if (slots_[i].key == kEmpty) return kNone;
+    }
   }
   void push(std::int64_t x, std::int64_t y, std::int64_t z, std::uint32_t cell, std::vector<std::uint32_t>& next) {
-    std::uint32_t& h = dense_.empty() ? sparse_.try_emplace(bucket_key(x, y, z), kNone).first->second : dense_[index(x, y, z)];
-    next.push_back(h);
-    h = cell;
+    std::uint32_t* h = nullptr;
+    if (!dense_.empty()) {
+      h = &dense_[index(x, y, z)];
+    } else {
+      const std::uint64_t key = bucket_key(x, y, z);
+      std::size_t i = slot(key);
+      while (slots_[i].key != key && slots_[i].key != kEmpty) i = (i + 1) & (slots_.size() - 1);
+      slots_[i].key = key;
+      h = &slots_[i].head;
+    }
+    next.push_back(*h);
+    *h = cell;
   }
 
  private:
+  struct Slot {
+    std::uint64_t key;
+    std::uint32_t head;
+  };
+  static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};  // bucket_key never makes it (63 bits)
+  std::size_t slot(std::uint64_t key) const {
+    const std::uint64_t h = key * 0x9E3779B97F4A7C15ull;
+    return static_cast<std::size_t>(h >> 32) & (slots_.size() - 1);
+  }
   std::size_t index(std::int64_t x, std::int64_t y, std::int64_t z) const {
     return static_cast<std::size_t>(((x - lo_[0]) * n_[1] + (y - lo_[1])) * n_[2] + (z - lo_[2]));
   }
-  double cell_;
+  double inv_cell_;
   std::int64_t lo_[3] = {0, 0, 0}, n_[3] = {1, 1, 1};
   std::vector<std::uint32_t> dense_;
-  std::unordered_map<std::uint64_t, std::uint32_t> sparse_;
+  std::vector<Slot> slots_;
 };
 
 // Floating cells through a grid of cell-sized buckets: a cell is filed under the bucket of its
@@ -63,10 +94,14 @@ std::vector<std::uint32_t> floating_cells(const TriangleMesh& mesh, const std::v
   Bounds box;
   for (std::size_t v = 0; v < mesh.positions.size(); ++v)
     if (used[v]) box.add(mesh.positions[v]);
-  BucketGrid grid(box, o.cell);
-  std::vector<std::uint32_t> next;  // per cell: the next cell in its bucket
+  BucketGrid grid(box, o.cell, mesh.positions.size());
+  std::vector<std::uint32_t> next;   // per cell: the next cell in its bucket
+  std::vector<Vec3f> center_of;      // per cell: its centre (one load per candidate, not three)
   std::vector<std::uint32_t> cluster(mesh.positions.size(), kNone);
-  for (std::uint32_t v : g.order) {
+  for (std::size_t i = 0; i < g.order.size(); ++i) {
+    // The weight order is spatially random: fetch a vertex a few steps ahead of its turn.
+    if (i + 8 < g.order.size()) __builtin_prefetch(&mesh.positions[g.order[i + 8]]);
+    const std::uint32_t v = g.order[i];
     if (!used[v]) continue;
     const Vec3f p = mesh.positions[v];
     std::int64_t lo[3], hi[3];
@@ -80,7 +115,7 @@ std::vector<std::uint32_t> floating_cells(const TriangleMesh& mesh, const std::v
       for (std::int64_t y = lo[1]; y <= hi[1]; ++y)
         for (std::int64_t z = lo[2]; z <= hi[2]; ++z)
           for (std::uint32_t cell = grid.head(x, y, z); cell != kNone; cell = next[cell]) {
-            const Vec3f q = mesh.positions[centers[cell]];
+            const Vec3f q = center_of[cell];
             const double d[3] = {double(p.x) - q.x, double(p.y) - q.y, double(p.z) - q.z};
             const double d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
             const bool inside = o.shape == ClusterOptions::Shape::kCube
@@ -95,6 +130,7 @@ std::vector<std::uint32_t> floating_cells(const TriangleMesh& mesh, const std::v
     if (best == kNone) {
       best = static_cast<std::uint32_t>(centers.size());
       centers.push_back(v);
+      center_of.push_back(p);
       grid.push(grid.coord(p.x), grid.coord(p.y), grid.coord(p.z), best, next);
     }
     cluster[v] = best;
@@ -147,7 +183,8 @@ class KeySet {
     const std::size_t mask = slots_.size() - 1;
     const std::uint64_t h = (std::uint64_t{k[0]} * 0x9E3779B97F4A7C15ull) ^ (std::uint64_t{k[1]} * 0xC2B2AE3D27D4EB4Full) ^ k[2];
     std::size_t i = static_cast<std::size_t>(h ^ (h >> 29)) & mask;
-    while (slots_[i][0] != kNone && slots_[i] != k) i = (i + 1) & mask;
+    // Word by word (std::array's == goes through memcmp, a call per probe).
+    while (slots_[i][0] != kNone && (slots_[i][0] != k[0] || slots_[i][1] != k[1] || slots_[i][2] != k[2])) i = (i + 1) & mask;
     return slots_[i];
   }
   std::vector<std::array<std::uint32_t, 3>> slots_;
@@ -229,19 +266,22 @@ LodMesh cluster_mesh(const TriangleMesh& mesh, const VertexGrading& g, const Clu
   struct Edge { std::uint32_t a, b; std::size_t triangle; };
   std::vector<Tri> tris;
   std::vector<Edge> edges;
-  std::vector<std::uint32_t> points;
+  std::vector<bool> point(rep.size(), false);  // clusters some triangle collapsed into
+  tris.reserve(mesh.triangles.size());
   for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
     const Triangle& t = mesh.triangles[i];
     const Triangle c{cluster[t[0]], cluster[t[1]], cluster[t[2]]};
     if (c[0] != c[1] && c[1] != c[2] && c[0] != c[2]) {
-      std::array<std::uint32_t, 3> key = c;
-      std::sort(key.begin(), key.end());
+      std::array<std::uint32_t, 3> key = c;  // sorted by three compare-swaps (std::sort is a call per triangle)
+      if (key[0] > key[1]) std::swap(key[0], key[1]);
+      if (key[1] > key[2]) std::swap(key[1], key[2]);
+      if (key[0] > key[1]) std::swap(key[0], key[1]);
       tris.push_back({key, c, i});
     } else if (c[0] != c[1] || c[1] != c[2]) {
       const std::uint32_t a = c[0], b = c[0] != c[1] ? c[1] : c[2];
       edges.push_back({std::min(a, b), std::max(a, b), i});
     } else {
-      points.push_back(c[0]);
+      point[c[0]] = true;
     }
   }
   // 3. Elimination: one triangle per cluster triple (the first, with its winding); edges that are
@@ -282,6 +322,9 @@ LodMesh cluster_mesh(const TriangleMesh& mesh, const VertexGrading& g, const Clu
     }
     return out_id[c];
   };
+  out.positions.reserve(rep.size());
+  if (mesh.colors.size() == mesh.positions.size()) out.colors.reserve(rep.size());
+  out.triangles.reserve(tris.size());
   for (const Tri& t : tris) {
     // A collapse can fold a triangle over (its cluster corners in the other winding): keep the
     // side the original faced, or smooth normals and two-sided lighting darken it.
@@ -314,10 +357,8 @@ LodMesh cluster_mesh(const TriangleMesh& mesh, const VertexGrading& g, const Clu
     }
     i = j;
   }
-  std::sort(points.begin(), points.end());
-  points.erase(std::unique(points.begin(), points.end()), points.end());
-  for (std::uint32_t c : points)
-    if (!covered[c]) out.points.push_back(id(c));
+  for (std::uint32_t c = 0; c < rep.size(); ++c)
+    if (point[c] && !covered[c]) out.points.push_back(id(c));
   out.vertex_of.assign(mesh.positions.size(), kNone);
   for (std::size_t v = 0; v < mesh.positions.size(); ++v)
     if (cluster[v] != kNone) out.vertex_of[v] = out_id[cluster[v]];

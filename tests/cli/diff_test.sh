@@ -55,6 +55,16 @@ f="[x for x in r['files'] if x['name'] == '$level'][0]"
 "$diff" "$work/a" "$work/d" --json >"$work/j"; rc=$?
 [[ $rc -eq 1 && $(field "$work/j" 'r["summary"]["removed"]') == 1 ]] && ok || bad "a level less is reported as removed (exit $rc)"
 
+# --- Draco variants (not decoded by runtime_gl): compared by their glTF JSON, any change counts ---
+"$bake" generate sphere --mesh --subdivisions 8 -o "$work/ball.ply" -q
+"$bake" cluster "$work/ball.ply" -o "$work/k1" --cells 0.2 --draco -q
+"$bake" cluster "$work/ball.ply" -o "$work/k2" --cells 0.3 --draco -q
+cp "$work/k1/ball_C0.draco.glb" "$work/k3.draco.glb"
+"$diff" "$work/k1/ball_C0.draco.glb" "$work/k3.draco.glb" >/dev/null; [[ $? -eq 0 ]] && ok || bad "identical Draco files"
+"$diff" "$work/k1/ball_C0.draco.glb" "$work/k2/ball_C0.draco.glb" --json >"$work/j"; rc=$?
+[[ $rc -eq 1 && $(field "$work/j" "'Draco' in r['files'][0]['note'] and '/nodes/0/extras/cellWidth' in r['files'][0]['changed_keys']") == True ]] && ok ||
+  bad "changed Draco file: exit $rc, noted, keys listed"
+
 # --- usage ---
 "$diff" "$work/a" "$work/a/$level" >/dev/null 2>"$work/err"; [[ $? -eq 2 ]] && grep -q "not a file with a folder" "$work/err" && ok || bad "file vs folder: exit 2"
 "$diff" "$work/a/$level" "$work/none.glb" >/dev/null 2>"$work/err"; [[ $? -eq 2 ]] && grep -q "none.glb" "$work/err" && ok || bad "missing file: exit 2 naming it"
