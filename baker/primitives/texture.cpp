@@ -28,11 +28,16 @@ struct Sample {
   double alpha;  // Psi of the domain
 };
 
-// Accumulates weighted channels and alpha per texel.
+// Accumulates weighted channels and alpha per texel. Channels are weighted by each point's Psi
+// too (`value_weight`): a texel shows the colour and normal of the part of the surface this quad
+// stands for, not of the neighbouring domain's points that reach into its rectangle with a small
+// Psi (at a crease they are the other face: measured on the octahedron, an unweighted mean put a
+// band of the next face's colour, lit as this face, along every crease).
 struct Accumulator {
-  std::vector<double> value, alpha, weight;
+  std::vector<double> value, value_weight, alpha, weight;
   std::vector<char> done;  // texel set by the linear affine interpolation
-  explicit Accumulator(std::size_t n) : value(kChannels * n, 0.0), alpha(n, 0.0), weight(n, 0.0), done(n, 0) {}
+  explicit Accumulator(std::size_t n)
+      : value(kChannels * n, 0.0), value_weight(n, 0.0), alpha(n, 0.0), weight(n, 0.0), done(n, 0) {}
 };
 
 double profile(RadialProfile p, double d, double support) {
@@ -65,7 +70,8 @@ void splat_radial(const std::vector<Sample>& samples, const Texture& tex, const 
         const double w = profile(o.method == ResampleMethod::kLinearAffine ? o.fallback_profile : o.profile,
                                  std::hypot(s - p.s, t - p.t), support);
         if (w <= 0) continue;
-        for (int c = 0; c < kChannels; ++c) acc.value[kChannels * k + static_cast<std::size_t>(c)] += w * p.value[c];
+        for (int c = 0; c < kChannels; ++c) acc.value[kChannels * k + static_cast<std::size_t>(c)] += w * p.alpha * p.value[c];
+        acc.value_weight[k] += w * p.alpha;
         acc.alpha[k] += w * p.alpha;
         acc.weight[k] += w;
       }
@@ -111,7 +117,9 @@ void interpolate_triangles(const std::vector<Sample>& samples, const Texture& te
         acc.done[k] = 1;
         const double b[3] = {b0, b1, b2};
         for (int c = 0; c < 3; ++c) {
-          for (int ch = 0; ch < kChannels; ++ch) acc.value[kChannels * k + static_cast<std::size_t>(ch)] += b[c] * v[c]->value[ch];
+          for (int ch = 0; ch < kChannels; ++ch)
+            acc.value[kChannels * k + static_cast<std::size_t>(ch)] += b[c] * v[c]->alpha * v[c]->value[ch];
+          acc.value_weight[k] += b[c] * v[c]->alpha;
           acc.alpha[k] += b[c] * v[c]->alpha;
         }
         acc.weight[k] = 1.0;
@@ -193,8 +201,8 @@ Texture resample_texture(const std::vector<Vec3f>& positions, const std::vector<
     for (std::size_t k = 0; k < n; ++k) tex.normals[4 * k] = tex.normals[4 * k + 1] = 128;  // (0, 0, 1)
   }
   for (std::size_t k = 0; k < n; ++k) {
-    const double w = acc.weight[k];
-    if (!(w > 0)) continue;
+    const double w = acc.weight[k], vw = acc.value_weight[k];
+    if (!(w > 0) || !(vw > 0)) continue;  // no Psi here: alpha 0, the colour comes from extend_colors
     if (!normals.empty()) {
       const double* v = &acc.value[kChannels * k + 3];
       const double len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
@@ -205,7 +213,7 @@ Texture resample_texture(const std::vector<Vec3f>& positions, const std::vector<
     // interpolated texel has weight 1 already).
     const bool normalize = o.normalization == RadialNormalization::kWhenPositive ? w > 0 : w >= 1.0;
     const double alpha = normalize ? acc.alpha[k] / w : acc.alpha[k];
-    for (int c = 0; c < 3; ++c) tex.rgba[4 * k + static_cast<std::size_t>(c)] = to8(acc.value[kChannels * k + static_cast<std::size_t>(c)] / w);
+    for (int c = 0; c < 3; ++c) tex.rgba[4 * k + static_cast<std::size_t>(c)] = to8(acc.value[kChannels * k + static_cast<std::size_t>(c)] / vw);
     tex.rgba[4 * k + 3] = to8(255.0 * alpha);
     tex.covered += tex.rgba[4 * k + 3] > 0;
   }
