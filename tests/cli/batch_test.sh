@@ -7,19 +7,7 @@
 # usage: batch_test.sh QF_BAKE SCHEMA_DIR
 set -u
 bake=$1 schemas=$2
-work=$(mktemp -d)
-trap 'pkill -9 -f "$work/" 2>/dev/null; rm -rf "$work"' EXIT
-pass=0 fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
-export QF_CACHE=$work/cache
-# jq-free JSON queries: field FILE PYTHON-EXPRESSION-ON-r
-field() { /usr/bin/python3 -c 'import json, sys; r = json.load(open(sys.argv[1])); print(eval(sys.argv[2]))' "$1" "$2"; }
-validate() {  # validate JSON SCHEMA
-  /usr/bin/python3 -c 'import json, sys, jsonschema
-jsonschema.validate(json.load(open(sys.argv[1])), json.load(open(sys.argv[2])))' "$1" "$2" 2>"$work/verr" && ok ||
-    bad "$1 does not match $(basename "$2"): $(tail -3 "$work/verr")"
-}
+source "$(dirname "$0")/test_lib.sh"
 # Every file of the asset folders under DIR with its checksum; report.json (times) left out.
 listing() { (cd "$1" && find . -path ./batch-report\* -prune -o -type f ! -name report.json -print0 | sort -z | xargs -0 sha256sum); }
 
@@ -142,5 +130,4 @@ badm '{"assets": ["in/octa.ply"], "defaults": {"merge": 1}}' "'merge' is a switc
 badm '{"assets": [' "m.json: byte [0-9]*: not valid JSON"
 "$bake" batch "$work/batch.json" --shard 4/3 2>"$work/err"; [[ $? -eq 2 ]] && ok || bad "--shard 4/3 is a usage error"
 
-echo "batch: $pass passed, $fail failed"
-[[ $fail -eq 0 ]]
+finish batch

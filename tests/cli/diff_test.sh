@@ -6,13 +6,7 @@
 # usage: diff_test.sh QF_BAKE QF_DIFF
 set -u
 bake=$1 diff=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-pass=0 fail=0
-ok() { pass=$((pass + 1)); }
-bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
-field() { /usr/bin/python3 -c 'import json, sys; r = json.load(open(sys.argv[1])); print(eval(sys.argv[2]))' "$1" "$2"; }
-export QF_CACHE=$work/cache
+source "$(dirname "$0")/test_lib.sh"
 "$bake" generate octahedron -n 4000 -o "$work/octa.ply" -q
 "$bake" bake "$work/octa.ply" -o "$work/a" -n 100,20 -q
 "$bake" bake "$work/octa.ply" -o "$work/b" -n 100,20 -q --no-cache   # same bytes without the cache
@@ -72,5 +66,4 @@ printf 'not a glb' >"$work/x.glb"; cp "$work/x.glb" "$work/y.glb"; printf 'other
 "$diff" "$work/x.glb" "$work/y.glb" >/dev/null 2>"$work/err"; [[ $? -eq 2 ]] && grep -q "x.glb: byte 0: not a binary glTF" "$work/err" && ok || bad "garbage .glb: exit 2: $(cat "$work/err")"
 "$diff" --help | grep -q -- "--min-psnr DB .*(default: 40)" && ok || bad "--help gives the defaults"
 
-echo "diff: $pass passed, $fail failed"
-[[ $fail -eq 0 ]]
+finish diff
