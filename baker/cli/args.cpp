@@ -107,7 +107,9 @@ std::string help_text(const CommandSpec& spec) {
     if (!o.metavar.empty()) left += " " + o.metavar;
     if (left.size() < 30) left.resize(30, ' ');
     else left += "\n" + std::string(30, ' ');
-    s += left + o.help;
+    std::string help = o.help;  // continuation lines line up under the first
+    for (std::size_t at = help.find('\n'); at != std::string::npos; at = help.find('\n', at + 31)) help.insert(at + 1, 30, ' ');
+    s += left + help;
     if (!o.default_text.empty()) s += " (default: " + o.default_text + ")";
     s += "\n";
   }
