@@ -13,6 +13,19 @@
 #include <stdexcept>
 
 namespace qf::render {
+
+float normalize_threshold(const DrawSettings& s) {
+  // Only where colour and coverage are plain sums: the back-face methods darken both, which a
+  // division would undo.
+  if (s.method != Method::kOverlap && s.method != Method::kTwoPass && s.method != Method::kBlendAll) return 0;
+  return s.normalize < 0 ? (s.method == Method::kOverlap ? kDefaultNormalize : 0.0f) : s.normalize;
+}
+
+// The normalising composite (DrawSettings::normalize), and the strength the quads are drawn at
+// meanwhile.
+bool normalizing(const DrawSettings& s) { return normalize_threshold(s) > 0; }
+constexpr float kNormalizeHeadroom = 0.5f;
+
 namespace {
 
 // Mip chain by 2x2 box filtering (GL 1.1 has no mipmap generation). With `premultiply` the texels
@@ -187,6 +200,7 @@ struct Renderer::Impl {
   void draw_thick_lines(const Camera& c, DrawStats& stats);
   std::vector<std::uint8_t> point_rgba;
   void composite_background(Rgb8 bg);
+  void normalize_and_composite(Rgb8 bg, float floor, float transparency);
 };
 
 Renderer::Renderer(int width, int height, bool offscreen) : impl_(std::make_unique<Impl>()) {
@@ -394,11 +408,14 @@ void Renderer::Impl::draw_mesh() {
 
 void Renderer::Impl::draw_impostor(const Camera& c, const DrawSettings& s, DrawStats& stats) {
   const ImpostorScene& sc = *impostor;
-  const float alpha_ref = s.alpha_ref >= 0 ? s.alpha_ref : sc.alpha_ref;
+  // Normalising: everything drawn at half strength, so sums of the basis up to 2 fit the 8-bit
+  // framebuffer (the composite divides it out); the lock's test scales with it.
+  const float headroom = normalizing(s) ? kNormalizeHeadroom : 1.0f;
+  const float alpha_ref = (s.alpha_ref >= 0 ? s.alpha_ref : sc.alpha_ref) * headroom;
   const std::string mode = s.alpha_mode ? *s.alpha_mode : sc.alpha_mode;
   const float cutoff = s.alpha_cutoff >= 0 ? s.alpha_cutoff : sc.alpha_cutoff;
   const std::vector<DrawOp> ops = plan_draws(s.method, sc, c.eye, mode);
-  const float a = std::clamp(s.transparency, 0.0f, 1.0f);
+  const float a = normalizing(s) ? headroom : std::clamp(s.transparency, 0.0f, 1.0f);
   const float offset = s.depth_offset > 0 ? s.depth_offset : 0.5f * median_half_diagonal(sc);
   Mat4 view_offset = c.view();
   view_offset[14] -= offset;  // eye-space translation along -z: further from the eye
@@ -492,6 +509,40 @@ void Renderer::Impl::composite_background(Rgb8 bg) {
   glDisable(GL_BLEND);
 }
 
+// The normalising composite (DrawSettings::normalize), on the CPU: read back the accumulated
+// premultiplied colour C and coverage A (both drawn at `kNormalizeHeadroom` strength), so the sum of
+// the basis is c = A / headroom, the mean colour C / A; write mean * k + (1 - k) * background with
+// k = min(1, c / t) * transparency.
+void Renderer::Impl::normalize_and_composite(Rgb8 bg, float floor, float transparency) {
+  std::vector<std::uint8_t> px(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, px.data());
+  const std::uint8_t b[3] = {bg.r, bg.g, bg.b};
+  for (std::size_t i = 0; i < px.size(); i += 4) {
+    const float coverage = px[i + 3] / 255.0f, sum = coverage / kNormalizeHeadroom;
+    const float k = std::min(1.0f, sum / floor) * transparency, mean = coverage > 0 ? k / coverage : 0.0f;
+    for (int ch = 0; ch < 3; ++ch) {
+      const float v = px[i + static_cast<std::size_t>(ch)] * mean + (1 - k) * b[ch];
+      px[i + static_cast<std::size_t>(ch)] = static_cast<std::uint8_t>(std::lround(std::min(255.0f, v)));
+    }
+    px[i + 3] = 255;
+  }
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_LIGHTING);
+  glDisable(GL_TEXTURE_2D);
+  glDisable(GL_ALPHA_TEST);
+  glDisable(GL_BLEND);
+  glMatrixMode(GL_PROJECTION);
+  glLoadIdentity();
+  glMatrixMode(GL_MODELVIEW);
+  glLoadIdentity();
+  glDisable(GL_DITHER);  // the window's visual may dither written pixels; the FBO does not
+  glRasterPos2f(-1, -1);
+  glDrawPixels(width, height, GL_RGBA, GL_UNSIGNED_BYTE, px.data());
+  glEnable(GL_DITHER);
+}
+
 DrawStats Renderer::draw(const Camera& camera, const DrawSettings& s) {
   Impl& m = *impl_;
   if (m.offscreen) glBindFramebuffer(GL_FRAMEBUFFER, m.fbo);
@@ -516,7 +567,8 @@ DrawStats Renderer::draw(const Camera& camera, const DrawSettings& s) {
   }
   glDisable(GL_TEXTURE_2D);
   glDisable(GL_ALPHA_TEST);
-  if (additive) m.composite_background(s.background);
+  if (additive && normalizing(s)) m.normalize_and_composite(s.background, normalize_threshold(s), std::clamp(s.transparency, 0.0f, 1.0f));
+  else if (additive) m.composite_background(s.background);
   glDisableClientState(GL_VERTEX_ARRAY);
   glDisableClientState(GL_NORMAL_ARRAY);
   return stats;

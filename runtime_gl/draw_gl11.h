@@ -21,7 +21,22 @@ struct DrawSettings {
   float depth_offset = 0;      // two-pass offset, world units; 0 = half the median quad half-diagonal
   std::optional<std::string> alpha_mode;  // engine method: override the material's alphaMode
   float alpha_cutoff = -1;     // engine method, MASK: < 0 = the material's alphaCutoff
+  // Overlap, two-pass and blend-all: where the summed basis functions cover a pixel by c >=
+  // normalize, it shows their weighted mean colour, opaque; below, that colour at coverage
+  // c / normalize. The basis sums to 1 on the surface only in theory: on curved parts not every
+  // quad of a pixel's domains reaches it (see-through, holes), and where quads overlap in screen
+  // space the plain sum saturates (bright streaks). 0 = off (the plain sum, as the paper draws);
+  // < 0 = the method's default (kDefaultNormalize for overlap, off for the others).
+  float normalize = -1;
 };
+
+// The overlap method's normalising threshold: measured on bunny00 at 273 quads (26 views), holes
+// 6.6% -> 1.7%, see-through 29% -> 3.7%, PSNR 20.7 -> 22.6 dB; 0.4 leaves fewer holes (1.1%) but
+// widens silhouettes (IoU 0.942 -> 0.937).
+constexpr float kDefaultNormalize = 0.5f;
+
+// The threshold `s` asks for with its method (0 = no normalising composite).
+float normalize_threshold(const DrawSettings& s);
 
 struct DrawStats {
   std::size_t color_draws = 0, lock_draws = 0, other_draws = 0, state_changes = 0;

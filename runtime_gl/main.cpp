@@ -77,6 +77,9 @@ std::vector<OptionSpec> draw_option_specs() {
       {"alpha-mode", 0, "OPAQUE|MASK|BLEND", "the material's", "engine method: draw as this glTF alpha mode"},
       {"alpha-cutoff", 0, "V", "the material's", "engine method, MASK: the cutoff"},
       {"fov", 0, "DEG", "30", "vertical field of view"},
+      {"normalize", 0, "T", "0.5 for overlap, 0 (off) for two-pass and blend-all",
+       "where the quads' summed basis covers a pixel by c >= T, draw their weighted mean colour, opaque;\n"
+       "below, that colour at coverage c / T (fills see-through gaps, no saturated overlaps; 0 = the plain sum)"},
   };
 }
 
@@ -88,6 +91,7 @@ DrawSettings read_draw_settings(const ParsedArgs& a) {
   s.transparency = static_cast<float>(a.get_double("transparency", 1, 0, 1));
   s.lighting = !a.flag("no-lighting");
   s.depth_offset = static_cast<float>(a.get_double("depth-offset", 0, 0, 1e30));
+  if (a.has("normalize")) s.normalize = static_cast<float>(a.get_double("normalize", 0, 0, 1));
   if (a.has("alpha-mode")) {
     const std::string m = a.get("alpha-mode");
     if (m != "OPAQUE" && m != "MASK" && m != "BLEND") throw UsageError("--alpha-mode: expected OPAQUE, MASK or BLEND, got '" + m + "'");

@@ -78,11 +78,13 @@ else
   bad "eval failed: $(cat "$work/err")"
 fi
 
-# 5. The window (Xvfb): same picture as headless, to 2 LSB (window surface vs framebuffer object).
+# 5. The window (Xvfb): same picture as headless (window surface vs framebuffer object). The two
+#    rasterise 1 LSB apart at a few silhouette pixels; the overlap method's normalising composite
+#    divides by the coverage there (down to 1/4), so up to 4 LSB.
 if command -v xvfb-run >/dev/null; then
   if xvfb-run -a -s "-screen 0 640x480x24" "$render" view "${file[merged]}" --frames 3 --size 128 -o "$work/win.png" 2>"$work/err"; then
     "$render" "${file[merged]}" -o "$work/head.png" --size 128 2>/dev/null
-    if idiff -q -fail 0.008 -failpercent 0.1 "$work/head.png" "$work/win.png" >/dev/null 2>&1; then ok
+    if idiff -q -fail 0.016 -failpercent 0.1 "$work/head.png" "$work/win.png" >/dev/null 2>&1; then ok
     else bad "window frame differs from the headless render"; fi
   else
     bad "view under Xvfb failed: $(cat "$work/err")"

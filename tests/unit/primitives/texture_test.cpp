@@ -65,7 +65,9 @@ TEST(Texture, LinearAffineInterpolatesColourAndWeight) {
   for (float x : {0.3f, 0.8f, 1.37f, 1.9f}) {
     Vec3f at;
     const auto c = texel_at(t, r, x, 0.77f, &at);
-    EXPECT_NEAR(c[0], 127.5 * at.x, 1.0) << "x " << at.x;           // red follows x linearly
+    // Red follows x linearly, up to the Psi weighting of the channels: inside a triangle the mean
+    // leans towards the corner with the larger Psi_0 (here by at most ~1.1 levels).
+    EXPECT_NEAR(c[0], 127.5 * at.x, 1.5) << "x " << at.x;
     EXPECT_NEAR(c[3], 255 * (1 - at.x / 2), 1.0) << "x " << at.x;  // alpha follows Psi_0
   }
   EXPECT_GT(t.covered, static_cast<std::size_t>(40 * 40));
