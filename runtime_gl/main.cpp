@@ -200,7 +200,7 @@ const CommandSpec& eval_spec() {
     CommandSpec s;
     s.program = "qf-render";
     s.name = "eval";
-    s.usage = "REFERENCE BAKED.glb [options]";
+    s.usage = "REFERENCE BAKED [options]";
     s.summary = "measure an impostor against its reference (points as splats, or a mesh) from many views";
     s.details =
         "Renders both with the same cameras from N viewpoints spread evenly over the sphere, framing the\n"
@@ -208,7 +208,9 @@ const CommandSpec& eval_spec() {
         "(its material's alpha mode, no extension). Per view and on average: PSNR over the pixels covered\n"
         "by either image, silhouette IoU, mean absolute error, and the shares of reference pixels that are\n"
         "holes (impostor coverage < 0.5) or see-through (0.5 <= coverage < 0.9). Coverage is measured from\n"
-        "renders over black and over white; colours are compared over --background.";
+        "renders over black and over white; colours are compared over --background. BAKED is a baked .glb\n"
+        "(impostor level, cluster LOD, point impostor), or another point set or mesh: a second sampling of\n"
+        "the reference's surface shows the metric's own floor (the splats' ragged edges differ).";
     s.options = draw_option_specs();
     for (OptionSpec& o : s.options) {
       if (o.name == "size") o.default_text = "256";
@@ -241,7 +243,6 @@ int run_eval(const ParsedArgs& a) {
   const AnyScene reference = load_scene(a.positional[0]);
   const AnyScene baked = load_scene(a.positional[1]);
   if (reference.kind == AnyScene::kImpostor) throw UsageError("eval: REFERENCE must be a point set or a mesh, not a glTF file");
-  if (baked.kind == AnyScene::kSplats) throw UsageError("eval: BAKED must be a baked .glb (impostor level, cluster LOD, points) or a mesh");
   const Sphere sphere = bounding_sphere(reference.bounds());
 
   HeadlessContext context;

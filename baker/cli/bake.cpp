@@ -28,6 +28,8 @@ CommandSpec bake_spec() {
                     {"primitives", 'n', "N,N,...", "1000,300,100,30", "bake the levels nearest these numbers of primitives"},
                     {"levels", 0, "K,K,...", "", "instead: these level numbers (0 = points, negative = from the coarsest)"},
                     {"tau", 0, "T", "0.05", "domain threshold"},
+                    {"strict", 0, "", "", "strict domains: each point only in its strongest function's domain (thesis 2.5):\n"
+                                          "alpha 1 on its own points' splats, no overlap between quads"},
                     {"texel", 0, "F", "1", "texel size = F x the domain's mean point radius"},
                     {"max-texture", 0, "N", "1024", "largest texture side of one primitive, texels"},
                     {"margin", 0, "M", "0", "extra rectangle margin, in mean point radii"},
@@ -50,6 +52,7 @@ AssetOptions read_asset_options(const ParsedArgs& args) {
   BakeOptions& o = a.bake;
   o.analysis = read_analysis_options(args);
   o.domains.tau = args.get_double("tau", o.domains.tau, 0.0, 1.0);
+  o.domains.strict = args.flag("strict");
   o.merge = args.flag("merge");
   o.merge_options = read_merge_options(args, o.domains);
   o.texture.texel_factor = static_cast<float>(args.get_double("texel", o.texture.texel_factor, 0.01, 100.0));

@@ -109,7 +109,10 @@ expect 1 "truncated.glb" "$work/truncated.glb" -o "$work/out.png"
 expect 2 "unknown render method" "${file[merged]}" -o "$work/out.png" --method painter
 expect 2 "size" "${file[merged]}" -o "$work/out.png" --size 0x10
 expect 2 "background" "${file[merged]}" -o "$work/out.png" --background 1,2
-expect 2 "BAKED must be" eval "${file[points]}" "${file[points]}"
+expect 2 "REFERENCE must be" eval "${file[merged]}" "${file[points]}"
+# A point set against itself: the metric's own zero (PSNR 99 = identical, IoU 1, no holes).
+"$render" eval "${file[points]}" "${file[points]}" --views 3 --size 64 --no-engine -o "$work/self.json" 2>/dev/null &&
+  grep -q '"psnr": 99' "$work/self.json" && grep -q '"iou": 1' "$work/self.json" && ok || bad "eval of a point set against itself is not identical"
 expect 0 "" --version
 
 echo "render tests: $pass passed, $fail failed"
