@@ -518,14 +518,19 @@ void Renderer::Impl::normalize_and_composite(Rgb8 bg, float floor, float transpa
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, px.data());
+  // Everything but the colour depends on the 8-bit coverage alone: one table of 256 entries.
   const std::uint8_t b[3] = {bg.r, bg.g, bg.b};
+  float scale[256], base[256][3];
+  for (int a = 0; a < 256; ++a) {
+    const float coverage = a / 255.0f, sum = coverage / kNormalizeHeadroom;
+    const float k = std::min(1.0f, sum / floor) * transparency;
+    scale[a] = coverage > 0 ? k / coverage : 0.0f;
+    for (int ch = 0; ch < 3; ++ch) base[a][ch] = (1 - k) * b[ch] + 0.5f;  // + 0.5: round below
+  }
   for (std::size_t i = 0; i < px.size(); i += 4) {
-    const float coverage = px[i + 3] / 255.0f, sum = coverage / kNormalizeHeadroom;
-    const float k = std::min(1.0f, sum / floor) * transparency, mean = coverage > 0 ? k / coverage : 0.0f;
-    for (int ch = 0; ch < 3; ++ch) {
-      const float v = px[i + static_cast<std::size_t>(ch)] * mean + (1 - k) * b[ch];
-      px[i + static_cast<std::size_t>(ch)] = static_cast<std::uint8_t>(std::lround(std::min(255.0f, v)));
-    }
+    const std::uint8_t a = px[i + 3];
+    for (std::size_t ch = 0; ch < 3; ++ch)
+      px[i + ch] = static_cast<std::uint8_t>(std::min(255.0f, px[i + ch] * scale[a] + base[a][ch]));
     px[i + 3] = 255;
   }
   glDisable(GL_DEPTH_TEST);
