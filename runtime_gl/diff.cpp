@@ -24,11 +24,6 @@ using Json = nlohmann::json;
 using OJson = nlohmann::ordered_json;
 namespace fs = std::filesystem;
 
-double round_to(double v, int digits) {
-  const double scale = std::pow(10.0, digits);
-  return std::round(v * scale) / scale;
-}
-
 // --- files -------------------------------------------------------------------------------------
 
 // Files a bake writes that are compared: not the reports (they hold times), not hidden staging.

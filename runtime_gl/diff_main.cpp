@@ -45,11 +45,8 @@ qf::cli::CommandSpec diff_spec() {
 
 int run(const std::vector<std::string>& argv) {
   const qf::cli::CommandSpec spec = diff_spec();
-  for (const std::string& a : argv) {
-    if (a == "--") break;
-    if (a == "--help" || a == "-h") return std::cout << qf::cli::help_text(spec), 0;
-    if (a == "--version") return std::cout << "qf-diff " QF_VERSION "\n", 0;
-  }
+  if (qf::cli::asks_for_help(argv)) return std::cout << qf::cli::help_text(spec), 0;
+  if (argv.size() == 1 && argv[0] == "--version") return std::cout << "qf-diff " QF_VERSION "\n", 0;
   const qf::cli::ParsedArgs args = qf::cli::parse_args(spec, argv);
   qf::render::DiffOptions o;
   o.thresholds.min_psnr = args.get_double("min-psnr", o.thresholds.min_psnr, 0, 1000);
@@ -72,13 +69,6 @@ int main(int argc, char** argv) {
   std::ios::sync_with_stdio(false);
   qf::keep_freed_memory();
   const std::vector<std::string> args(argv + 1, argv + argc);
-  // Exit 1 means "different": an input that cannot be read is reported as 2, not as a difference.
-  return qf::cli::run_with_exit_codes("qf-diff", [&] {
-    try {
-      return run(args);
-    } catch (const qf::InputError& e) {
-      std::cerr << "qf-diff: error: " << e.what() << "\n";
-      return static_cast<int>(qf::ExitCode::kUsage);
-    }
-  });
+  // Exit 1 means "different": an input that cannot be read is 2, not a difference.
+  return qf::cli::run_with_exit_codes("qf-diff", [&] { return run(args); }, static_cast<int>(qf::ExitCode::kUsage));
 }

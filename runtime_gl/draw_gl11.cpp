@@ -300,10 +300,10 @@ void Renderer::Impl::draw_thick_lines(const Camera& c, DrawStats& stats) {
   for (std::size_t e = 0; e < sc.thickness.size(); ++e) {
     const Vec3f a = sc.line_positions[2 * e], b = sc.line_positions[2 * e + 1];
     const double r = length((a + b) * 0.5f - c.eye) / z0;  // R: model size of a pixel there
-    const float width = static_cast<float>(std::clamp(sc.thickness[e] / r, 1.0, 64.0));
+    const float line_width = static_cast<float>(std::clamp(sc.thickness[e] / r, 1.0, 64.0));
     // Perpendicular to the line, in the plane of the line and the eye, towards the eye.
     const Vec3f n = normalized(cross(cross(a - c.eye, b - c.eye), b - a));
-    glLineWidth(width);
+    glLineWidth(line_width);
     glBegin(GL_LINES);
     glNormal3f(n.x, n.y, n.z);
     for (int k = 0; k < 2; ++k) {

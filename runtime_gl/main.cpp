@@ -400,10 +400,7 @@ int dispatch(std::vector<std::string> argv) {
   for (const Command& c : commands()) {
     if (c.spec().name != argv[0]) continue;
     const std::vector<std::string> rest(argv.begin() + 1, argv.end());
-    for (const std::string& s : rest) {
-      if (s == "--") break;
-      if (s == "--help" || s == "-h") return std::cout << cli::help_text(c.spec()), 0;
-    }
+    if (cli::asks_for_help(rest)) return std::cout << cli::help_text(c.spec()), 0;
     return c.run(cli::parse_args(c.spec(), rest));
   }
   return 2;

@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/hash.h"
+
 namespace qf {
 namespace {
 
@@ -321,11 +323,8 @@ std::size_t level_by_primitives(const AmgHierarchy& h, std::size_t primitives) {
 }
 
 std::uint64_t hierarchy_hash(const AmgHierarchy& h) {
-  std::uint64_t x = 1469598103934665603ull;  // FNV-1a
-  auto feed = [&](const void* data, std::size_t bytes) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < bytes; ++i) x = (x ^ p[i]) * 1099511628211ull;
-  };
+  Sha256 x;
+  auto feed = [&](const void* data, std::size_t bytes) { x.update(ByteView(static_cast<const std::uint8_t*>(data), bytes)); };
   for (const AmgLevel& l : h.levels) feed(&l.size, sizeof l.size);
   feed(h.fine_order.data(), sizeof(std::uint32_t) * h.fine_order.size());
   for (const SparseMatrix& p : h.P) {
@@ -333,7 +332,7 @@ std::uint64_t hierarchy_hash(const AmgHierarchy& h) {
     feed(p.innerIndexPtr(), sizeof(std::int32_t) * static_cast<std::size_t>(p.nonZeros()));
     feed(p.valuePtr(), sizeof(double) * static_cast<std::size_t>(p.nonZeros()));
   }
-  return x;
+  return x.digest64();
 }
 
 }  // namespace qf

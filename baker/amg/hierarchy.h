@@ -60,7 +60,8 @@ std::size_t level_by_index(const AmgHierarchy& h, long long k);
 // The level whose number of basis functions is nearest `primitives` (the coarser one on ties).
 std::size_t level_by_primitives(const AmgHierarchy& h, std::size_t primitives);
 
-// A stable 64-bit fingerprint of the hierarchy (sizes, structure and values of every P).
+// A stable 64-bit fingerprint of the hierarchy (sizes, structure and values of every P): the first
+// 8 bytes of their SHA-256.
 std::uint64_t hierarchy_hash(const AmgHierarchy& h);
 
 }  // namespace qf

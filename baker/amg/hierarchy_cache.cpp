@@ -8,32 +8,16 @@
 
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/hash.h"
 
 namespace qf {
 namespace {
 
 constexpr char kMagic[8] = {'Q', 'F', 'A', 'M', 'G', 'C', 'H', '\0'};
-constexpr std::uint32_t kVersion = 2;  // bump when the file layout or the algorithms change
-
-struct Hasher {
-  std::uint64_t a = 1469598103934665603ull, b = 0x9E3779B97F4A7C15ull;  // two FNV-1a streams
-  void feed(const void* data, std::size_t bytes) {
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (std::size_t i = 0; i < bytes; ++i) {
-      a = (a ^ p[i]) * 1099511628211ull;
-      b = (b ^ p[i]) * 0x100000001B3ull ^ (b >> 29);
-    }
-  }
-  template <class T>
-  void value(const T& v) {
-    feed(&v, sizeof v);
-  }
-};
+constexpr std::uint32_t kVersion = 3;  // bump when the file layout or the algorithms change (3: SHA-256 keys)
 
 std::uint64_t checksum(const std::string& payload) {
-  Hasher h;
-  h.feed(payload.data(), payload.size());
-  return h.a;
+  return Sha256().update(ByteView(reinterpret_cast<const std::uint8_t*>(payload.data()), payload.size())).digest64();
 }
 
 template <class T>
@@ -77,20 +61,18 @@ std::string path_of(const std::string& dir, const std::string& key) { return dir
 }  // namespace
 
 std::string hierarchy_cache_key(const PointSet& points, const AnalysisOptions& ao, const AmgOptions& amg) {
-  Hasher h;
+  Sha256 h;
   h.value(kVersion);
   h.value(static_cast<std::uint64_t>(points.size()));
-  h.feed(points.positions.data(), points.positions.size() * sizeof(Vec3f));
+  h.update(ByteView(reinterpret_cast<const std::uint8_t*>(points.positions.data()), points.positions.size() * sizeof(Vec3f)));
   h.value(static_cast<std::uint8_t>(points.has_normals()));
-  h.feed(points.normals.data(), points.normals.size() * sizeof(Vec3f));
+  h.update(ByteView(reinterpret_cast<const std::uint8_t*>(points.normals.data()), points.normals.size() * sizeof(Vec3f)));
   h.value(ao.neighborhoods.k), h.value(ao.neighborhoods.epsilon), h.value(ao.neighborhoods.max_neighbors);
   h.value(static_cast<int>(ao.classifier.kind)), h.value(ao.classifier.alpha), h.value(ao.classifier.beta);
   h.value(ao.classifier.epsilon);
   h.value(amg.theta), h.value(amg.target_ratio_min), h.value(amg.target_ratio_max), h.value(amg.ratio_tries);
   h.value(static_cast<std::uint64_t>(amg.stop_size)), h.value(amg.max_levels);
-  char hex[33];
-  std::snprintf(hex, sizeof hex, "%016llx%016llx", static_cast<unsigned long long>(h.a), static_cast<unsigned long long>(h.b));
-  return hex;
+  return h.hex();
 }
 
 void save_hierarchy(const std::string& dir, const std::string& key, const AmgHierarchy& h,

@@ -117,12 +117,20 @@ std::string help_text(const CommandSpec& spec) {
   return s;
 }
 
-int run_with_exit_codes(const std::string& program, const std::function<int()>& body) {
+bool asks_for_help(const std::vector<std::string>& args) {
+  for (const std::string& a : args) {
+    if (a == "--") break;
+    if (a == "--help" || a == "-h") return true;
+  }
+  return false;
+}
+
+int run_with_exit_codes(const std::string& program, const std::function<int()>& body, int bad_input) {
   try {
     return body();
   } catch (const InputError& e) {
     std::cerr << program << ": error: " << e.what() << "\n";
-    return static_cast<int>(ExitCode::kBadInput);
+    return bad_input;
   } catch (const UsageError& e) {
     std::cerr << program << ": " << e.what() << "\n";
     return static_cast<int>(ExitCode::kUsage);

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "core/error.h"
+
 namespace qf::cli {
 
 struct OptionSpec {
@@ -50,8 +52,14 @@ ParsedArgs parse_args(const CommandSpec& spec, const std::vector<std::string>& a
 // The --help text of a command.
 std::string help_text(const CommandSpec& spec);
 
+// Whether `args` (after the command name) ask for help: "--help" or "-h" before any "--".
+bool asks_for_help(const std::vector<std::string>& args);
+
 // Runs an executable's body and maps its errors to the exit codes (1 bad input, 2 bad usage or an
 // unwritable output, 3 internal error), printing "PROGRAM: ..." to stderr.
-int run_with_exit_codes(const std::string& program, const std::function<int()>& body);
+// `bad_input` is the code for an unreadable or malformed input (qf-diff gives 2: its 1 means
+// "different").
+int run_with_exit_codes(const std::string& program, const std::function<int()>& body,
+                        int bad_input = static_cast<int>(ExitCode::kBadInput));
 
 }  // namespace qf::cli

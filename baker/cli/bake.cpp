@@ -87,14 +87,6 @@ AssetOptions read_asset_options(const ParsedArgs& args) {
   return a;
 }
 
-AssetBake bake_asset_or_usage_error(const std::string& path, const AssetOptions& options, const std::string& input_name) {
-  try {
-    return bake_asset(path, options, input_name);
-  } catch (const std::out_of_range& e) {  // a --levels number beyond the hierarchy
-    throw UsageError(std::string("--levels: ") + e.what());
-  }
-}
-
 void print_bake_summary(const AssetBake& a, const std::string& in, const std::string& outdir) {
   const BakeResult& r = a.result;
   std::fprintf(stderr, "qf-bake: %s (%zu points) -> %s, hierarchy of %zu levels (cache: %s)\n", in.c_str(), r.points,
@@ -116,7 +108,7 @@ int run_bake(const ParsedArgs& args) {
   if (!args.has("output")) throw UsageError("bake needs -o OUTDIR (see qf-bake bake --help)");
   const std::string outdir = args.get("output");
   const AssetOptions options = read_asset_options(args);
-  const AssetBake a = bake_asset_or_usage_error(in, options, in);
+  const AssetBake a = bake_asset(in, options, in);
   write_asset(outdir, a.files, a.manifest, a.report);
   if (!args.flag("quiet")) print_bake_summary(a, in, outdir);
   return 0;

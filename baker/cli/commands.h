@@ -64,8 +64,6 @@ CommandSpec bake_spec();
 int run_bake(const ParsedArgs& args);
 // The bake's options (bake_spec) as the pipeline's; UsageError on bad values. Shared with batch.
 AssetOptions read_asset_options(const ParsedArgs& args);
-// bake_asset, with a --levels number beyond the hierarchy reported as a UsageError.
-AssetBake bake_asset_or_usage_error(const std::string& path, const AssetOptions& options, const std::string& input_name);
 CommandSpec batch_spec();
 int run_batch(const ParsedArgs& args);
 CommandSpec merge_reports_spec();

@@ -46,10 +46,7 @@ int dispatch(const std::vector<std::string>& argv) {
   for (const auto& c : qf::cli::commands()) {
     if (c.spec.name != argv[0]) continue;
     const std::vector<std::string> rest(argv.begin() + 1, argv.end());
-    for (const std::string& a : rest) {
-      if (a == "--") break;
-      if (a == "--help" || a == "-h") return std::cout << qf::cli::help_text(c.spec), 0;
-    }
+    if (qf::cli::asks_for_help(rest)) return std::cout << qf::cli::help_text(c.spec), 0;
     return c.run(qf::cli::parse_args(c.spec, rest));
   }
   // The main job: `qf-bake IN -o OUTDIR` is `qf-bake bake IN -o OUTDIR`.

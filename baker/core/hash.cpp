@@ -32,6 +32,15 @@ Sha256& Sha256::update_field(const std::string& s) {
   return update(ByteView(reinterpret_cast<const std::uint8_t*>(s.data()), s.size()));
 }
 
+std::uint64_t Sha256::digest64() {
+  unsigned char digest[EVP_MAX_MD_SIZE];
+  unsigned int n = 0;
+  EVP_DigestFinal_ex(state_->ctx, digest, &n);
+  std::uint64_t v = 0;
+  for (int i = 0; i < 8; ++i) v = v << 8 | digest[i];
+  return v;
+}
+
 std::string Sha256::hex() {
   unsigned char digest[EVP_MAX_MD_SIZE];
   unsigned int n = 0;

@@ -1,6 +1,8 @@
-// Content hashes (SHA-256, OpenSSL): what the batch compares to decide that an asset is unchanged.
+// Content hashes (SHA-256, OpenSSL): the batch's asset keys, the hierarchy cache's keys and
+// checksums, and hierarchy fingerprints.
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <string>
 
@@ -17,7 +19,13 @@ class Sha256 {
   Sha256& update(ByteView bytes);
   // A string with its length in front, so that ("ab","c") and ("a","bc") hash differently.
   Sha256& update_field(const std::string& s);
-  std::string hex();  // 64 lower-case hex digits; ends the hash
+  // A plain value's bytes (numbers, PODs: the machine's layout, little-endian here).
+  template <class T>
+  Sha256& value(const T& v) {
+    return update(ByteView(reinterpret_cast<const std::uint8_t*>(&v), sizeof v));
+  }
+  std::string hex();         // 64 lower-case hex digits; ends the hash
+  std::uint64_t digest64();  // the digest's first 8 bytes, big-endian; ends the hash
 
  private:
   struct State;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <cstdlib>
 
 namespace qf {
@@ -19,6 +20,11 @@ double canonical_double(float v) {
   const auto r = std::to_chars(buf, buf + sizeof buf - 1, v);
   *r.ptr = '\0';
   return std::strtod(buf, nullptr);
+}
+
+double round_to(double v, int digits) {
+  const double scale = std::pow(10.0, digits);
+  return std::round(v * scale) / scale;
 }
 
 Vec3f as_unit(Vec3f a, Vec3f fallback) {

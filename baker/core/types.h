@@ -35,6 +35,10 @@ Vec3f as_unit(Vec3f a, Vec3f fallback = {0, 0, 1});
 // needs and no more, so outputs are stable and diffable (gltf-notes.md, determinism). -0 becomes 0.
 double canonical_double(float v);
 
+// v rounded to `digits` decimals (report figures such as seconds or megabytes): the division by the
+// power of ten makes JSON writers print the short form (0.1, not 0.10000000000000001).
+double round_to(double v, int digits);
+
 struct Rgb8 {
   std::uint8_t r = 0, g = 0, b = 0;
 };

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <ostream>
-#include <set>
+#include <functional>
 
 #include "core/error.h"
 #include "core/file_io.h"
@@ -168,6 +168,7 @@ AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::
               {"settings",
                {{"k", o.bake.analysis.neighborhoods.k},
                 {"tau", o.bake.domains.tau},
+                {"strict", o.bake.domains.strict},
                 {"merge", o.bake.merge},
                 {"texel_factor", canonical_double(o.bake.texture.texel_factor)},
                 {"max_texture", o.bake.texture.max_side},
@@ -180,25 +181,47 @@ AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::
   return a;
 }
 
+nlohmann::json read_asset_manifest(const std::string& folder) {
+  std::ifstream in(folder + "/manifest.json");
+  if (!in) return nullptr;
+  nlohmann::json m = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+  return m.is_object() ? m : nullptr;
+}
+
 namespace {
 
-// The file names a manifest lists under "files" (none when it cannot be read).
-std::set<std::string> listed_files(const std::string& manifest_path) {
-  std::set<std::string> out;
-  std::ifstream in(manifest_path);
-  if (!in) return out;
-  const nlohmann::json m = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
-  if (!m.is_object() || !m.contains("files") || !m["files"].is_array()) return out;
-  for (const auto& f : m["files"])
-    if (f.is_object() && f.contains("name") && f["name"].is_string()) out.insert(f["name"].get<std::string>());
-  return out;
+// The well-formed entries of a manifest's "files" list; false when the list is missing or broken.
+bool each_listed(const nlohmann::json& m, const std::function<void(const std::string&, std::uintmax_t)>& visit) {
+  if (!m.is_object() || !m.contains("files") || !m["files"].is_array()) return false;
+  for (const nlohmann::json& f : m["files"]) {
+    if (!f.is_object() || !f.contains("name") || !f["name"].is_string() || !f.contains("bytes") || !f["bytes"].is_number_unsigned())
+      return false;
+    visit(f["name"].get<std::string>(), f["bytes"].get<std::uintmax_t>());
+  }
+  return true;
 }
 
 }  // namespace
 
+std::vector<std::string> listed_files(const nlohmann::json& manifest) {
+  std::vector<std::string> out;
+  each_listed(manifest, [&](const std::string& name, std::uintmax_t) { out.push_back(name); });
+  return out;
+}
+
+bool listed_files_present(const std::string& folder, const nlohmann::json& manifest) {
+  bool all = true;
+  const bool listed = each_listed(manifest, [&](const std::string& name, std::uintmax_t bytes) {
+    std::error_code ec;
+    const std::uintmax_t size = std::filesystem::file_size(folder + "/" + name, ec);
+    all = all && !ec && size == bytes;
+  });
+  return listed && all;
+}
+
 void write_asset(const std::string& outdir, const std::vector<OutputFile>& files, nlohmann::json manifest,
                  const nlohmann::json& report, const std::string& tag) {
-  const std::set<std::string> before = listed_files(outdir + "/manifest.json");
+  const std::vector<std::string> before = listed_files(read_asset_manifest(outdir));
   nlohmann::json listed = nlohmann::json::array();
   for (const OutputFile& f : files) listed.push_back({{"name", f.name}, {"bytes", f.bytes.size()}});
   manifest["files"] = listed;

@@ -60,6 +60,13 @@ std::vector<double> default_cluster_cells(const TriangleMesh& mesh);
 nlohmann::json cluster_level_files(const std::vector<LodMesh>& lods, const std::string& stem, bool draco,
                                    std::vector<OutputFile>& files);
 
+// The manifest.json in `folder` (null when there is none or it does not parse), and the files it
+// lists under "files" (see write_asset); `present` says whether all of them are in the folder with
+// their listed sizes.
+nlohmann::json read_asset_manifest(const std::string& folder);
+std::vector<std::string> listed_files(const nlohmann::json& manifest);
+bool listed_files_present(const std::string& folder, const nlohmann::json& manifest);
+
 // Writes `files`, then `report` (when not null) and `manifest` into `outdir` so that none is ever
 // seen half-written (core/file_io write_folder_atomically; manifest.json last). The manifest gets a
 // "files" list (name and size of every file above); files that the folder's previous manifest

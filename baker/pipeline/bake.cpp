@@ -30,7 +30,13 @@ class Stopwatch {
 std::vector<std::size_t> chosen_levels(const AmgHierarchy& h, const BakeOptions& o) {
   std::vector<std::size_t> out;
   if (!o.levels.empty())
-    for (long long k : o.levels) out.push_back(level_by_index(h, k));
+    for (long long k : o.levels) {
+      try {
+        out.push_back(level_by_index(h, k));
+      } catch (const std::out_of_range& e) {  // a setting, not the input, is wrong
+        throw UsageError(std::string("--levels: ") + e.what());
+      }
+    }
   else
     for (std::size_t n : o.primitives) out.push_back(level_by_primitives(h, n));
   std::vector<std::size_t> unique;

@@ -79,7 +79,8 @@ struct BakeResult {
 };
 
 // Bakes the chosen levels. Throws InputError("bake.too_small") when the set cannot be decomposed
-// (fewer points than a neighbourhood needs, or no surface: every fan empty).
+// (fewer points than a neighbourhood needs, or no surface: every fan empty), UsageError for a
+// level number the hierarchy does not have.
 BakeResult bake(const PointSet& points, const BakeOptions& options, const std::string& source_name);
 
 }  // namespace qf

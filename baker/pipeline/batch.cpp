@@ -37,12 +37,6 @@ using Json = nlohmann::json;
 using Clock = std::chrono::steady_clock;
 
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
-// v to `digits` decimals (the report's figures; division by the power of ten prints shortest).
-double rounded(double v, int digits) {
-  const double scale = std::pow(10.0, digits);
-  return std::round(v * scale) / scale;
-}
-
 // --- the manifest --------------------------------------------------------------------------------
 
 [[noreturn]] void manifest_error(const std::string& path, const std::string& where, const std::string& what) {
@@ -167,18 +161,8 @@ std::string asset_key(const BatchAsset& a, const std::string& version) {
 }
 
 bool asset_up_to_date(const std::string& folder, const std::string& key) {
-  std::ifstream in(folder + "/manifest.json");
-  if (!in) return false;
-  const Json m = Json::parse(in, nullptr, /*allow_exceptions=*/false);
-  if (!m.is_object() || !m.contains("batch_key") || m["batch_key"] != key || !m.contains("files") || !m["files"].is_array())
-    return false;
-  for (const Json& f : m["files"]) {
-    std::error_code ec;
-    if (!f.is_object() || !f.contains("name") || !f["name"].is_string() || !f.contains("bytes")) return false;
-    const auto size = std::filesystem::file_size(folder + "/" + f["name"].get<std::string>(), ec);
-    if (ec || !f["bytes"].is_number_unsigned() || size != f["bytes"].get<std::uintmax_t>()) return false;
-  }
-  return true;
+  const Json m = read_asset_manifest(folder);
+  return m.is_object() && m.contains("batch_key") && m["batch_key"] == key && listed_files_present(folder, m);
 }
 
 namespace {
@@ -270,9 +254,6 @@ int bake_in_child(const BatchAsset& a, const std::string& key, const BatchOption
   } catch (const UsageError& e) {
     result = {{"error", {{"code", "usage"}, {"message", e.what()}}}};
     return static_cast<int>(ExitCode::kUsage);
-  } catch (const std::out_of_range& e) {  // --levels beyond the hierarchy
-    result = {{"error", {{"code", "usage"}, {"message", std::string("levels: ") + e.what()}}}};
-    return static_cast<int>(ExitCode::kUsage);
   } catch (const std::filesystem::filesystem_error& e) {
     result = {{"error", {{"code", "output"}, {"message", std::string("cannot write output: ") + e.what()}}}};
     return static_cast<int>(ExitCode::kUsage);
@@ -353,8 +334,8 @@ void finish_child(Child& c, Json& entry) {
   rusage usage{};
   while (::wait4(c.pid, &status, 0, &usage) < 0 && errno == EINTR) {
   }
-  entry["seconds"] = rounded(since(c.start), 3);
-  entry["peak_mb"] = rounded(static_cast<double>(usage.ru_maxrss) / 1024.0, 1);
+  entry["seconds"] = round_to(since(c.start), 3);
+  entry["peak_mb"] = round_to(static_cast<double>(usage.ru_maxrss) / 1024.0, 1);
   const Json result = Json::parse(c.result, nullptr, false);
   if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && result.is_object() && result.contains("levels")) {
     entry["status"] = "baked";
@@ -426,7 +407,7 @@ Json totals_of(const Json& assets) {
     if (e.contains("texels")) texels += e["texels"].get<std::size_t>();
     if (e.contains("seconds")) seconds += e["seconds"].get<double>();
   }
-  Json t{{"assets", assets.size()}, {"primitives", primitives}, {"texels", texels}, {"asset_seconds", rounded(seconds, 3)}};
+  Json t{{"assets", assets.size()}, {"primitives", primitives}, {"texels", texels}, {"asset_seconds", round_to(seconds, 3)}};
   for (const char* s : {"baked", "up to date", "failed", "skipped", "would bake"}) t[s] = counts[s];
   return t;
 }
@@ -465,7 +446,7 @@ Json run_batch(const BatchManifest& m, const BatchOptions& o, std::FILE* log) {
     entries[i]["key"] = keys[i];
     if (!o.force && asset_up_to_date(o.output + "/" + a.name, keys[i])) {
       entries[i]["status"] = "up to date";
-      entries[i]["seconds"] = rounded(since(t), 6);
+      entries[i]["seconds"] = round_to(since(t), 6);
       settle(i);
     } else if (o.dry_run) {
       entries[i]["status"] = "would bake";
@@ -535,7 +516,7 @@ Json run_batch(const BatchManifest& m, const BatchOptions& o, std::FILE* log) {
               {"keep_going", o.keep_going},
               {"assets", entries},
               {"totals", totals_of(entries)},
-              {"seconds", rounded(since(start), 3)}};
+              {"seconds", round_to(since(start), 3)}};
   if (!o.quiet && log) {
     const Json& t = report["totals"];
     std::fprintf(log, "qf-bake batch: %zu asset(s)%s: %zu baked, %zu up to date, %zu failed, %zu skipped in %.2f s\n",

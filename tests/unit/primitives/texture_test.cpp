@@ -65,9 +65,12 @@ TEST(Texture, LinearAffineInterpolatesColourAndWeight) {
   for (float x : {0.3f, 0.8f, 1.37f, 1.9f}) {
     Vec3f at;
     const auto c = texel_at(t, r, x, 0.77f, &at);
-    // Red follows x linearly, up to the Psi weighting of the channels: inside a triangle the mean
-    // leans towards the corner with the larger Psi_0 (here by at most ~1.1 levels).
-    EXPECT_NEAR(c[0], 127.5 * at.x, 1.5) << "x " << at.x;
+    // Red is the Psi_0-weighted linear interpolation of the grid points' reds: every triangle has
+    // its corners at the two grid columns x0 <= x < x0 + 0.05, holding the share t of the weight.
+    const double x0 = 0.05 * std::floor(at.x / 0.05), share = (at.x - x0) / 0.05;
+    const double w0 = (1 - share) * (1 - x0 / 2), w1 = share * (1 - (x0 + 0.05) / 2);
+    const double red = (w0 * std::lround(127.5 * x0) + w1 * std::lround(127.5 * (x0 + 0.05))) / (w0 + w1);
+    EXPECT_NEAR(c[0], red, 1.0) << "x " << at.x;
     EXPECT_NEAR(c[3], 255 * (1 - at.x / 2), 1.0) << "x " << at.x;  // alpha follows Psi_0
   }
   EXPECT_GT(t.covered, static_cast<std::size_t>(40 * 40));

@@ -103,9 +103,9 @@ TEST(PointImpostor, ThinnedPointsCoverTheMeshAndFadeToItWhenNear) {
   points_r.set_scene(scene, &mesh);
   mesh_r.set_scene(mesh);
   const Sphere sphere = bounding_sphere(mesh.bounds);
-  Camera ref;
-  ref.height = size;
-  const double d_switch = scene.pixel * ref.focal_pixels();  // fovy 30, as the cameras below
+  Camera unit;  // only for the focal length in pixels
+  unit.height = size;
+  const double d_switch = scene.pixel * unit.focal_pixels();  // fovy 30, as the cameras below
   DrawSettings s;
   // Far: a fraction of the points, still covering the sphere's disc.
   for (double factor : {1.5, 3.0}) {
