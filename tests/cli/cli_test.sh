@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # qf-bake end to end: exit codes (0 ok, 1 bad input, 2 usage), messages naming the file and the
 # error code, help texts listing every option, and no output (not even a temporary) on failure.
-# usage: cli_test.sh QF_BAKE TEST_DATA_DIR SHARED_DIR
+# usage: cli_test.sh QF_BAKE TEST_DATA_DIR   (QSplat vectors under TEST_DATA_DIR/qsplat)
 set -u
-bake=$1 data=$2 shared=$3
+bake=$1 data=$2 qsplat=$2/qsplat
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 pass=0 fail=0
@@ -37,10 +37,10 @@ grep -q "octahedron" "$work/out" && ok || bad "generate --help lists the shapes"
 # --- usage errors: exit 2 ---
 expect 2 "no arguments" -- "$bake"
 expect 2 "unknown command" -- "$bake" frobnicate
-expect 2 "unknown option" -- "$bake" info "$shared/data/qsplat/pyr.qs" --bogus
-expect 2 "missing positional" -- "$bake" convert "$shared/data/qsplat/pyr.qs"
+expect 2 "unknown option" -- "$bake" info "$qsplat/pyr.qs" --bogus
+expect 2 "missing positional" -- "$bake" convert "$qsplat/pyr.qs"
 expect 2 "unknown input extension" -- "$bake" info "$work/thing.stl"
-expect 2 "unknown output extension" -- "$bake" convert "$shared/data/qsplat/pyr.qs" "$work/out.stl"
+expect 2 "unknown output extension" -- "$bake" convert "$qsplat/pyr.qs" "$work/out.stl"
 expect 2 "bad number" -- "$bake" generate sphere -o "$work/s.ply" --points many
 expect 2 "unknown shape" -- "$bake" generate teapot -o "$work/s.ply"
 expect 2 "missing output folder" -- "$bake" generate sphere -o "$work/no/such/dir/s.ply" --points 100
@@ -48,18 +48,18 @@ expect 2 "missing output folder" -- "$bake" generate sphere -o "$work/no/such/di
 
 # --- good files ---
 for f in tet.qs pyr.qs sphere_col.qs sphere_nocol.qs multi.qs sphere_col.ply pyr.ply; do
-  expect 0 "info $f" -- "$bake" info "$shared/data/qsplat/$f"
+  expect 0 "info $f" -- "$bake" info "$qsplat/$f"
 done
-"$bake" info "$shared/data/qsplat/sphere_col.qs" >"$work/out"
+"$bake" info "$qsplat/sphere_col.qs" >"$work/out"
 grep -q "points: *2498" "$work/out" && ok || bad "info counts 2498 points"
 grep -q "attributes: *position normal color radius" "$work/out" && ok || bad "info lists attributes"
-"$bake" info --json "$shared/data/qsplat/multi.qs" >"$work/out"
+"$bake" info --json "$qsplat/multi.qs" >"$work/out"
 grep -q '"fragments": 3' "$work/out" && ok || bad "info --json reports fragments"
 grep -q '"points": 2507' "$work/out" && ok || bad "info --json counts multi.qs leaves"
 
 # info --json follows schemas/info.schema.json, for point sets and meshes alike
 schema="$(dirname "$0")/../../schemas/info.schema.json"
-for f in "$shared/data/qsplat/multi.qs" "$shared/data/qsplat/sphere_col.ply"; do
+for f in "$qsplat/multi.qs" "$qsplat/sphere_col.ply"; do
   "$bake" info --json "$f" >"$work/info.json"
   /usr/bin/python3 -c 'import json, sys, jsonschema
 jsonschema.validate(json.load(open(sys.argv[1])), json.load(open(sys.argv[2])))' "$work/info.json" "$schema" 2>"$work/err" \
@@ -81,12 +81,12 @@ grep -q "radii estimated for 16000" "$work/err" && ok || bad "convert reports es
 "$bake" generate torus -o "$work/t1.qs" -q && "$bake" generate torus -o "$work/t2.qs" -q
 cmp -s "$work/t1.qs" "$work/t2.qs" && ok || bad "generate is byte-identical across runs"
 # a mesh is sampled into a point set (depth peeling), by either backend, with the same count
-expect 0 "convert a mesh" -- "$bake" convert "$shared/data/qsplat/pyr.ply" "$work/pyr.xyz" --ldi 64 --sampler gl
+expect 0 "convert a mesh" -- "$bake" convert "$qsplat/pyr.ply" "$work/pyr.xyz" --ldi 64 --sampler gl
 grep -q "sampled (gl" "$work/err" && ok || bad "convert reports the GL sampling: $(cat "$work/err")"
-expect 0 "convert a mesh on the CPU" -- "$bake" convert "$shared/data/qsplat/pyr.ply" "$work/pyr_cpu.xyz" --ldi 64 --sampler cpu
+expect 0 "convert a mesh on the CPU" -- "$bake" convert "$qsplat/pyr.ply" "$work/pyr_cpu.xyz" --ldi 64 --sampler cpu
 n_gl=$(wc -l <"$work/pyr.xyz") n_cpu=$(wc -l <"$work/pyr_cpu.xyz")
 (( n_gl > 5000 && n_gl - n_cpu < 20 && n_cpu - n_gl < 20 )) && ok || bad "GL and CPU sample counts: $n_gl vs $n_cpu"
-expect 2 "convert bad sampler" -- "$bake" convert "$shared/data/qsplat/pyr.ply" "$work/pyr.xyz" --sampler vulkan
+expect 2 "convert bad sampler" -- "$bake" convert "$qsplat/pyr.ply" "$work/pyr.xyz" --sampler vulkan
 expect 0 "generate a mesh" -- "$bake" generate cube --mesh --subdivisions 2 -o "$work/cube_mesh.ply" -q
 printf "OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n" >"$work/notris.off"
 expect 1 "convert a mesh without triangles" -- "$bake" convert "$work/notris.off" "$work/x.ply"
@@ -127,7 +127,7 @@ expect 0 "analyze variation" -- "$bake" analyze "$work/oct.ply" -o "$work/anv.pl
 cut -d' ' -f1-3 "$work/oct2.xyz" >"$work/bare.xyz"
 expect 0 "analyze xyz without normals" -- "$bake" analyze "$work/bare.xyz" -o "$work/anx.ply"
 grep -q "normals: estimated (PCA)" "$work/err" && ok || bad "analyze reports estimated normals"
-expect 0 "analyze a mesh" -- "$bake" analyze "$shared/data/qsplat/pyr.ply" -o "$work/m.ply" --ldi 32 -q
+expect 0 "analyze a mesh" -- "$bake" analyze "$qsplat/pyr.ply" -o "$work/m.ply" --ldi 32 -q
 expect 2 "analyze bad classifier" -- "$bake" analyze "$work/oct.ply" -o "$work/x.ply" --classifier magic
 expect 2 "analyze k out of range" -- "$bake" analyze "$work/oct.ply" -o "$work/x.ply" -k 1
 printf "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\nproperty float y\nproperty float z\nend_header\n" >"$work/empty.ply"

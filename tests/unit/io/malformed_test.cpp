@@ -53,7 +53,7 @@ TEST(Malformed, TruncationAtEveryByteNeverCrashes) {
   // Every prefix of a valid file either reads or fails with an InputError: never a crash, never
   // another exception. (ASan/UBSan make out-of-bounds reads fatal.)
   for (const char* name : {"pyr.qs", "sphere_col.qs", "pyr.ply", "tet.ply"}) {
-    std::ifstream in(test::shared_dir() + "/data/qsplat/" + name, std::ios::binary);
+    std::ifstream in(test::qsplat_dir() + "/" + name, std::ios::binary);
     const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     test::TempDir dir;
     const std::string ext = std::string(name).substr(std::string(name).rfind('.'));
@@ -71,7 +71,7 @@ TEST(Malformed, TruncationAtEveryByteNeverCrashes) {
 TEST(Malformed, BitFlipsNeverCrash) {
   // Flip each byte of small valid files (several patterns): reject cleanly or read.
   for (const char* name : {"pyr.qs", "tet.qs", "pyr.ply"}) {
-    std::ifstream in(test::shared_dir() + "/data/qsplat/" + name, std::ios::binary);
+    std::ifstream in(test::qsplat_dir() + "/" + name, std::ios::binary);
     const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     test::TempDir dir;
     const std::string ext = std::string(name).substr(std::string(name).rfind('.'));

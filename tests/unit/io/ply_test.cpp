@@ -107,13 +107,13 @@ TEST(PlyRead, FacesMakeAMeshAndPolygonsAreSplit) {
 
 TEST(PlyRead, SharedSourceMeshes) {
   // The PLY sources of the QSplat vectors: binary big-endian meshes, diffuse_* colours, comments.
-  const Model m = read_model(test::shared_dir() + "/data/qsplat/sphere_col.ply");
+  const Model m = read_model(test::qsplat_dir() + "/sphere_col.ply");
   ASSERT_TRUE(m.is_mesh);
   EXPECT_EQ(m.mesh.positions.size(), 2498u);
   EXPECT_EQ(m.mesh.triangles.size(), 4992u);
   EXPECT_EQ(m.mesh.colors.size(), 2498u);
   EXPECT_EQ(m.mesh.comments, std::vector<std::string>{"hello qsplat test"});
-  const Model pyr = read_model(test::shared_dir() + "/data/qsplat/pyr.ply");
+  const Model pyr = read_model(test::qsplat_dir() + "/pyr.ply");
   EXPECT_EQ(pyr.mesh.positions.size(), 5u);
   EXPECT_EQ(pyr.mesh.triangles.size(), 6u);
 }

@@ -1,5 +1,5 @@
 // QSplat reader and writer against the test vectors written by the original qsplat_make
-// (shared/data/qsplat) and the facts of shared/specs/qsplat-format.md.
+// (tests/data/qsplat) and the facts of the QSplat 1.0 format specification.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,7 +13,7 @@
 namespace qf {
 namespace {
 
-std::string vector_path(const std::string& name) { return test::shared_dir() + "/data/qsplat/" + name; }
+std::string vector_path(const std::string& name) { return test::qsplat_dir() + "/" + name; }
 
 float angle_deg(Vec3f a, Vec3f b) {
   return std::acos(std::clamp(dot(normalized(a), normalized(b)), -1.0f, 1.0f)) * 180.0f / 3.14159265f;
@@ -166,7 +166,7 @@ TEST(QSplatRead, CommentFragment) {
 
 TEST(QSplatRead, MultiFragmentIsConcatenation) {
   // multi.qs is sphere_col.qs (a comment and a data fragment), pyr.qs and tet.qs catted together
-  // (23624 + 68 + 56 = 23748 bytes; shared/README.md mentions only the last two).
+  // (23624 + 68 + 56 = 23748 bytes; the original notes mentioned only the last two).
   ReadReport report;
   const PointSet multi = read_qsplat(vector_path("multi.qs"), {}, &report);
   const PointSet sphere = read_qsplat(vector_path("sphere_col.qs"));

@@ -34,7 +34,7 @@ std::vector<std::string> TempDir::files() const {
   return out;
 }
 
-std::string shared_dir() { return QF_SHARED_DIR; }
+std::string qsplat_dir() { return QF_TEST_DATA "/qsplat"; }
 std::string test_data_dir() { return QF_TEST_DATA; }
 
 }  // namespace qf::test

@@ -23,7 +23,7 @@ class TempDir {
   std::string dir_;
 };
 
-std::string shared_dir();     // ../shared of the repository (QSplat vectors)
+std::string qsplat_dir();     // tests/data/qsplat (QSplat vectors and their source PLY meshes)
 std::string test_data_dir();  // tests/data
 
 }  // namespace qf::test
