@@ -1,4 +1,4 @@
-// Format dispatch by file extension: read_model and write_point_set.
+// Format dispatch by file extension: read_model, decode_model and write_point_set.
 #include <ostream>
 
 #include "core/error.h"
@@ -35,6 +35,21 @@ Model read_model(const std::string& path, const ReadOptions& options, ReadReport
   else if (ext == "pwn") m.points = read_xyz(path, true, options, report);
   else if (ext == "off") m.is_mesh = true, m.mesh = read_off(path, options, report);
   else if (ext == "obj") m.is_mesh = true, m.mesh = read_obj(path, options, report);
+  else
+    throw UsageError("unknown input format '." + ext + "' (" + path +
+                     "); supported: .ply .qs .xyz .pwn (point sets), .ply .off .obj (meshes)");
+  return m;
+}
+
+Model decode_model(ByteView bytes, const std::string& path, const ReadOptions& options, ReadReport* report) {
+  const std::string ext = file_extension(path);
+  Model m;
+  if (ext == "ply") return decode_ply(bytes, path, options, report);
+  if (ext == "qs") m.points = decode_qsplat(bytes, path, report);
+  else if (ext == "xyz") m.points = decode_xyz(bytes, path, false, options, report);
+  else if (ext == "pwn") m.points = decode_xyz(bytes, path, true, options, report);
+  else if (ext == "off") m.is_mesh = true, m.mesh = decode_off(bytes, path, options, report);
+  else if (ext == "obj") m.is_mesh = true, m.mesh = decode_obj(bytes, path, options, report);
   else
     throw UsageError("unknown input format '." + ext + "' (" + path +
                      "); supported: .ply .qs .xyz .pwn (point sets), .ply .off .obj (meshes)");

@@ -48,6 +48,16 @@ PointSet read_xyz(const std::string& path, bool require_normals, const ReadOptio
 TriangleMesh read_off(const std::string& path, const ReadOptions& options = {}, ReadReport* report = nullptr);
 TriangleMesh read_obj(const std::string& path, const ReadOptions& options = {}, ReadReport* report = nullptr);
 
+// The same readers on bytes already in memory (the path readers map the file and call these; the
+// fuzz targets of tests/fuzz call them directly). `path` names the file in errors; decode_model
+// chooses the reader by its extension, as read_model does.
+Model decode_model(ByteView bytes, const std::string& path, const ReadOptions& options = {}, ReadReport* report = nullptr);
+Model decode_ply(ByteView bytes, const std::string& path, const ReadOptions& options = {}, ReadReport* report = nullptr);
+PointSet decode_xyz(ByteView bytes, const std::string& path, bool require_normals, const ReadOptions& options = {},
+                    ReadReport* report = nullptr);
+TriangleMesh decode_off(ByteView bytes, const std::string& path, const ReadOptions& options = {}, ReadReport* report = nullptr);
+TriangleMesh decode_obj(ByteView bytes, const std::string& path, const ReadOptions& options = {}, ReadReport* report = nullptr);
+
 // QSplat in memory. decode_qsplat names `path` in errors and returns the leaves in depth-first
 // tree order. encode_qsplat needs normals and radii (it writes colours when the set has them,
 // comments as a comment fragment); `leaf_order`, if given, receives the input index of each leaf

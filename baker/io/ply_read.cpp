@@ -1,8 +1,10 @@
 // PLY reader: ascii, binary_little_endian and binary_big_endian; any property types; point sets
 // (vertex element only) and triangle meshes (vertex + face elements, polygons split into fans).
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <optional>
 
 #include "core/file_io.h"
@@ -55,6 +57,42 @@ std::size_t type_size(Type t) {
 }
 
 bool is_integer_type(Type t) { return t != Type::kFloat32 && t != Type::kFloat64; }
+
+const char* type_name(Type t) {
+  switch (t) {
+    case Type::kInt8: return "char";
+    case Type::kUInt8: return "uchar";
+    case Type::kInt16: return "short";
+    case Type::kUInt16: return "ushort";
+    case Type::kInt32: return "int";
+    case Type::kUInt32: return "uint";
+    case Type::kFloat32: return "float";
+    case Type::kFloat64: return "double";
+  }
+  return "?";
+}
+
+// The range of an integer type (the value range a binary file of that type can hold).
+long long integer_min(Type t) {
+  switch (t) {
+    case Type::kInt8: return std::numeric_limits<std::int8_t>::min();
+    case Type::kInt16: return std::numeric_limits<std::int16_t>::min();
+    case Type::kInt32: return std::numeric_limits<std::int32_t>::min();
+    default: return 0;
+  }
+}
+long long integer_max(Type t) {
+  switch (t) {
+    case Type::kInt8: return std::numeric_limits<std::int8_t>::max();
+    case Type::kUInt8: return std::numeric_limits<std::uint8_t>::max();
+    case Type::kInt16: return std::numeric_limits<std::int16_t>::max();
+    case Type::kUInt16: return std::numeric_limits<std::uint16_t>::max();
+    case Type::kInt32: return std::numeric_limits<std::int32_t>::max();
+    case Type::kUInt32: return std::numeric_limits<std::uint32_t>::max();
+    default: return 0;
+  }
+}
+std::string type_range(Type t) { return std::to_string(integer_min(t)) + ".." + std::to_string(integer_max(t)); }
 
 std::optional<Type> parse_type(std::string_view s) {
   if (s == "char" || s == "int8") return Type::kInt8;
@@ -231,7 +269,8 @@ void store_vertex(Sink& s, const VertexValues& vv, const Type* dest_types, std::
                         to_color8(vv.v[int(Dest::kBlue)], dest_types[int(Dest::kBlue)])});
   if (s.want_radii) {
     const double r = vv.v[int(Dest::kRadius)];
-    if (!(r >= 0) || !std::isfinite(r))
+    // Checked as the float it is stored as: a double radius of 1e300 is not finite there.
+    if (!(r >= 0) || !std::isfinite(r) || r > std::numeric_limits<float>::max())
       throw InputError("ply.body.bad_radius", s.path, where(),
                        "radius of vertex " + std::to_string(index) + " is " + std::to_string(r) +
                            ", expected a finite value >= 0");
@@ -423,6 +462,9 @@ class AsciiBody {
         path_(path) {}
 
   void read_element(const Element& e, bool is_vertex, bool is_face, Sink& s, const Type* dest_types) {
+    // Records without properties hold no text: skip the element at once, whatever its count (a
+    // count of 2^63 must not loop), as the binary reader does.
+    if (e.props.empty()) return;
     std::vector<long long> indices;
     for (std::uint64_t i = 0; i < e.count; ++i) {
       VertexValues vv;
@@ -466,12 +508,23 @@ class AsciiBody {
                        "file ends inside " + e.name + " " + std::to_string(i) + " of " + std::to_string(e.count));
     return t;
   }
+  // Parses a value of the declared type. Values outside the type's range are an error (a binary
+  // file cannot hold them either): "uchar 300" or an int index of 2^63-1 is not silently cast.
   double number(std::string_view t, Type type, const Element& e, const Property& p) {
     if (is_integer_type(type)) {
       long long v;
-      if (!io::parse_int64(t, v))
-        throw InputError("ply.body.bad_number", path_, at_line(tok_.line()),
-                         "expected an integer for " + e.name + " property '" + p.name + "', found " + quote_token(t));
+      if (!io::parse_int64(t, v)) {
+        const bool digits = !t.empty() && t.find_first_not_of("+-0123456789") == std::string_view::npos;
+        throw InputError(digits ? "ply.body.out_of_range" : "ply.body.bad_number", path_, at_line(tok_.line()),
+                         (digits ? "value " + quote_token(t) + " of " + e.name + " property '" + p.name +
+                                       "' is out of range for " + type_name(type) + " (" + type_range(type) + ")"
+                                 : "expected an integer for " + e.name + " property '" + p.name + "', found " +
+                                       quote_token(t)));
+      }
+      if (v < integer_min(type) || v > integer_max(type))
+        throw InputError("ply.body.out_of_range", path_, at_line(tok_.line()),
+                         "value " + std::to_string(v) + " of " + e.name + " property '" + p.name +
+                             "' is out of range for " + type_name(type) + " (" + type_range(type) + ")");
       return static_cast<double>(v);
     }
     double v;
@@ -479,9 +532,19 @@ class AsciiBody {
       // from_chars rejects "nan"/"inf" spellings with signs in some forms; accept the usual ones.
       if (t == "nan" || t == "-nan" || t == "NaN" || t == "inf" || t == "-inf" || t == "Inf" || t == "-Inf")
         return t[0] == '-' ? -INFINITY : (t.back() == 'n' || t.back() == 'N' ? NAN : INFINITY);
-      throw InputError("ply.body.bad_number", path_, at_line(tok_.line()),
-                       "expected a number for " + e.name + " property '" + p.name + "', found " + quote_token(t));
+      // from_chars reports result_out_of_range for finite spellings beyond double (1e999).
+      double ignored;
+      const bool too_big = !t.empty() && std::from_chars(t.data() + (t[0] == '+'), t.data() + t.size(), ignored).ec ==
+                                             std::errc::result_out_of_range;
+      throw InputError(too_big ? "ply.body.out_of_range" : "ply.body.bad_number", path_, at_line(tok_.line()),
+                       too_big ? "value " + quote_token(t) + " of " + e.name + " property '" + p.name +
+                                     "' is out of range for " + type_name(type)
+                               : "expected a number for " + e.name + " property '" + p.name + "', found " + quote_token(t));
     }
+    if (type == Type::kFloat32 && std::isfinite(v) && std::fabs(v) > std::numeric_limits<float>::max())
+      throw InputError("ply.body.out_of_range", path_, at_line(tok_.line()),
+                       "value " + quote_token(t) + " of " + e.name + " property '" + p.name +
+                           "' is out of range for float (magnitude up to 3.4e38)");
     return v;
   }
 
@@ -495,7 +558,10 @@ class AsciiBody {
 
 Model read_ply(const std::string& path, const ReadOptions& options, ReadReport* report) {
   const InputFile file(path);
-  const ByteView bytes = file.bytes();
+  return decode_ply(file.bytes(), path, options, report);
+}
+
+Model decode_ply(ByteView bytes, const std::string& path, const ReadOptions& options, ReadReport* report) {
   if (bytes.empty()) throw InputError("ply.header.magic", path, "", "file is empty, expected a PLY header");
   Header h = parse_header(bytes, path);
 

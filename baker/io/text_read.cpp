@@ -13,11 +13,14 @@ namespace {
 
 using io::quote_token;
 
-// A NUL byte means it is not a text file at all.
-void check_text(ByteView bytes, const std::string& path, const char* code) {
+// An empty file holds no model (and an empty view has no data pointer to search); a NUL byte
+// means it is not a text file at all. `format` is the code prefix: "off", "obj" or "xyz".
+void check_text(ByteView bytes, const std::string& path, const std::string& format, const char* expected) {
+  if (bytes.empty()) throw InputError(format + ".empty", path, "", std::string("file is empty, expected ") + expected);
   const void* nul = std::memchr(bytes.data(), 0, bytes.size());
   if (nul)
-    throw InputError(code, path, at_byte(static_cast<std::size_t>(static_cast<const std::uint8_t*>(nul) - bytes.data())),
+    throw InputError(format + ".binary", path,
+                     at_byte(static_cast<std::size_t>(static_cast<const std::uint8_t*>(nul) - bytes.data())),
                      "binary data (a NUL byte) in a text file");
 }
 
@@ -46,8 +49,11 @@ std::uint8_t color_component(std::string_view t, float v) {
 
 PointSet read_xyz(const std::string& path, bool require_normals, const ReadOptions& options, ReadReport* report) {
   const InputFile file(path);
-  const ByteView bytes = file.bytes();
-  check_text(bytes, path, "xyz.binary");
+  return decode_xyz(file.bytes(), path, require_normals, options, report);
+}
+
+PointSet decode_xyz(ByteView bytes, const std::string& path, bool require_normals, const ReadOptions& options, ReadReport* report) {
+  check_text(bytes, path, "xyz", "lines 'x y z [nx ny nz]'");
   io::Tokenizer tok(text_begin(bytes), text_end(bytes));
   io::NonFiniteFilter nonfinite(path, options);
   PointSet out;
@@ -80,6 +86,9 @@ PointSet read_xyz(const std::string& path, bool require_normals, const ReadOptio
     out.positions.push_back(p);
     if (n == 6) out.normals.push_back(as_unit({v[3], v[4], v[5]}));
   }
+  if (out.positions.empty())
+    throw InputError("xyz.no_points", path, at_line(tok.line()),
+                     "no points in the file (only comments or blank lines), expected lines 'x y z [nx ny nz]'");
   nonfinite.apply(out, report);
   if (report) report->format = require_normals ? "pwn" : "xyz";
   return out;
@@ -87,8 +96,11 @@ PointSet read_xyz(const std::string& path, bool require_normals, const ReadOptio
 
 TriangleMesh read_off(const std::string& path, const ReadOptions& options, ReadReport* report) {
   const InputFile file(path);
-  const ByteView bytes = file.bytes();
-  check_text(bytes, path, "off.binary");
+  return decode_off(file.bytes(), path, options, report);
+}
+
+TriangleMesh decode_off(ByteView bytes, const std::string& path, const ReadOptions& options, ReadReport* report) {
+  check_text(bytes, path, "off", "an OFF header");
   io::Tokenizer tok(text_begin(bytes), text_end(bytes));
   // Comments start with '#'; they may stand anywhere a token may.
   auto next = [&]() {
@@ -192,8 +204,11 @@ TriangleMesh read_off(const std::string& path, const ReadOptions& options, ReadR
 
 TriangleMesh read_obj(const std::string& path, const ReadOptions& options, ReadReport* report) {
   const InputFile file(path);
-  const ByteView bytes = file.bytes();
-  check_text(bytes, path, "obj.binary");
+  return decode_obj(file.bytes(), path, options, report);
+}
+
+TriangleMesh decode_obj(ByteView bytes, const std::string& path, const ReadOptions& options, ReadReport* report) {
+  check_text(bytes, path, "obj", "'v x y z' lines");
   io::Tokenizer tok(text_begin(bytes), text_end(bytes));
   io::NonFiniteFilter nonfinite(path, options);
   TriangleMesh mesh;
@@ -266,6 +281,8 @@ TriangleMesh read_obj(const std::string& path, const ReadOptions& options, ReadR
     // Everything else (vt, o, g, s, usemtl, mtllib, l, p, comments) carries nothing we use.
     tok.skip_line();
   }
+  if (mesh.positions.empty())
+    throw InputError("obj.no_vertices", path, at_line(tok.line()), "no vertices in the file, expected 'v x y z' lines");
   if (!any_color) mesh.colors.clear();
   // Per-vertex normals: the normal of the first corner that names one. Used only if every vertex has one.
   if (!vn.empty() && std::all_of(normal_of.begin(), normal_of.end(), [](std::int64_t n) { return n >= 0; })) {

@@ -84,6 +84,21 @@ put("list_length_huge.ply", bin_face_head.replace(b"list char int", b"list uint 
 put("bad_radius.ply", "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\nproperty float z\n"
     "property float radius\nend_header\n0 0 0 0.1\n1 0 0 -0.5\n", "ply.body.bad_radius")
 
+# Issue 18 (fuzzing): an element without properties and a count of 2^63-1 (130 bytes) must not make
+# the ascii reader loop over the count; values outside their declared type's range are errors.
+# (The element is skipped at once, then the body's one value too many is reported.)
+put("empty_element_huge_count.ply", "ply\nformat ascii 1.0\nelement pad 9223372036854775807\n"
+    + ASCII_HEAD.format(n=3)[len("ply\nformat ascii 1.0\n"):] + "end_header\n" + GOOD_BODY + "9\n", "ply.body.trailing")
+put("uchar_color_300.ply", ASCII_HEAD.format(n=2) + "property uchar red\nproperty uchar green\nproperty uchar blue\n"
+    "end_header\n0 0 0 10 20 30\n1 0 0 300 0 0\n", "ply.body.out_of_range")
+put("uchar_color_negative.ply", ASCII_HEAD.format(n=2) + "property uchar red\nproperty uchar green\nproperty uchar blue\n"
+    "end_header\n0 0 0 10 20 30\n1 0 0 -1 0 0\n", "ply.body.out_of_range")
+put("face_index_int64_max.ply", face_head + "3 0 1 9223372036854775807\n", "ply.body.out_of_range")
+put("face_index_beyond_int64.ply", face_head + "3 0 1 99999999999999999999\n", "ply.body.out_of_range")
+put("float_beyond_float_range.ply", ASCII_HEAD.format(n=2) + "end_header\n0 0 0\n1e39 0 0\n", "ply.body.out_of_range")
+put("double_radius_beyond_float.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+    "property float z\nproperty double radius\nend_header\n0 0 0 1e300\n", "ply.body.bad_radius")
+
 # --- QSplat -------------------------------------------------------------------------------------
 def patch(data, offset, new):
     return data[:offset] + new + data[offset + len(new):]
@@ -131,6 +146,13 @@ put("bad_number.xyz", "0 0 0\n1 zero 0\n", "xyz.bad_number")
 put("nan.xyz", "0 0 0\n1 0 inf\n", "xyz.nonfinite")
 put("binary.xyz", b"\x00\x00\x80\x3f\x00\x00\x00\x40", "xyz.binary")
 put("no_normals.pwn", "0 0 0\n1 0 0\n", "xyz.columns")
+# Issue 18: empty text files (no data pointer at all) and files without a single vertex.
+put("empty.off", b"", "off.empty")
+put("empty.obj", b"", "obj.empty")
+put("empty.xyz", b"", "xyz.empty")
+put("empty.pwn", b"", "xyz.empty")
+put("comments_only.obj", "# nothing but a comment\nmtllib none.mtl\n", "obj.no_vertices")
+put("comments_only.xyz", "# nothing but a comment\n\n", "xyz.no_points")
 
 with open(os.path.join(here, "EXPECTED.tsv"), "w") as f:
     f.write("# file\terror code (every file: exit code 1, no output file)\n")

@@ -1,5 +1,8 @@
-// OFF, OBJ, XYZ and PWN readers, and the XYZ writer.
+// OFF, OBJ, XYZ and PWN readers, the XYZ writer, ASCII PLY values, and the in-memory entry points.
 #include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstring>
 
 #include "core/error.h"
 #include "io/model_io.h"
@@ -79,6 +82,97 @@ TEST(XyzWrite, RoundTripIsExact) {
   for (std::size_t i = 0; i < 2; ++i) EXPECT_TRUE(q.positions[i] == p.positions[i]);
   EXPECT_THROW(write_point_set(dir.path("x.pwn"), PointSet{{{0, 0, 0}}, {}, {}, {}, {}, {}}), InputError);
   EXPECT_THROW(write_point_set(dir.path("x.stl"), p), UsageError);
+}
+
+// The error an input raises, read from memory (decode_model) and from a file (read_model): the
+// same code and message either way.
+InputError error_of(const std::string& name, const std::string& bytes) {
+  test::TempDir dir;
+  const std::string f = dir.write(name, bytes);
+  std::string code_from_file;
+  try {
+    read_model(f);
+  } catch (const InputError& e) {
+    code_from_file = e.code();
+  }
+  try {
+    decode_model(ByteView(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()), f);
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.code(), code_from_file);
+    return e;
+  }
+  ADD_FAILURE() << "accepted " << name;
+  return InputError("none", f, "", "");
+}
+
+TEST(EmptyTextFiles, AreErrorsNotEmptyModels) {
+  // An empty file has no data pointer; each reader says "empty" instead of searching it.
+  EXPECT_EQ(error_of("a.off", "").code(), "off.empty");
+  EXPECT_EQ(error_of("a.obj", "").code(), "obj.empty");
+  EXPECT_EQ(error_of("a.xyz", "").code(), "xyz.empty");
+  EXPECT_EQ(error_of("a.pwn", "").code(), "xyz.empty");
+  EXPECT_EQ(error_of("b.obj", "# no vertices\ng group\n").code(), "obj.no_vertices");
+  EXPECT_EQ(error_of("b.xyz", "# no points\n\n").code(), "xyz.no_points");
+  EXPECT_NE(std::string(error_of("a.obj", "").what()).find("empty"), std::string::npos);
+}
+
+const char* kAsciiColorHead =
+    "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\n"
+    "property uchar red\nproperty uchar green\nproperty uchar blue\nend_header\n";
+
+TEST(PlyAsciiValues, AreCheckedAgainstTheirDeclaredType) {
+  const InputError big = error_of("a.ply", std::string(kAsciiColorHead) + "0 0 0 300 0 0\n");
+  EXPECT_EQ(big.code(), "ply.body.out_of_range");
+  EXPECT_EQ(big.where(), "line 11");
+  EXPECT_NE(std::string(big.what()).find("300"), std::string::npos) << big.what();
+  EXPECT_NE(std::string(big.what()).find("uchar (0..255)"), std::string::npos) << big.what();
+  EXPECT_EQ(error_of("a.ply", std::string(kAsciiColorHead) + "0 0 0 -1 0 0\n").code(), "ply.body.out_of_range");
+  // The limits themselves read.
+  test::TempDir dir;
+  const Model m = read_model(dir.write("ok.ply", std::string(kAsciiColorHead) + "0 0 0 255 0 128\n"));
+  ASSERT_EQ(m.points.colors.size(), 1u);
+  EXPECT_TRUE(m.points.colors[0] == (Rgb8{255, 0, 128}));
+}
+
+TEST(PlyAsciiValues, AFaceIndexBeyondItsTypeGivesTheRealValue) {
+  const std::string head =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n";
+  const InputError e = error_of("f.ply", head + "3 0 1 9223372036854775807\n");
+  EXPECT_EQ(e.code(), "ply.body.out_of_range");
+  EXPECT_NE(std::string(e.what()).find("9223372036854775807"), std::string::npos) << e.what();
+  EXPECT_EQ(std::string(e.what()).find("-9223372036854775808"), std::string::npos) << e.what();
+  // Within int but past the vertices: the index message names the real value too.
+  const InputError r = error_of("g.ply", head + "3 0 1 2147483647\n");
+  EXPECT_EQ(r.code(), "ply.body.face_index");
+  EXPECT_NE(std::string(r.what()).find("2147483647"), std::string::npos) << r.what();
+}
+
+TEST(PlyAscii, ElementsWithoutPropertiesAreSkippedAtOnce) {
+  // 2^63-1 records of nothing: read at once (it used to loop over the count), as in binary files.
+  const std::string body_ascii =
+      "ply\nformat ascii 1.0\nelement pad 9223372036854775807\nelement vertex 2\nproperty float x\n"
+      "property float y\nproperty float z\nend_header\n0 0 0\n1 2 3\n";
+  std::string body_binary = body_ascii.substr(0, body_ascii.find("end_header\n") + 11);
+  body_binary.replace(body_binary.find("ascii"), 5, "binary_little_endian");
+  const float xyz[6] = {0, 0, 0, 1, 2, 3};
+  body_binary.append(reinterpret_cast<const char*>(xyz), sizeof xyz);
+  test::TempDir dir;
+  const auto start = std::chrono::steady_clock::now();
+  for (const std::string& bytes : {body_ascii, body_binary}) {
+    const Model m = read_model(dir.write("pad.ply", bytes));
+    ASSERT_EQ(m.points.size(), 2u);
+    EXPECT_FLOAT_EQ(m.points.positions[1].z, 3.0f);
+  }
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
+}
+
+TEST(DecodeModel, ReadsFromMemoryLikeTheFileReaders) {
+  const std::string off = "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  const Model m = decode_model(ByteView(reinterpret_cast<const std::uint8_t*>(off.data()), off.size()), "mem.off");
+  ASSERT_TRUE(m.is_mesh);
+  EXPECT_EQ(m.mesh.triangles.size(), 1u);
+  EXPECT_THROW(decode_model(ByteView(), "mem.stl"), UsageError);
 }
 
 }  // namespace
