@@ -32,6 +32,7 @@ void AnyScene::attach(Renderer& r) const {
   else if (kind == kCluster) r.set_scene(cluster);
   else if (kind == kSplats) r.set_scene(splats);
   else r.set_scene(mesh);
+  r.set_engine_scene(engine);
 }
 
 AnyScene load_scene(const std::string& path) {
@@ -43,15 +44,18 @@ AnyScene load_scene(const std::string& path) {
     s.impostor = std::move(b.impostor);
     s.points = std::move(b.points);
     s.cluster = std::move(b.cluster);
+    s.engine = std::move(b.engine);
     return s;
   }
   Model m = read_model(path);
   if (m.is_mesh) {
     s.kind = AnyScene::kMesh;
     s.mesh = mesh_scene(m.mesh, path);
+    s.engine = engine_scene(s.mesh);
   } else {
     s.kind = AnyScene::kSplats;
     s.splats = splat_scene(std::move(m.points), path);
+    s.engine = engine_scene(s.splats);
   }
   return s;
 }

@@ -20,10 +20,11 @@ struct AnyScene {
   SplatScene splats;
   MeshScene mesh;
   PointImpostorScene points;
+  EngineScene engine;                 // the same, as a standard engine draws it (Method::kEngine)
   std::optional<MeshScene> fade_mesh;  // kPoints: the mesh it fades to when near (--mesh)
   Bounds bounds() const;
   std::string describe() const;      // e.g. "273 quads", "37705 points"
-  void attach(Renderer& r) const;    // makes it the renderer's scene
+  void attach(Renderer& r) const;    // makes it (and its engine view) the renderer's scene
 };
 
 // By extension: .glb/.gltf through load_baked, anything else through the model readers. Throws

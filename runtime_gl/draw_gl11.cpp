@@ -5,6 +5,8 @@
 #define GL_GLEXT_PROTOTYPES
 #include "runtime_gl/draw_gl11.h"
 
+#include "runtime_gl/draw_engine.h"
+
 #include <GL/gl.h>
 #include <GL/glext.h>
 
@@ -133,6 +135,8 @@ struct Renderer::Impl {
   const MeshScene* mesh = nullptr;
   const PointImpostorScene* points = nullptr;
   const ClusterScene* cluster = nullptr;
+  std::unique_ptr<EngineDrawer> engine;  // made on first use (compiles shaders)
+  bool has_engine_scene = false;
   std::vector<GLuint> straight, premultiplied;  // per impostor texture
   GLuint disc = 0;
   std::vector<float> splat_pos, splat_nrm, splat_uv;  // 4 corners per splat
@@ -212,6 +216,7 @@ Renderer::Renderer(int width, int height, bool offscreen) : impl_(std::make_uniq
 }
 
 Renderer::~Renderer() {
+  impl_->engine.reset();
   impl_->free_textures();
   glDeleteTextures(1, &impl_->disc);
   impl_->free_framebuffer();
@@ -290,6 +295,12 @@ void Renderer::set_scene(const PointImpostorScene& scene, const MeshScene* mesh)
 void Renderer::set_scene(const ClusterScene& scene) {
   set_scene(scene.mesh);
   impl_->cluster = &scene;
+}
+
+void Renderer::set_engine_scene(const EngineScene& scene) {
+  if (!impl_->engine) impl_->engine = std::make_unique<EngineDrawer>();
+  impl_->engine->set_scene(scene);
+  impl_->has_engine_scene = true;
 }
 
 void Renderer::Impl::draw_thick_lines(const Camera& c, DrawStats& stats) {
@@ -551,7 +562,9 @@ void Renderer::Impl::normalize_and_composite(Rgb8 bg, float floor, float transpa
 DrawStats Renderer::draw(const Camera& camera, const DrawSettings& s) {
   Impl& m = *impl_;
   if (m.offscreen) glBindFramebuffer(GL_FRAMEBUFFER, m.fbo);
-  const bool additive = m.impostor && is_additive(s.method);
+  const bool engine = s.method == Method::kEngine;
+  if (engine && !m.has_engine_scene) throw std::logic_error("Renderer::draw: the engine method needs set_engine_scene");
+  const bool additive = !engine && m.impostor && is_additive(s.method);
   const float inv = 1.0f / 255;
   if (additive) glClearColor(0, 0, 0, 0);
   else glClearColor(s.background.r * inv, s.background.g * inv, s.background.b * inv, 1);
@@ -563,7 +576,8 @@ DrawStats Renderer::draw(const Camera& camera, const DrawSettings& s) {
   glDisable(GL_ALPHA_TEST);
   m.setup_camera_and_light(camera, s.lighting);
   DrawStats stats;
-  if (m.impostor) m.draw_impostor(camera, s, stats);
+  if (engine) m.engine->draw(camera, s.lights);
+  else if (m.impostor) m.draw_impostor(camera, s, stats);
   else if (m.points) m.draw_points(camera, stats);
   else if (m.splats) m.draw_splats();
   else if (m.mesh) {

@@ -8,6 +8,7 @@
 
 #include "runtime_gl/blend_order.h"
 #include "runtime_gl/camera.h"
+#include "runtime_gl/engine_scene.h"
 #include "runtime_gl/scene.h"
 
 namespace qf::render {
@@ -28,6 +29,7 @@ struct DrawSettings {
   // space the plain sum saturates (bright streaks). 0 = off (the plain sum, as the paper draws);
   // < 0 = the method's default (kDefaultNormalize for overlap, off for the others).
   float normalize = -1;
+  EngineLights lights;         // engine method
 };
 
 // The overlap method's normalising threshold: measured on bunny00 at 273 quads (26 views), holes
@@ -65,6 +67,9 @@ class Renderer {
   // size of a pixel at the line's distance) lit with the dynamic normal (V1 - C) x (V2 - C) x
   // (V2 - V1) of paper 3.3.2, and its points.
   void set_scene(const ClusterScene& scene);
+  // What Method::kEngine draws (draw_engine.h), kept beside whichever scene above is set: the
+  // same file as an engine sees it.
+  void set_engine_scene(const EngineScene& scene);
 
   // Draws one frame (cleared first). Returns what was drawn.
   DrawStats draw(const Camera& camera, const DrawSettings& settings);

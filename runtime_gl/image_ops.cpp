@@ -11,6 +11,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/error.h"
 #include "core/file_io.h"
 #include "gltf/png.h"
 
@@ -54,6 +55,21 @@ void coverage_and_color(const RenderPair& r, const float bg[3], OIIO::ImageBuf& 
 }
 
 }  // namespace
+
+Image load_image(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) throw InputError("render.image", path, "", "cannot read the image: " + OIIO::geterror());
+  const OIIO::ImageSpec& spec = in->spec();
+  if (spec.nchannels < 3 || spec.nchannels > 4 || spec.width <= 0 || spec.height <= 0)
+    throw InputError("render.image", path, "", "expected an RGB or RGBA image, got " + std::to_string(spec.nchannels) + " channels");
+  std::vector<std::uint8_t> raw(static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(spec.height) * static_cast<std::size_t>(spec.nchannels));
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::UINT8, raw.data()))
+    throw InputError("render.image", path, "", "cannot decode the image: " + in->geterror());
+  Image img{spec.width, spec.height, std::vector<std::uint8_t>(static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(spec.height) * 4, 255)};
+  for (std::size_t i = 0, n = img.rgba.size() / 4; i < n; ++i)
+    for (std::size_t c = 0; c < static_cast<std::size_t>(spec.nchannels); ++c) img.rgba[i * 4 + c] = raw[i * static_cast<std::size_t>(spec.nchannels) + c];
+  return img;
+}
 
 void save_png(const std::string& path, const Image& image) {
   std::vector<std::uint8_t> rgb(static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) * 3);

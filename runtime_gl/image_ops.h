@@ -14,6 +14,10 @@ namespace qf::render {
 // same bytes.
 void save_png(const std::string& path, const Image& image);
 
+// Reads an 8-bit image file (PNG, or anything OpenImageIO reads) as RGBA (opaque where it has no
+// alpha). Throws InputError ("render.image") naming the file.
+Image load_image(const std::string& path);
+
 // Tiles images (all the same size) in rows of `columns`, on `background`, with an optional
 // caption under each (rendered with DejaVu Sans when the font is installed; left out otherwise).
 Image contact_sheet(const std::vector<Image>& images, int columns, Rgb8 background,

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/types.h"
+#include "runtime_gl/engine_scene.h"
 #include "runtime_gl/scene.h"
 
 namespace qf::render {
@@ -22,6 +23,7 @@ struct BakedScene {
   ImpostorScene impostor;
   PointImpostorScene points;
   ClusterScene cluster;
+  EngineScene engine;  // the whole file as a standard engine draws it (any kind)
 };
 BakedScene load_baked(const std::string& path);
 

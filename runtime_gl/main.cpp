@@ -66,8 +66,8 @@ std::vector<OptionSpec> draw_option_specs() {
   return {
       {"method", 'm', methods, "overlap",
        "how quads blend: overlap = sorted, neighbours blended, lock by depth (the paper's); two-pass = depth "
-       "offset; backface-hard/-soft = dark back faces; blend-all; no-blend; engine = the glTF material as a "
-       "standard engine draws it"},
+       "offset; backface-hard/-soft = dark back faces; blend-all; no-blend; engine = the glTF materials as a "
+       "standard PBR engine draws them (any file: levels, mesh LODs, point impostors, references)"},
       {"size", 0, "W[xH]", "512", "image size in pixels"},
       {"background", 0, "R,G,B", "0,0,0", "background colour (results are right over any colour)"},
       {"alpha-ref", 0, "V", "the file's (0.1)", "alpha test of the lock pass"},
@@ -204,8 +204,9 @@ const CommandSpec& eval_spec() {
     s.summary = "measure an impostor against its reference (points as splats, or a mesh) from many views";
     s.details =
         "Renders both with the same cameras from N viewpoints spread evenly over the sphere, framing the\n"
-        "reference's bounding sphere, once with --method and once as a standard engine draws the file\n"
-        "(its material's alpha mode, no extension). Per view and on average: PSNR over the pixels covered\n"
+        "reference's bounding sphere, once with --method and once with the engine method (both the file and\n"
+        "the reference drawn as a standard PBR engine draws glTF: base colour and normal maps, lighting in\n"
+        "linear light, double-sided where the material says; three.js r187's MeshStandardMaterial). Per view and on average: PSNR over the pixels covered\n"
         "by either image, silhouette IoU, mean absolute error, and the shares of reference pixels that are\n"
         "holes (impostor coverage < 0.5) or see-through (0.5 <= coverage < 0.9). Coverage is measured from\n"
         "renders over black and over white; colours are compared over --background. BAKED is a baked .glb\n"
@@ -220,7 +221,12 @@ const CommandSpec& eval_spec() {
                      {{"output", 'o', "REPORT.json", "", "write the report here (default: print it)"},
                       {"views", 0, "N", "26", "number of viewpoints"},
                       {"diff", 0, "PREFIX", "REPORT's path without .json", "write PREFIX.exr and PREFIX.png: per-view |difference| sheets (PNG x4)"},
-                      {"no-engine", 0, "", "", "skip the engine-path evaluation"}});
+                      {"no-engine", 0, "", "", "skip the engine-path evaluation"},
+                      {"cameras", 0, "FILE", "", "write the views' cameras and the engine lights as JSON (for renders made elsewhere)"},
+                      {"external", 0, "DIR", "",
+                       "also score renders of BAKED made elsewhere from those cameras (e.g. three.js, scripts/three-render):\n"
+                       "DIR/view_I_black.png and view_I_white.png, against the reference drawn by the engine method,\n"
+                       "and against the engine method's own renders of BAKED (engine_vs_external)"}});
     s.min_positional = s.max_positional = 2;
     return s;
   }();
@@ -233,6 +239,37 @@ ordered_json metrics_json(const ViewMetrics& m) {
           {"mae", canonical_double(static_cast<float>(m.mae))},
           {"holes", canonical_double(static_cast<float>(m.holes))},
           {"see_through", canonical_double(static_cast<float>(m.see_through))}};
+}
+
+// The eval's cameras as JSON, for renderers outside qf-render (scripts/three-render): per view
+// the eye, target, up, vertical field of view, near/far planes and both matrices (column-major),
+// and the engine method's lights.
+ordered_json cameras_json(const std::vector<Camera>& cams, const EngineLights& lights, Rgb8 background) {
+  ordered_json views = ordered_json::array();
+  for (const Camera& c : cams) {
+    auto vec = [](Vec3f v) { return ordered_json{v.x, v.y, v.z}; };
+    const Mat4 view = c.view(), proj = c.projection();
+    views.push_back({{"eye", vec(c.eye)}, {"target", vec(c.target)}, {"up", vec(c.up)}, {"fovy_degrees", c.fovy_degrees},
+                     {"near", c.near_plane}, {"far", c.far_plane}, {"width", c.width}, {"height", c.height},
+                     {"view", std::vector<float>(view.begin(), view.end())}, {"projection", std::vector<float>(proj.begin(), proj.end())}});
+  }
+  return {{"lights", {{"directional", lights.directional}, {"ambient", lights.ambient}}},
+          {"background", {background.r, background.g, background.b}},
+          {"views", views}};
+}
+
+// Renders of BAKED made elsewhere (DIR/view_I_black.png and view_I_white.png, over black and
+// white, from the cameras --cameras wrote).
+RenderPair external_pair(const std::string& dir, int view, int w, int h) {
+  RenderPair p;
+  const std::string stem = dir + "/view_" + std::to_string(view);
+  p.over_black = load_image(stem + "_black.png");
+  p.over_white = load_image(stem + "_white.png");
+  for (const Image* img : {&p.over_black, &p.over_white})
+    if (img->width != w || img->height != h)
+      throw InputError("render.image", stem, "", "external render is " + std::to_string(img->width) + "x" + std::to_string(img->height) +
+                                                     ", expected " + std::to_string(w) + "x" + std::to_string(h));
+  return p;
 }
 
 int run_eval(const ParsedArgs& a) {
@@ -251,28 +288,44 @@ int run_eval(const ParsedArgs& a) {
   baked.attach(imp_renderer);
   DrawSettings engine = settings;
   engine.method = Method::kEngine;
-  // The engine path applies to impostor levels only (the others have one way to be drawn).
-  const bool with_engine = !a.flag("no-engine") && settings.method != Method::kEngine && baked.kind == AnyScene::kImpostor;
+  // The engine path: both drawn as an engine draws glTF (the reference as if exported).
+  const bool with_engine = !a.flag("no-engine") && settings.method != Method::kEngine;
+  const std::string external = a.get("external");
 
-  std::vector<ViewMetrics> main_metrics, engine_metrics;
+  std::vector<ViewMetrics> main_metrics, engine_metrics, external_metrics, agreement;
+  std::vector<Camera> cams;
   std::vector<Image> diff_sheet;
   std::vector<float> exr_sheet;  // views stacked vertically
   ordered_json per_view = ordered_json::array();
   for (int i = 0; i < views; ++i) {
     const Vec3f d = sphere_direction(i, views);
     const Camera cam = orbit_camera(sphere, d, 0, w, h);
+    cams.push_back(cam);
     const RenderPair ref = render_pair(ref_renderer, cam, settings);
     std::vector<float> diff;
     main_metrics.push_back(compare_renders(ref, render_pair(imp_renderer, cam, settings), background, &diff));
     ordered_json v{{"view", i}, {"direction", {canonical_double(d.x), canonical_double(d.y), canonical_double(d.z)}}};
     v[method_name(settings.method)] = metrics_json(main_metrics.back());
+    const RenderPair engine_ref = with_engine || !external.empty() ? render_pair(ref_renderer, cam, engine) : RenderPair{};
+    const RenderPair engine_baked = with_engine || !external.empty() ? render_pair(imp_renderer, cam, engine) : RenderPair{};
     if (with_engine) {
-      engine_metrics.push_back(compare_renders(ref, render_pair(imp_renderer, cam, engine), background));
+      engine_metrics.push_back(compare_renders(engine_ref, engine_baked, background));
       v["engine"] = metrics_json(engine_metrics.back());
+    }
+    if (!external.empty()) {
+      const RenderPair ext = external_pair(external, i, w, h);
+      external_metrics.push_back(compare_renders(engine_ref, ext, background));
+      agreement.push_back(compare_renders(engine_baked, ext, background));
+      v["external"] = metrics_json(external_metrics.back());
+      v["engine_vs_external"] = metrics_json(agreement.back());
     }
     per_view.push_back(v);
     diff_sheet.push_back(to_8bit(diff, w, h, 4));
     exr_sheet.insert(exr_sheet.end(), diff.begin(), diff.end());
+  }
+  if (a.has("cameras")) {
+    const std::string text = cameras_json(cams, settings.lights, background).dump(1) + "\n";
+    write_file_atomically(a.get("cameras"), [&](std::ostream& out) { out << text; });
   }
   const ImpostorScene& s = baked.impostor;
   ordered_json report{{"reference", a.positional[0]}, {"baked", a.positional[1]}, {"baked_contents", baked.describe()}};
@@ -280,10 +333,13 @@ int run_eval(const ParsedArgs& a) {
   report.update(ordered_json{{"views", views},
                       {"size", {w, h}},
                       {"background", {background.r, background.g, background.b}},
-                      {"method", method_name(settings.method)},
-                      {"engine_alpha_mode", settings.alpha_mode ? *settings.alpha_mode : s.alpha_mode}});
+                      {"method", method_name(settings.method)}});
   report["mean"][method_name(settings.method)] = metrics_json(mean_of(main_metrics));
   if (with_engine) report["mean"]["engine"] = metrics_json(mean_of(engine_metrics));
+  if (!external.empty()) {
+    report["mean"]["external"] = metrics_json(mean_of(external_metrics));
+    report["mean"]["engine_vs_external"] = metrics_json(mean_of(agreement));
+  }
   report["per_view"] = per_view;
 
   const std::string text = report.dump(2) + "\n";
@@ -302,14 +358,14 @@ int run_eval(const ParsedArgs& a) {
     save_exr(diff_prefix + ".exr", exr_sheet, w, h * views);
     save_png(diff_prefix + ".png", contact_sheet(diff_sheet, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(views)))), {0, 0, 0}));
   }
-  const ViewMetrics m = mean_of(main_metrics);
-  std::cerr << "qf-render eval: " << views << " views, " << method_name(settings.method) << ": PSNR " << m.psnr << " dB, IoU " << m.iou
-            << ", holes " << 100 * m.holes << "%, see-through " << 100 * m.see_through << "%\n";
-  if (with_engine) {
-    const ViewMetrics e = mean_of(engine_metrics);
-    std::cerr << "qf-render eval: engine path (" << (settings.alpha_mode ? *settings.alpha_mode : s.alpha_mode) << "): PSNR " << e.psnr
-              << " dB, IoU " << e.iou << ", holes " << 100 * e.holes << "%, see-through " << 100 * e.see_through << "%\n";
-  }
+  auto say = [&](const std::string& what, const std::vector<ViewMetrics>& v) {
+    const ViewMetrics m = mean_of(v);
+    std::cerr << "qf-render eval: " << what << ": PSNR " << m.psnr << " dB, IoU " << m.iou << ", holes " << 100 * m.holes
+              << "%, see-through " << 100 * m.see_through << "%\n";
+  };
+  say(std::to_string(views) + " views, " + method_name(settings.method), main_metrics);
+  if (with_engine) say("engine method", engine_metrics);
+  if (!external.empty()) say("external renders", external_metrics), say("engine method vs external renders", agreement);
   return 0;
 }
 

@@ -1,0 +1,87 @@
+// References as an engine draws them (see engine_scene.h).
+#include "runtime_gl/engine_scene.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/color.h"
+
+namespace qf::render {
+namespace {
+
+// What an exported input mesh or point set would carry: a rough dielectric seen from both sides.
+EngineMaterial reference_material() {
+  EngineMaterial m;
+  m.metallic = 0;
+  m.roughness = 1;
+  m.double_sided = true;
+  return m;
+}
+
+void push_linear(std::vector<float>& out, Rgb8 c) {
+  for (std::uint8_t v : {c.r, c.g, c.b}) out.push_back(srgb_to_linear16(v) / 65535.0f);
+  out.push_back(1.0f);
+}
+
+// The splat footprint: a disc whose edge crosses alpha 0.5 at radius 1 under bilinear filtering
+// (as the fixed-function splats of draw_gl11).
+Image disc_image() {
+  constexpr int kSide = 32;
+  Image img{kSide, kSide, std::vector<std::uint8_t>(kSide * kSide * 4, 255)};
+  for (int y = 0; y < kSide; ++y)
+    for (int x = 0; x < kSide; ++x) {
+      const float u = (x + 0.5f) / kSide * 2 - 1, v = (y + 0.5f) / kSide * 2 - 1;
+      const float r = std::sqrt(u * u + v * v);
+      img.rgba[static_cast<std::size_t>(y * kSide + x) * 4 + 3] =
+          static_cast<std::uint8_t>(std::clamp(0.5f + (1 - r) * kSide * 0.5f, 0.0f, 1.0f) * 255);
+    }
+  return img;
+}
+
+}  // namespace
+
+EngineScene engine_scene(const MeshScene& mesh) {
+  EngineScene s;
+  EnginePrimitive p;
+  p.material = reference_material();
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+    p.positions.insert(p.positions.end(), {mesh.positions[v].x, mesh.positions[v].y, mesh.positions[v].z});
+    p.normals.insert(p.normals.end(), {mesh.normals[v].x, mesh.normals[v].y, mesh.normals[v].z});
+    push_linear(p.colors, mesh.colors[v]);
+  }
+  p.indices = mesh.indices;
+  s.primitives.push_back(std::move(p));
+  s.bounds = mesh.bounds;
+  return s;
+}
+
+EngineScene engine_scene(const SplatScene& splats) {
+  EngineScene s;
+  s.images.push_back(disc_image());
+  EnginePrimitive p;
+  p.material = reference_material();
+  p.material.base_texture = 0;
+  p.material.alpha = EngineMaterial::Alpha::kMask;
+  p.material.alpha_cutoff = 0.5f;
+  const float su[4] = {-1, 1, 1, -1}, sv[4] = {-1, -1, 1, 1};
+  for (std::size_t i = 0; i < splats.positions.size(); ++i) {
+    const Vec3f n = splats.normals[i];
+    const Vec3f a = std::fabs(n.x) < 0.9f ? Vec3f{1, 0, 0} : Vec3f{0, 1, 0};
+    const Vec3f u = normalized(cross(n, a)), v = cross(n, u);
+    const auto base = static_cast<std::uint32_t>(p.positions.size() / 3);
+    for (int k = 0; k < 4; ++k) {
+      const Vec3f q = splats.positions[i] + u * (su[k] * splats.radii[i]) + v * (sv[k] * splats.radii[i]);
+      p.positions.insert(p.positions.end(), {q.x, q.y, q.z});
+      p.normals.insert(p.normals.end(), {n.x, n.y, n.z});
+      p.tangents.insert(p.tangents.end(), {u.x, u.y, u.z, 1.0f});
+      p.uvs.insert(p.uvs.end(), {su[k] * 0.5f + 0.5f, sv[k] * 0.5f + 0.5f});
+      push_linear(p.colors, splats.colors[i]);
+    }
+    p.indices.insert(p.indices.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+  }
+  s.primitives.push_back(std::move(p));
+  s.bounds = splats.bounds;
+  return s;
+}
+
+}  // namespace qf::render
