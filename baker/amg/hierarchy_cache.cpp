@@ -43,7 +43,8 @@ class Reader {
   template <class T>
   bool get_array(std::vector<T>& out, std::uint64_t max_count) {
     std::uint64_t n = 0;
-    if (!get(n) || n > max_count || n * sizeof(T) > n_ - pos_) return false;
+    // Divide rather than multiply: n * sizeof(T) wraps for n near 2^64 and would pass the check.
+    if (!get(n) || n > max_count || n > (n_ - pos_) / sizeof(T)) return false;
     out.resize(static_cast<std::size_t>(n));
     if (n) std::memcpy(out.data(), p_ + pos_, static_cast<std::size_t>(n) * sizeof(T));  // data() may be null when empty
     pos_ += static_cast<std::size_t>(n) * sizeof(T);
@@ -117,7 +118,15 @@ std::optional<AmgHierarchy> load_hierarchy(const std::string& dir, const std::st
   } catch (const InputError&) {
     return fail("unreadable");
   }
-  const ByteView bytes = file->bytes();
+  return decode_hierarchy(file->bytes(), key, why, normals);
+}
+
+std::optional<AmgHierarchy> decode_hierarchy(ByteView bytes, const std::string& key, std::string* why,
+                                             std::vector<Vec3f>* normals) {
+  auto fail = [&](const char* reason) -> std::optional<AmgHierarchy> {
+    if (why) *why = reason;
+    return std::nullopt;
+  };
   Reader header(bytes.data(), bytes.size());
   char magic[sizeof kMagic];
   std::uint32_t version = 0;
@@ -144,11 +153,20 @@ std::optional<AmgHierarchy> load_hierarchy(const std::string& dir, const std::st
   for (std::uint64_t l = 0; l < levels; ++l) {
     std::uint64_t s = 0;
     AmgLevel lv;
-    if (!r.get(s) || !r.get(lv.theta) || !r.get(lv.ratio)) return fail("corrupt");
+    // A level's size counts entries stored below (fine_order, P's rows): no more than the payload's bytes.
+    if (!r.get(s) || !r.get(lv.theta) || !r.get(lv.ratio) || s > size) return fail("corrupt");
     lv.size = s;
     h.levels.push_back(lv);
   }
-  if (!r.get_array(h.fine_order, h.levels[0].size)) return fail("corrupt");
+  if (!r.get_array(h.fine_order, h.levels[0].size) || h.fine_order.size() != h.levels[0].size) return fail("corrupt");
+  // A permutation of the points: the basis scatters P[0]'s rows through it (sparse.h scatter_rows).
+  {
+    std::vector<char> seen(h.fine_order.size(), 0);
+    for (std::uint32_t i : h.fine_order) {
+      if (i >= seen.size() || seen[i]) return fail("corrupt");
+      seen[i] = 1;
+    }
+  }
   for (std::uint64_t l = 1; l < levels; ++l) {
     std::uint64_t rows = 0, cols = 0;
     std::vector<std::int32_t> outer, inner;
@@ -162,6 +180,10 @@ std::optional<AmgHierarchy> load_hierarchy(const std::string& dir, const std::st
       if (outer[i] > outer[i + 1]) return fail("corrupt");
     for (std::int32_t c : inner)
       if (c < 0 || static_cast<std::uint64_t>(c) >= cols) return fail("corrupt");
+    // Columns strictly increasing within a row, as Eigen's compressed matrices (which wrote them) keep them.
+    for (std::size_t i = 0; i + 1 < outer.size(); ++i)
+      for (std::int32_t k = outer[i] + 1; k < outer[i + 1]; ++k)
+        if (inner[static_cast<std::size_t>(k - 1)] >= inner[static_cast<std::size_t>(k)]) return fail("corrupt");
     h.P.push_back(from_rows(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(cols), outer, inner, values));
   }
   std::vector<Vec3f> stored;

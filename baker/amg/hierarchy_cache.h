@@ -7,6 +7,7 @@
 
 #include "amg/hierarchy.h"
 #include "analysis/analysis.h"
+#include "core/file_io.h"
 
 namespace qf {
 
@@ -19,6 +20,10 @@ std::string hierarchy_cache_key(const PointSet& points, const AnalysisOptions& a
 // `normals`, if given, receives the normals stored with the hierarchy (empty if none were).
 std::optional<AmgHierarchy> load_hierarchy(const std::string& dir, const std::string& key, std::string* why = nullptr,
                                            std::vector<Vec3f>* normals = nullptr);
+
+// load_hierarchy on a file's bytes already in memory (the fuzz target of tests/fuzz calls it).
+std::optional<AmgHierarchy> decode_hierarchy(ByteView bytes, const std::string& key, std::string* why = nullptr,
+                                             std::vector<Vec3f>* normals = nullptr);
 
 // Writes the hierarchy atomically (temporary name, then rename), creating `dir` if needed, with
 // the analysis' estimated normals for inputs that have none (later stages orient and light with

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "core/file_io.h"
 #include "pipeline/asset.h"
 
 namespace qf {
@@ -39,6 +40,8 @@ struct BatchManifest {
 // Reads and checks a batch manifest. Throws InputError("batch.*") naming the file, the JSON
 // location (e.g. "assets[3].settings") and what was expected.
 BatchManifest read_batch_manifest(const std::string& path);
+// The same on the manifest file's bytes already in memory; `path` names it and resolves inputs.
+BatchManifest parse_batch_manifest(ByteView bytes, const std::string& path);
 
 struct BatchOptions {
   std::string output;          // root folder; asset A goes to OUTPUT/A

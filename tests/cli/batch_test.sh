@@ -128,6 +128,8 @@ badm '{"assets": [{"input": "in/octa.ply", "settings": {"threads": 1}}]}' "'thre
 badm '{"assets": [{"input": "in/octa.ply", "settings": {"tau": "x"}}]}' "assets\[0\] (octa): .*--tau"
 badm '{"assets": ["in/octa.ply"], "defaults": {"merge": 1}}' "'merge' is a switch"
 badm '{"assets": [' "m.json: byte [0-9]*: not valid JSON"
+# Valid JSON beyond what it can hold (found by tests/fuzz/fuzz_manifest): an input error, not an internal one.
+badm '{"assets": ["in/octa.ply"], "defaults": {"tau": 1e400}}' "m.json: unreadable JSON: .*number overflow"
 "$bake" batch "$work/batch.json" --shard 4/3 2>"$work/err"; [[ $? -eq 2 ]] && ok || bad "--shard 4/3 is a usage error"
 
 finish batch

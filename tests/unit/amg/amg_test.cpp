@@ -4,6 +4,7 @@
 #include <omp.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -12,6 +13,7 @@
 #include "amg/basis.h"
 #include "amg/hierarchy.h"
 #include "amg/hierarchy_cache.h"
+#include "core/hash.h"
 #include "analysis/analysis.h"
 #include "domains/domains.h"
 #include "domains/merge.h"
@@ -244,6 +246,26 @@ TEST(HierarchyCache, RoundTripsExactlyAndRejectsDamage) {
   std::ofstream(file, std::ios::binary) << flipped;
   EXPECT_FALSE(load_hierarchy(dir, key, &why));
   EXPECT_EQ(why, "corrupt (checksum)");
+  // A payload with a valid checksum but a damaged fine_order (not a permutation: the basis would
+  // scatter rows out of bounds) is corrupt too (issue 18; fuzz_cache scatters it the same way).
+  {
+    const std::size_t header = 8 + 4 + key.size() + 16;
+    std::string payload = bytes.substr(header);
+    const std::size_t order_at = 3 * 8 + h.levels.size() * 24 + 8;  // components, isolated, levels, per level, count
+    std::uint32_t first = 0;
+    std::memcpy(&first, payload.data() + order_at, 4);
+    ASSERT_LT(first, h.levels[0].size);
+    const std::uint32_t bad = static_cast<std::uint32_t>(h.levels[0].size) + 7;
+    std::memcpy(&payload[order_at], &bad, 4);
+    std::string forged = bytes.substr(0, header - 8);
+    const std::uint64_t sum = Sha256().update(ByteView(reinterpret_cast<const std::uint8_t*>(payload.data()), payload.size())).digest64();
+    forged.append(reinterpret_cast<const char*>(&sum), 8);
+    forged += payload;
+    EXPECT_FALSE(decode_hierarchy(ByteView(reinterpret_cast<const std::uint8_t*>(forged.data()), forged.size()), key, &why));
+    EXPECT_EQ(why, "corrupt");
+    // The unforged bytes decode from memory as from the file.
+    EXPECT_TRUE(decode_hierarchy(ByteView(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()), key, &why));
+  }
   std::filesystem::remove_all(dir);
 }
 

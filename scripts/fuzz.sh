@@ -1,0 +1,123 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets of tests/fuzz (Debian's clang, ASan + UBSan, folder build-fuzz, every
+# core) and runs each for SECONDS with a memory cap and a per-input timeout, two at a time on two cores.
+#
+#   scripts/fuzz.sh SECONDS [TARGET...]     targets: ply qsplat off obj xyz manifest glb cache (default: all)
+#
+# Prints one line per target (executions, executions/s, corpus size, coverage features) and closes
+# with "N passed, N failed"; exits 1 when any target found a crash, leak, timeout or out-of-memory
+# (its input is left in build-fuzz/artifacts/TARGET/, its log in build-fuzz/logs/TARGET.log), 2 on
+# bad usage or a failed build. The corpus each run grows is kept in build-fuzz/corpus/TARGET and
+# seeded from tests/fuzz/seeds and tests/data (valid and malformed files).
+# Environment: QF_FUZZ_TIMEOUT (seconds per input, default 10), QF_FUZZ_JOBS (targets at once,
+# default: the number of cores), QF_FUZZ_BUILD (build folder, default build-fuzz).
+set -uo pipefail
+
+root="$(cd "$(dirname "$0")/.." && pwd)"
+all_targets=(ply qsplat off obj xyz manifest glb cache)
+
+usage() {
+  echo "usage: scripts/fuzz.sh SECONDS [TARGET...]   (targets: ${all_targets[*]})" >&2
+  exit 2
+}
+[[ $# -ge 1 && "$1" =~ ^[0-9]+$ && "$1" -gt 0 ]] || usage
+seconds="$1"
+shift
+targets=("$@")
+[[ ${#targets[@]} -gt 0 ]] || targets=("${all_targets[@]}")
+for t in "${targets[@]}"; do
+  [[ " ${all_targets[*]} " == *" $t "* ]] || { echo "fuzz.sh: unknown target '$t'" >&2; usage; }
+done
+
+build="${QF_FUZZ_BUILD:-$root/build-fuzz}"
+per_input="${QF_FUZZ_TIMEOUT:-10}"
+cores="$(nproc)"
+jobs="${QF_FUZZ_JOBS:-$cores}"
+
+# 1. Build (clang + libFuzzer: packages clang and libclang-rt-14-dev, scripts/install-deps.sh).
+command -v clang++ >/dev/null || { echo "fuzz.sh: clang++ not found (scripts/install-deps.sh installs it)" >&2; exit 2; }
+if [[ ! -f "$build/build.ninja" ]]; then
+  cmake -S "$root/tests/fuzz" -B "$build" -G Ninja -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ >"$build.configure.log" 2>&1 ||
+    { cat "$build.configure.log" >&2; echo "fuzz.sh: configuring $build failed" >&2; exit 2; }
+  rm -f "$build.configure.log"
+fi
+build_targets=()
+for t in "${targets[@]}"; do build_targets+=("fuzz_$t"); done
+cmake --build "$build" -j "$cores" --target "${build_targets[@]}" >"$build/build.log" 2>&1 ||
+  { tail -40 "$build/build.log" >&2; echo "fuzz.sh: build failed (log: $build/build.log)" >&2; exit 2; }
+
+# 2. Seeds: tests/fuzz/seeds/TARGET plus the files of tests/data with the target's extensions.
+extensions() {
+  case "$1" in
+    ply) echo ply ;; qsplat) echo qs ;; off) echo off ;; obj) echo obj ;; xyz) echo "xyz pwn" ;;
+    manifest) echo json ;; glb) echo glb ;; cache) echo qfamg ;;
+  esac
+}
+dictionary() {
+  case "$1" in
+    ply) echo ply ;; off) echo off ;; obj) echo obj ;; xyz) echo xyz ;; manifest) echo json ;; glb) echo glb ;; *) echo "" ;;
+  esac
+}
+max_len() {  # large enough for the seeds; small inputs keep the runs fast
+  case "$1" in glb) echo 16384 ;; cache) echo 8192 ;; *) echo 4096 ;; esac
+}
+prepare_seeds() {
+  local t="$1" dir="$build/seeds/$1"
+  rm -rf "$dir" && mkdir -p "$dir" "$build/corpus/$t" "$build/artifacts/$t" "$build/logs"
+  [[ -d "$root/tests/fuzz/seeds/$t" ]] && cp "$root/tests/fuzz/seeds/$t"/* "$dir"/ 2>/dev/null
+  local e f
+  for e in $(extensions "$t"); do
+    while IFS= read -r -d '' f; do
+      cp "$f" "$dir/$(basename "$(dirname "$f")")_$(basename "$f")"
+    done < <(find "$root/tests/data" "$root/samples" -type f -name "*.$e" -size -64k -print0 2>/dev/null)
+  done
+}
+
+run_one() {
+  local t="$1" log="$build/logs/$1.log" dict
+  dict="$(dictionary "$t")"
+  local args=(-max_total_time="$seconds" -rss_limit_mb=2048 -malloc_limit_mb=2048 -timeout="$per_input"
+              -max_len="$(max_len "$t")" -print_final_stats=1 -artifact_prefix="$build/artifacts/$t/")
+  [[ -n "$dict" ]] && args+=(-dict="$root/tests/fuzz/dict/$dict.dict")
+  ASAN_OPTIONS="detect_leaks=1:allocator_may_return_null=0:abort_on_error=0" \
+  UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1" \
+    "$build/fuzz_$t" "${args[@]}" "$build/corpus/$t" "$build/seeds/$t" >"$log" 2>&1
+  echo $? >"$build/logs/$t.rc"
+}
+
+for t in "${targets[@]}"; do prepare_seeds "$t"; done
+start=$(date +%s)
+running=0
+for t in "${targets[@]}"; do
+  run_one "$t" &
+  running=$((running + 1))
+  if [[ $running -ge $jobs ]]; then
+    wait -n
+    running=$((running - 1))
+  fi
+done
+wait
+
+# 3. One line per target, in the order asked.
+passed=0
+failed=0
+for t in "${targets[@]}"; do
+  log="$build/logs/$t.log"
+  rc="$(cat "$build/logs/$t.rc" 2>/dev/null || echo 99)"
+  execs="$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)"
+  rate="$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -1)"
+  last="$(grep -E '^#[0-9]+' "$log" | grep -E 'corp: ' | tail -1)"
+  corp="$(sed -n 's/.*corp: \([0-9]*\)\/.*/\1/p' <<<"$last")"
+  ft="$(sed -n 's/.* ft: \([0-9]*\).*/\1/p' <<<"$last")"
+  status="ok"
+  if [[ "$rc" != 0 ]]; then
+    status="FAILED (exit $rc; $(grep -m1 -E 'ERROR: |SUMMARY: |ALARM|out-of-memory|fuzz invariant' "$log" | cut -c1-120); log $log)"
+    failed=$((failed + 1))
+  else
+    passed=$((passed + 1))
+  fi
+  printf '%-9s %10s execs %8s exec/s  corpus %5s  features %6s  %s\n' "$t" "${execs:-?}" "${rate:-?}" "${corp:-?}" "${ft:-?}" "$status"
+done
+echo "fuzz: ${#targets[@]} target(s), ${seconds} s each, $(( $(date +%s) - start )) s in all"
+echo "$passed passed, $failed failed"
+[[ $failed -eq 0 ]]

@@ -1,0 +1,8 @@
+// libFuzzer target: the OBJ reader (decode_model on the bytes as "fuzz.obj"), then the model's invariants.
+#include "fuzz_common.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  static const std::string path = "fuzz.obj";
+  qf::fuzz::read_and_check(data, size, path);
+  return 0;
+}
