@@ -22,6 +22,7 @@ packages=(
   libgtest-dev googletest libbenchmark-dev
   libmeshoptimizer-dev                            # benchmarks: meshopt_simplifySloppy beside our clustering
   python3-jsonschema                              # validates our JSON outputs against schemas/ in tests
+  clang libclang-rt-14-dev                        # libFuzzer + sanitizer runtimes: scripts/fuzz.sh, tests/fuzz
 )
 
 missing=()
