@@ -18,6 +18,9 @@ const std::vector<std::pair<std::string, Method>>& table() {
 }
 
 bool faces(const Item& it, Vec3f eye) { return dot(it.normal, eye - it.center) > 0; }
+// Double-sided levels draw quads seen from behind too (lit with the flipped normal), so open
+// surfaces and thin parts show from every side; single-sided ones cull them as GL would.
+bool visible(const ImpostorScene& s, const Item& it, Vec3f eye) { return s.double_sided || faces(it, eye); }
 
 // Item indices sorted by distance from the eye, nearest first; ties by index.
 std::vector<std::uint32_t> front_to_back(const ImpostorScene& s, Vec3f eye) {
@@ -32,16 +35,18 @@ std::vector<std::uint32_t> front_to_back(const ImpostorScene& s, Vec3f eye) {
   return order;
 }
 
-// Paper fig. 10: the front-most facing primitive not yet drawn and its not-yet-drawn neighbours
+// Paper fig. 10: the front-most visible primitive not yet drawn and its not-yet-drawn neighbours
 // are blended, then the primitive's pixels are locked in the depth buffer. Neighbours facing away
 // are culled (paper fig. 14c: "P2 is not rendered because it is backfacing"); drawn, they would add
 // their colour through the primitive in front of them wherever the surface bends by more than 90°.
+// A double-sided level's back-facing quads still come in their own turn, behind the locks of
+// everything in front of them: they fill what nothing in front covers (an open surface's inside).
 std::vector<DrawOp> overlap(const ImpostorScene& s, Vec3f eye) {
   std::vector<DrawOp> ops;
   std::vector<char> drawn(s.items.size(), 0);
   const bool graph = s.offsets.size() == s.items.size() + 1;
   for (std::uint32_t d : front_to_back(s, eye)) {
-    if (!faces(s.items[d], eye)) continue;
+    if (!visible(s, s.items[d], eye)) continue;
     if (!drawn[d]) ops.push_back({d, Pass::kColor}), drawn[d] = 1;
     if (graph)
       for (std::uint32_t j = s.offsets[d]; j < s.offsets[d + 1]; ++j) {
@@ -80,7 +85,7 @@ std::string method_name(Method m) {
 
 bool is_additive(Method m) { return m != Method::kNoBlend && m != Method::kEngine; }
 
-std::vector<DrawOp> plan_draws(Method method, const ImpostorScene& s, Vec3f eye, const std::string& alpha_mode) {
+std::vector<DrawOp> plan_draws(Method method, const ImpostorScene& s, Vec3f eye) {
   const auto n = static_cast<std::uint32_t>(s.items.size());
   std::vector<DrawOp> ops;
   switch (method) {
@@ -89,9 +94,9 @@ std::vector<DrawOp> plan_draws(Method method, const ImpostorScene& s, Vec3f eye,
     case Method::kTwoPass:
       // Unsorted: the offset depth image decides which fragments blend (thesis 4.4.2).
       for (std::uint32_t k = 0; k < n; ++k)
-        if (faces(s.items[k], eye)) ops.push_back({k, Pass::kDepthOffset});
+        if (visible(s, s.items[k], eye)) ops.push_back({k, Pass::kDepthOffset});
       for (std::uint32_t k = 0; k < n; ++k)
-        if (faces(s.items[k], eye)) ops.push_back({k, Pass::kColor});
+        if (visible(s, s.items[k], eye)) ops.push_back({k, Pass::kColor});
       return ops;
     case Method::kBackfaceHard:
     case Method::kBackfaceSoft: {
@@ -104,19 +109,14 @@ std::vector<DrawOp> plan_draws(Method method, const ImpostorScene& s, Vec3f eye,
     }
     case Method::kBlendAll:
       for (std::uint32_t k = 0; k < n; ++k)
-        if (faces(s.items[k], eye)) ops.push_back({k, Pass::kAddNoDepth});
+        if (visible(s, s.items[k], eye)) ops.push_back({k, Pass::kAddNoDepth});
       return ops;
     case Method::kNoBlend:
       for (std::uint32_t k = 0; k < n; ++k)
-        if (faces(s.items[k], eye)) ops.push_back({k, Pass::kOpaque});
+        if (visible(s, s.items[k], eye)) ops.push_back({k, Pass::kOpaque});
       return ops;
-    case Method::kEngine: {
-      // One mesh: engines draw its triangles in file order; single-sided materials cull back faces.
-      const Pass p = alpha_mode == "BLEND" ? Pass::kOver : Pass::kOpaque;
-      for (std::uint32_t k = 0; k < n; ++k)
-        if (faces(s.items[k], eye)) ops.push_back({k, p});
+    case Method::kEngine:  // not a pass list: draw_engine draws the file's materials
       return ops;
-    }
   }
   return ops;
 }

@@ -18,7 +18,7 @@ enum class Method {
   kBackfaceSoft,  // back to front; back faces darken the colour by their alpha (thesis 4.4.3)
   kBlendAll,      // every fragment added, no depth test (thesis app. C)
   kNoBlend,       // opaque quads, alpha test at alpha_ref, depth tested (thesis app. C)
-  kEngine,        // what a standard glTF engine does: the material's alphaMode, file order
+  kEngine,        // what a standard glTF PBR engine does (draw_engine.h; no pass list)
 };
 // "overlap", "two-pass", "backface-hard", "backface-soft", "blend-all", "no-blend", "engine".
 const std::vector<std::string>& method_names();
@@ -32,8 +32,7 @@ enum class Pass : std::uint8_t {
   kDarkenHard,   // colour and coverage set to 0 where alpha > 0, no depth test (dark back-face)
   kDarkenSoft,   // colour and coverage scaled by 1 - alpha, no depth test (dark back-face, soft)
   kAddNoDepth,   // colour only, additive, no depth test (blend-all; back-face methods' front faces)
-  kOpaque,       // straight colour, alpha test (> alpha_ref, or the MASK cutoff), depth tested and written
-  kOver,         // straight colour blended "over" (glTF BLEND), depth tested and written
+  kOpaque,       // straight colour, alpha test > alpha_ref, depth tested and written (no-blend)
 };
 
 struct DrawOp {
@@ -45,10 +44,10 @@ struct DrawOp {
 // coverage (so it is right over any background), rather than drawing over the background directly.
 bool is_additive(Method m);
 
-// The draw list of one frame seen from `eye`. `alpha_mode` is the glTF alpha mode the engine method
-// draws with ("OPAQUE", "MASK", "BLEND"; usually the scene's material's; ignored by other methods). Sorting is by squared distance from the eye to the item's centre, ties
-// by index (stable). An item faces the eye when dot(normal, eye - centre) > 0; every method but
-// the back-face ones culls items that do not (as GL back-face culling would).
-std::vector<DrawOp> plan_draws(Method method, const ImpostorScene& scene, Vec3f eye, const std::string& alpha_mode);
+// The draw list of one frame seen from `eye` (empty for kEngine). Sorting is by squared distance
+// from the eye to the item's centre, ties by index (stable). An item faces the eye when
+// dot(normal, eye - centre) > 0; on single-sided levels every method but the back-face ones culls
+// items that do not (as GL back-face culling would); double-sided levels draw them too.
+std::vector<DrawOp> plan_draws(Method method, const ImpostorScene& scene, Vec3f eye);
 
 }  // namespace qf::render

@@ -201,7 +201,7 @@ struct EngineDrawer::Impl {
     srgb.clear();
     linear.clear();
   }
-  void draw_primitive(const EnginePrimitive& p);
+  void draw_primitive(const EnginePrimitive& p, const EngineMaterial& mat);
 };
 
 namespace {
@@ -266,8 +266,7 @@ void EngineDrawer::set_scene(const EngineScene& scene) {
   }
 }
 
-void EngineDrawer::Impl::draw_primitive(const EnginePrimitive& p) {
-  const EngineMaterial& mat = p.material;
+void EngineDrawer::Impl::draw_primitive(const EnginePrimitive& p, const EngineMaterial& mat) {
   const bool lit = p.mode == EnginePrimitive::Mode::kTriangles;  // lines and points: unlit materials
   glUniform4fv(loc("u_base_color"), 1, mat.base_color.data());
   glUniform1f(loc("u_metallic"), mat.metallic);
@@ -310,9 +309,18 @@ void EngineDrawer::Impl::draw_primitive(const EnginePrimitive& p) {
   glDrawElements(mode, static_cast<GLsizei>(p.indices.size()), GL_UNSIGNED_INT, p.indices.data());
 }
 
-void EngineDrawer::draw(const Camera& camera, const EngineLights& lights) {
+void EngineDrawer::draw(const Camera& camera, const EngineLights& lights, const std::optional<std::string>& alpha_mode,
+                        float alpha_cutoff) {
   Impl& m = *impl_;
   if (!m.scene) return;
+  auto material_of = [&](const EnginePrimitive& p) {
+    EngineMaterial mat = p.material;
+    if (p.mode != EnginePrimitive::Mode::kTriangles) return mat;
+    if (alpha_mode)
+      mat.alpha = *alpha_mode == "MASK" ? EngineMaterial::Alpha::kMask : *alpha_mode == "BLEND" ? EngineMaterial::Alpha::kBlend : EngineMaterial::Alpha::kOpaque;
+    if (alpha_cutoff >= 0) mat.alpha_cutoff = alpha_cutoff;
+    return mat;
+  };
   glUseProgram(m.program);
   glUniformMatrix4fv(m.loc("u_view"), 1, GL_FALSE, camera.view().data());
   glUniformMatrix4fv(m.loc("u_proj"), 1, GL_FALSE, camera.projection().data());
@@ -339,8 +347,10 @@ void EngineDrawer::draw(const Camera& camera, const EngineLights& lights) {
     glDepthMask(blend_pass ? GL_FALSE : GL_TRUE);
     if (blend_pass) glEnable(GL_BLEND), glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
     else glDisable(GL_BLEND);
-    for (const EnginePrimitive& p : m.scene->primitives)
-      if ((p.material.alpha == EngineMaterial::Alpha::kBlend) == blend_pass) m.draw_primitive(p);
+    for (const EnginePrimitive& p : m.scene->primitives) {
+      const EngineMaterial mat = material_of(p);
+      if ((mat.alpha == EngineMaterial::Alpha::kBlend) == blend_pass) m.draw_primitive(p, mat);
+    }
   }
   for (GLuint a : {kPos, kNrm, kTan, kUv, kCol}) glDisableVertexAttribArray(a);
   glDisable(GL_BLEND);

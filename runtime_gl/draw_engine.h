@@ -11,6 +11,8 @@
 #pragma once
 
 #include <memory>
+#include <optional>
+#include <string>
 
 #include "runtime_gl/camera.h"
 #include "runtime_gl/engine_scene.h"
@@ -28,7 +30,10 @@ class EngineDrawer {
   void set_scene(const EngineScene& scene);
   // Draws the scene over what the framebuffer holds (clear it first): opaque and masked
   // primitives in file order, then blended ones in file order with depth writes off.
-  void draw(const Camera& camera, const EngineLights& lights);
+  // `alpha_mode` ("OPAQUE", "MASK", "BLEND") and `alpha_cutoff` (>= 0) override every triangle
+  // material's, to measure what another choice would look like.
+  void draw(const Camera& camera, const EngineLights& lights, const std::optional<std::string>& alpha_mode = {},
+            float alpha_cutoff = -1);
 
  private:
   struct Impl;

@@ -423,9 +423,7 @@ void Renderer::Impl::draw_impostor(const Camera& c, const DrawSettings& s, DrawS
   // framebuffer (the composite divides it out); the lock's test scales with it.
   const float headroom = normalizing(s) ? kNormalizeHeadroom : 1.0f;
   const float alpha_ref = (s.alpha_ref >= 0 ? s.alpha_ref : sc.alpha_ref) * headroom;
-  const std::string mode = s.alpha_mode ? *s.alpha_mode : sc.alpha_mode;
-  const float cutoff = s.alpha_cutoff >= 0 ? s.alpha_cutoff : sc.alpha_cutoff;
-  const std::vector<DrawOp> ops = plan_draws(s.method, sc, c.eye, mode);
+  const std::vector<DrawOp> ops = plan_draws(s.method, sc, c.eye);
   const float a = normalizing(s) ? headroom : std::clamp(s.transparency, 0.0f, 1.0f);
   const float offset = s.depth_offset > 0 ? s.depth_offset : 0.5f * median_half_diagonal(sc);
   Mat4 view_offset = c.view();
@@ -437,6 +435,8 @@ void Renderer::Impl::draw_impostor(const Camera& c, const DrawSettings& s, DrawS
   glVertexPointer(3, GL_FLOAT, 0, sc.positions.data());
   glNormalPointer(GL_FLOAT, 0, sc.normals.data());
   glTexCoordPointer(2, GL_FLOAT, 0, sc.uvs.data());
+  // Quads seen from behind (double-sided levels) are lit with the flipped normal.
+  glLightModeli(GL_LIGHT_MODEL_TWO_SIDE, sc.double_sided ? GL_TRUE : GL_FALSE);
   glEnable(GL_TEXTURE_2D);
   glTexEnvi(GL_TEXTURE_ENV, GL_TEXTURE_ENV_MODE, GL_MODULATE);
   glDepthFunc(GL_LESS);
@@ -444,13 +444,13 @@ void Renderer::Impl::draw_impostor(const Camera& c, const DrawSettings& s, DrawS
   int bound_pass = -1;
   GLuint bound_texture = 0;
   for (const DrawOp& op : ops) {
-    const bool premult = op.pass != Pass::kOpaque && op.pass != Pass::kOver;
+    const bool premult = op.pass != Pass::kOpaque;
     if (static_cast<int>(op.pass) != bound_pass) {
       ++stats.state_changes;
       bound_pass = static_cast<int>(op.pass);
       const bool color = op.pass != Pass::kLock && op.pass != Pass::kDepthOffset;
       const bool depth_test = op.pass != Pass::kDarkenHard && op.pass != Pass::kDarkenSoft && op.pass != Pass::kAddNoDepth;
-      const bool depth_write = op.pass == Pass::kLock || op.pass == Pass::kDepthOffset || op.pass == Pass::kOpaque || op.pass == Pass::kOver;
+      const bool depth_write = op.pass == Pass::kLock || op.pass == Pass::kDepthOffset || op.pass == Pass::kOpaque;
       glColorMask(color, color, color, color);
       glDepthMask(depth_write ? GL_TRUE : GL_FALSE);
       if (depth_test) glEnable(GL_DEPTH_TEST);
@@ -462,7 +462,6 @@ void Renderer::Impl::draw_impostor(const Camera& c, const DrawSettings& s, DrawS
         case Pass::kAddNoDepth: glEnable(GL_BLEND), glBlendFunc(GL_ONE, GL_ONE); break;
         case Pass::kDarkenHard: glEnable(GL_BLEND), glBlendFunc(GL_ZERO, GL_ZERO); break;
         case Pass::kDarkenSoft: glEnable(GL_BLEND), glBlendFunc(GL_ZERO, GL_ONE_MINUS_SRC_ALPHA); break;
-        case Pass::kOver: glEnable(GL_BLEND), glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA); break;
         default: glDisable(GL_BLEND); break;
       }
       // Alpha test.
@@ -471,25 +470,22 @@ void Renderer::Impl::draw_impostor(const Camera& c, const DrawSettings& s, DrawS
         case Pass::kLock: glAlphaFunc(GL_GREATER, alpha_ref); break;
         case Pass::kDepthOffset:
         case Pass::kDarkenHard: glAlphaFunc(GL_GREATER, 0.0f); break;
-        case Pass::kOpaque:
-          if (s.method == Method::kNoBlend) glAlphaFunc(GL_GREATER, alpha_ref);
-          else if (mode == "MASK") glAlphaFunc(GL_GEQUAL, cutoff);  // glTF: opaque where alpha >= cutoff
-          else glDisable(GL_ALPHA_TEST);
-          break;
+        case Pass::kOpaque: glAlphaFunc(GL_GREATER, alpha_ref); break;
         default: glDisable(GL_ALPHA_TEST); break;
       }
       if (premult) glColor4f(a, a, a, a);
-      else glColor4f(1, 1, 1, op.pass == Pass::kOver ? a : 1.0f);
+      else glColor4f(1, 1, 1, 1);
     }
     const Item& it = sc.items[op.item];
     const GLuint tex = (premult ? premultiplied : straight)[it.texture];
     if (tex != bound_texture) glBindTexture(GL_TEXTURE_2D, tex), bound_texture = tex;
     glDrawArrays(GL_TRIANGLES, static_cast<GLint>(it.first_vertex), static_cast<GLsizei>(it.vertex_count));
-    if (op.pass == Pass::kColor || op.pass == Pass::kAddNoDepth || op.pass == Pass::kOpaque || op.pass == Pass::kOver) ++stats.color_draws;
+    if (op.pass == Pass::kColor || op.pass == Pass::kAddNoDepth || op.pass == Pass::kOpaque) ++stats.color_draws;
     else if (op.pass == Pass::kLock) ++stats.lock_draws;
     else ++stats.other_draws;
   }
   glDisableClientState(GL_TEXTURE_COORD_ARRAY);
+  glLightModeli(GL_LIGHT_MODEL_TWO_SIDE, GL_FALSE);
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   glDepthMask(GL_TRUE);
 }
@@ -576,7 +572,7 @@ DrawStats Renderer::draw(const Camera& camera, const DrawSettings& s) {
   glDisable(GL_ALPHA_TEST);
   m.setup_camera_and_light(camera, s.lighting);
   DrawStats stats;
-  if (engine) m.engine->draw(camera, s.lights);
+  if (engine) m.engine->draw(camera, s.lights, s.alpha_mode, s.alpha_cutoff);
   else if (m.impostor) m.draw_impostor(camera, s, stats);
   else if (m.points) m.draw_points(camera, stats);
   else if (m.splats) m.draw_splats();

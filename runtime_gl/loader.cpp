@@ -417,6 +417,7 @@ ImpostorScene impostor_scene(const tinygltf::Model& m, const std::string& path) 
   if (!m.materials.empty()) {
     s.alpha_mode = m.materials[0].alphaMode;
     s.alpha_cutoff = static_cast<float>(m.materials[0].alphaCutoff);
+    s.double_sided = m.materials[0].doubleSided;
   }
 
   // 1. Every triangle primitive of every mesh, expanded to flat vertex arrays; `groups` lists the

@@ -334,6 +334,7 @@ int run_eval(const ParsedArgs& a) {
                       {"size", {w, h}},
                       {"background", {background.r, background.g, background.b}},
                       {"method", method_name(settings.method)}});
+  if (baked.kind == AnyScene::kImpostor) report["engine_alpha_mode"] = settings.alpha_mode ? *settings.alpha_mode : s.alpha_mode;
   report["mean"][method_name(settings.method)] = metrics_json(mean_of(main_metrics));
   if (with_engine) report["mean"]["engine"] = metrics_json(mean_of(engine_metrics));
   if (!external.empty()) {

@@ -40,6 +40,7 @@ struct ImpostorScene {
   float alpha_ref = 0.1f;       // lock-by-depth alpha test (the extension's alphaRef)
   std::string alpha_mode = "OPAQUE";  // the material's glTF alphaMode (first material)
   float alpha_cutoff = 0.5f;          // the material's alphaCutoff (MASK)
+  bool double_sided = false;          // the material's doubleSided: quads seen from behind are drawn too
   Bounds bounds;
 };
 

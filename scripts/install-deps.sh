@@ -23,6 +23,7 @@ packages=(
   libmeshoptimizer-dev                            # benchmarks: meshopt_simplifySloppy beside our clustering
   python3-jsonschema                              # validates our JSON outputs against schemas/ in tests
   clang libclang-rt-14-dev                        # libFuzzer + sanitizer runtimes: scripts/fuzz.sh, tests/fuzz
+  chromium                                        # three.js renders (scripts/three-render): engine-truth test, fidelity league
 )
 
 missing=()
@@ -43,9 +44,13 @@ if [[ ${#missing[@]} -gt 0 ]]; then
   $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-# npm packages, pinned by scripts/validate-gltf/package-lock.json.
-validator_dir="$(cd "$(dirname "$0")" && pwd)/validate-gltf"
-if [[ ! -f "$validator_dir/node_modules/gltf-validator/package.json" ]]; then
-  echo "install-deps: installing the glTF validator (npm ci)"
-  npm ci --prefix "$validator_dir" --no-audit --no-fund --loglevel=error
-fi
+# npm packages, pinned by their package-lock.json: the glTF validator, and three.js + playwright-core
+# (which drives Debian's chromium; it downloads no browser of its own).
+scripts_dir="$(cd "$(dirname "$0")" && pwd)"
+for pkg in validate-gltf/node_modules/gltf-validator three-render/node_modules/three three-render/node_modules/playwright-core; do
+  dir="$scripts_dir/${pkg%%/node_modules/*}"
+  if [[ ! -f "$scripts_dir/$pkg/package.json" ]]; then
+    echo "install-deps: installing ${dir##*/} (npm ci)"
+    npm ci --prefix "$dir" --no-audit --no-fund --loglevel=error
+  fi
+done

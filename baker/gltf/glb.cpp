@@ -130,7 +130,10 @@ int add_level(tinygltf::Model& m, const ImpostorLevel& level, const GltfOptions&
       mat.normalTexture.index = add_png_texture(m, atlas.normal_images[i], atlas.widths[i], atlas.heights[i], mat.name + "_normal");
     mat.alphaMode = options.alpha_mode;
     if (options.alpha_mode == "MASK") mat.alphaCutoff = options.alpha_cutoff;
-    mat.doubleSided = false;
+    // Double-sided: seen from behind (an open surface's inside, a thin part's far side) a quad
+    // still shows, lit with its flipped normal; culled, it leaves a hole (CGAL's lion, open at the
+    // neck: 20% holes in three.js single-sided).
+    mat.doubleSided = true;
     m.materials.push_back(mat);
   }
 

@@ -81,13 +81,14 @@ fi
 # 5. The window (Xvfb): same picture as headless (window surface vs framebuffer object), to 2 LSB
 #    with the plain sum. The two rasterise 1 LSB apart at a few silhouette pixels; the overlap
 #    method's default normalising composite divides by the coverage there (down to 1/4), so the
-#    default frame is held to 4 LSB.
+#    default frame is held to 4 LSB; at most 0.1% of pixels may exceed the bound (double-sided
+#    levels put a few back-facing quads' low-coverage edges at the silhouette: 1 pixel of 16384 at 8 LSB).
 if command -v xvfb-run >/dev/null; then
   for case in "plain 0 0.008" "normalised 0.5 0.016"; do
     read -r name t tol <<<"$case"
     if xvfb-run -a -s "-screen 0 640x480x24" "$render" view "${file[merged]}" --frames 3 --size 128 --normalize "$t" -o "$work/win.png" 2>"$work/err"; then
       "$render" "${file[merged]}" -o "$work/head.png" --size 128 --normalize "$t" 2>/dev/null
-      if idiff -q -fail "$tol" -failpercent 0.1 "$work/head.png" "$work/win.png" >/dev/null 2>&1; then ok
+      if idiff -q -fail "$tol" -failpercent 0.1 -warn "$tol" -warnpercent 0.1 "$work/head.png" "$work/win.png" >/dev/null 2>&1; then ok
       else bad "window frame ($name) differs from the headless render"; fi
     else
       bad "view under Xvfb failed: $(cat "$work/err")"

@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# The engine method is engine-true: baked files of every kind (an impostor level of the bundled
+# octahedron; a cluster LOD and the point impostor of a generated cube mesh) rendered by three.js
+# r187 in headless Chromium (scripts/three-render) and by `qf-render eval`'s engine method from the
+# same 8 cameras with the same lights score the same against the reference: PSNR within 1 dB and
+# silhouette IoU within 0.005; and the two renders of each file match each other (PSNR >= 30 dB
+# between them, IoU >= 0.99).
+# usage: three_test.sh QF_BAKE QF_RENDER SOURCE_DIR
+set -u
+bake=$1 render=$2 src=$3
+three="$src/scripts/three-render"
+[[ -f "$three/node_modules/three/package.json" && -f "$three/node_modules/playwright-core/package.json" ]] ||
+  { echo "FAIL: three.js / playwright-core not installed: run scripts/install-deps.sh"; exit 1; }
+[[ -x "${QF_CHROMIUM:-/usr/bin/chromium}" ]] || { echo "FAIL: no Chromium at ${QF_CHROMIUM:-/usr/bin/chromium}: run scripts/install-deps.sh"; exit 1; }
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fail() { echo "FAIL: $*"; exit 1; }
+
+"$bake" "$src/samples/octahedron.ply" -o "$work/oct" --primitives 100 -q || fail "bake octahedron"
+"$bake" generate cube --mesh --subdivisions 8 -o "$work/cube.ply" -q || fail "generate cube"
+"$bake" "$work/cube.ply" -o "$work/cube" --primitives 30 --ldi 96 -q || fail "bake cube"
+level=$(ls "$work"/oct/octahedron_L*.glb | head -n 1)
+cases=("$src/samples/octahedron.ply|$level" "$work/cube.ply|$work/cube/cube_C1.glb" "$work/cube.ply|$work/cube/cube_points.glb")
+
+jobs="["
+for i in "${!cases[@]}"; do
+  ref=${cases[$i]%%|*} baked=${cases[$i]#*|}
+  "$render" eval "$ref" "$baked" --views 8 --size 128 --no-engine --cameras "$work/cams_$i.json" -o "$work/unused.json" 2>/dev/null ||
+    fail "eval --cameras $baked"
+  jobs+="$([[ $i -gt 0 ]] && echo ,){\"file\":\"$baked\",\"cameras\":\"$work/cams_$i.json\",\"out\":\"$work/three_$i\"}"
+done
+echo "$jobs]" >"$work/jobs.json"
+node "$three/render.mjs" --jobs "$work/jobs.json" || fail "three.js renders"
+
+status=0
+for i in "${!cases[@]}"; do
+  ref=${cases[$i]%%|*} baked=${cases[$i]#*|}
+  "$render" eval "$ref" "$baked" --views 8 --size 128 --external "$work/three_$i" -o "$work/eval_$i.json" 2>/dev/null ||
+    fail "eval --external $baked"
+  python3 - "$work/eval_$i.json" "$(basename "$baked")" <<'PY' || status=1
+import json, sys
+r = json.load(open(sys.argv[1]))["mean"]
+e, x, a = r["engine"], r["external"], r["engine_vs_external"]
+dp, di = abs(e["psnr"] - x["psnr"]), abs(e["iou"] - x["iou"])
+ok = dp <= 1.0 and di <= 0.005 and a["psnr"] >= 30 and a["iou"] >= 0.99
+print(f"{'ok  ' if ok else 'FAIL'} {sys.argv[2]}: qf-render engine PSNR {e['psnr']:.3f} dB IoU {e['iou']:.4f}; "
+      f"three.js {x['psnr']:.3f} dB IoU {x['iou']:.4f} (|d| {dp:.3f} dB, {di:.4f}); "
+      f"qf-render vs three.js {a['psnr']:.1f} dB IoU {a['iou']:.4f}")
+sys.exit(0 if ok else 1)
+PY
+done
+[[ $status == 0 ]] && echo "engine method agrees with three.js on ${#cases[@]} files"
+exit $status
