@@ -79,13 +79,16 @@ run_one() {
   local args=(-max_total_time="$seconds" -rss_limit_mb=2048 -malloc_limit_mb=2048 -timeout="$per_input"
               -max_len="$(max_len "$t")" -print_final_stats=1 -artifact_prefix="$build/artifacts/$t/")
   [[ -n "$dict" ]] && args+=(-dict="$root/tests/fuzz/dict/$dict.dict")
-  ASAN_OPTIONS="detect_leaks=1:allocator_may_return_null=0:abort_on_error=0" \
+  QF_FUZZ_SCRATCH="$scratch/$t" ASAN_OPTIONS="detect_leaks=1:allocator_may_return_null=0:abort_on_error=0" \
   UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1" \
     "$build/fuzz_$t" "${args[@]}" "$build/corpus/$t" "$build/seeds/$t" >"$log" 2>&1
   echo $? >"$build/logs/$t.rc"
 }
 
 for t in "${targets[@]}"; do prepare_seeds "$t"; done
+# The .glb loader reads only from paths: its inputs go through a file in memory (/dev/shm).
+scratch="$(mktemp -d "$( [[ -d /dev/shm ]] && echo /dev/shm || echo /tmp )/qf-fuzz.XXXXXX")"
+trap 'rm -rf "$scratch"' EXIT
 start=$(date +%s)
 running=0
 for t in "${targets[@]}"; do

@@ -13,11 +13,24 @@
 
 namespace {
 
+// The folder: $QF_FUZZ_SCRATCH (scripts/fuzz.sh makes one and removes it), else a folder of this
+// process under /dev/shm, removed at exit.
+std::string scratch_dir;
+void remove_scratch() {
+  std::error_code ec;
+  std::filesystem::remove_all(scratch_dir, ec);
+}
 std::string scratch_file() {
+  const char* given = std::getenv("QF_FUZZ_SCRATCH");
+  if (given && *given) {
+    std::filesystem::create_directories(given);
+    return std::string(given) + "/input.glb";
+  }
   const char* base = std::filesystem::is_directory("/dev/shm") ? "/dev/shm" : "/tmp";
-  const std::string dir = std::string(base) + "/qf-fuzz-glb-" + std::to_string(::getpid());
-  std::filesystem::create_directories(dir);
-  return dir + "/input.glb";
+  scratch_dir = std::string(base) + "/qf-fuzz-glb-" + std::to_string(::getpid());
+  std::filesystem::create_directories(scratch_dir);
+  std::atexit(remove_scratch);
+  return scratch_dir + "/input.glb";
 }
 
 void check_impostor(const qf::render::ImpostorScene& s) {
