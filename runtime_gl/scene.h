@@ -92,8 +92,8 @@ inline std::size_t points_to_draw(std::size_t n0, float pixel, float distance, d
   return n >= double(n0) ? n0 : static_cast<std::size_t>(n);
 }
 
-// The colour of uncoloured inputs: the same constant the baker puts into the textures
-// (TextureOptions::base_color), so references and impostors of such inputs match.
-constexpr Rgb8 kBaseColor{200, 200, 200};
+// The colour of uncoloured inputs: the same constant the baker gives every output of such inputs,
+// so references and baked files match.
+constexpr Rgb8 kBaseColor = kUncolouredColor;
 
 }  // namespace qf::render

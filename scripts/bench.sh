@@ -40,7 +40,7 @@ for w in "${what[@]}"; do
       tmp=$(mktemp -d)
       for m in bunny00 fandisk; do
         # The meshes' vertices are the point sets (the mesh sampler is issue 7's).
-        awk 'NR == 1 { next } NR == 2 { n = $1; next } n > 0 { print $1, $2, $3; n-- }' "$models/$m.off" >"$tmp/$m.xyz"
+        build/bin/qf-bake convert "$models/$m.off" "$tmp/$m.xyz" --vertices -q
         build/bin/qf-bake "$tmp/$m.xyz" -o "$tmp/$m" -q
         echo "render: $m (default LOD set)"
         build/bin/qf-bench-render "$tmp/$m.xyz" "$tmp/$m"/*.glb
@@ -50,7 +50,7 @@ for w in "${what[@]}"; do
     bake)
       models=$(scripts/fetch-models.sh bunny00.off | tail -1)
       tmp=$(mktemp -d)
-      awk 'NR == 1 { next } NR == 2 { n = $1; next } n > 0 { print $1, $2, $3; n-- }' "$models/bunny00.off" >"$tmp/bunny00.xyz"
+      build/bin/qf-bake convert "$models/bunny00.off" "$tmp/bunny00.xyz" --vertices -q
       build/bin/qf-bake generate torus --points 1000000 -o "$tmp/torus1M.ply" -q
       echo "bake: qf-bake IN -o OUT, default levels, no cache (wall clock per stage; peak = process VmHWM)"
       for input in "$tmp/bunny00.xyz" "$models/kitten.xyz" "$tmp/torus1M.ply"; do

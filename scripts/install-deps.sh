@@ -20,7 +20,7 @@ packages=(
   fonts-dejavu-core                               # captions of the demo's side-by-side picture
   # tests
   libgtest-dev googletest libbenchmark-dev
-  libmeshoptimizer-dev                            # benchmarks: meshopt_simplifySloppy beside our clustering
+  libmeshoptimizer-dev                            # edge-collapse mesh LODs (qf-bake simplify); the clustering benchmark
   python3-jsonschema                              # validates our JSON outputs against schemas/ in tests
   clang libclang-rt-14-dev                        # libFuzzer + sanitizer runtimes: scripts/fuzz.sh, tests/fuzz
   chromium                                        # three.js renders (scripts/three-render): engine-truth test, fidelity league

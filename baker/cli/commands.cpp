@@ -146,6 +146,7 @@ const std::vector<Command>& commands() {
         "(normals, colours when the mesh has them, radii from the pixel size).\n"
         "OUT is written to a temporary name and renamed, so it is never left half-written.",
         with_sampling({{"radius-k", 0, "K", "6", "missing radii reach the K-th nearest neighbour"},
+                       {"vertices", 0, "", "", "mesh inputs: the mesh's vertices (with their normals and colours when it has them) are the points, instead of sampling its surface"},
                        drop_nonfinite_option(),
                        {"quiet", 'q', "", "", "print nothing on success"}}),
         2, 2},
@@ -166,6 +167,7 @@ const std::vector<Command>& commands() {
       {decompose_spec(), run_decompose},
       {bake_spec(), run_bake},
       {cluster_spec(), run_cluster},
+      {simplify_spec(), run_simplify},
       {batch_spec(), run_batch},
       {merge_reports_spec(), run_merge_reports},
   };
@@ -183,7 +185,23 @@ int run_convert(const ParsedArgs& args) {
   radius.k = static_cast<int>(args.get_int("radius-k", radius.k, 1, 1000));
   ReadReport report;
   SampleStats sampled;
-  PointSet points = load_points(in, args, "convert", report, &sampled);
+  PointSet points;
+  if (args.flag("vertices")) {
+    ReadOptions ro;
+    ro.drop_nonfinite = args.flag("drop-nonfinite");
+    Model model = read_model(in, ro, &report);
+    if (model.is_mesh) {
+      points.positions = std::move(model.mesh.positions);
+      points.normals = std::move(model.mesh.normals);
+      points.colors = std::move(model.mesh.colors);
+      points.comments = std::move(model.mesh.comments);
+    } else {
+      points = std::move(model.points);
+    }
+    if (points.size() == 0) throw InputError("convert.empty", in, "", "holds no points");
+  } else {
+    points = load_points(in, args, "convert", report, &sampled);
+  }
   std::size_t estimated = 0;
   if (out_ext == "ply" || out_ext == "qs") estimated = estimate_radii(points, radius);
   write_point_set(out, points);

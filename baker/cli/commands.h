@@ -70,5 +70,7 @@ CommandSpec merge_reports_spec();
 int run_merge_reports(const ParsedArgs& args);
 CommandSpec cluster_spec();
 int run_cluster(const ParsedArgs& args);
+CommandSpec simplify_spec();
+int run_simplify(const ParsedArgs& args);
 
 }  // namespace qf::cli

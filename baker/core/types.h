@@ -43,6 +43,9 @@ struct Rgb8 {
   std::uint8_t r = 0, g = 0, b = 0;
 };
 inline bool operator==(Rgb8 a, Rgb8 b) { return a.r == b.r && a.g == b.g && a.b == b.b; }
+// The colour every output of an uncoloured input carries (impostor textures, mesh LODs, point
+// impostors, reference renders), so an engine switching between them shows one look.
+constexpr Rgb8 kUncolouredColor{200, 200, 200};
 
 // Axis-aligned box. An empty box has min > max (the default).
 struct Bounds {

@@ -308,18 +308,33 @@ tinygltf::Primitive draco_triangles(tinygltf::Model& m, const std::vector<float>
   return prim;
 }
 
+
+// Mesh LODs, point impostors and simplified meshes share one material: a rough dielectric seen
+// from both sides, white (times COLOR_0) for coloured inputs, else kUncolouredColor, so an engine
+// draws them in the impostor levels' colour instead of the glTF default's metallic white (which
+// three.js shows 3-60 dB off the reference, and ~48 grey levels off the impostor levels).
+void add_lod_material(tinygltf::Model& m, const std::string& name, bool coloured) {
+  tinygltf::Material mat;
+  mat.name = name;
+  mat.pbrMetallicRoughness.metallicFactor = 0.0;
+  mat.pbrMetallicRoughness.roughnessFactor = 1.0;
+  if (!coloured) {
+    const Rgb8 c = kUncolouredColor;
+    mat.pbrMetallicRoughness.baseColorFactor.clear();
+    for (std::uint8_t v : {c.r, c.g, c.b}) mat.pbrMetallicRoughness.baseColorFactor.push_back(canonical_double(srgb_to_linear16(v) / 65535.0f));
+    mat.pbrMetallicRoughness.baseColorFactor.push_back(1.0);
+  }
+  mat.doubleSided = true;
+  m.materials.push_back(mat);
+}
+
 }  // namespace
 
 std::vector<std::uint8_t> encode_cluster_glb(const LodMesh& lod, const GltfOptions& options, bool draco) {
   tinygltf::Model m = new_model(options);
   m.samplers.clear();
-  tinygltf::Material mat;
-  mat.name = "cluster_lod";
-  mat.pbrMetallicRoughness.metallicFactor = 0.0;
-  mat.pbrMetallicRoughness.roughnessFactor = 1.0;
-  mat.doubleSided = true;
-  m.materials.push_back(mat);
   const bool coloured = lod.colors.size() == lod.positions.size() && !lod.colors.empty();
+  add_lod_material(m, "cluster_lod", coloured);
   tinygltf::Mesh mesh;
   mesh.name = "cluster_lod";
   // Each primitive gets its own vertex arrays (unshared: simple, and a reader can take any alone).
@@ -397,8 +412,10 @@ std::vector<std::uint8_t> encode_point_glb(const PointSet& p, const PointImposto
   std::vector<float> pos, nrm;
   for (Vec3f q : p.positions) pos.insert(pos.end(), {q.x, q.y, q.z});
   for (Vec3f q : p.normals) nrm.insert(nrm.end(), {q.x, q.y, q.z});
+  add_lod_material(m, "point_impostor", p.has_colors());
   tinygltf::Primitive prim;
   prim.mode = TINYGLTF_MODE_POINTS;
+  prim.material = 0;
   prim.attributes["POSITION"] = add_floats(m, pos, 3, TINYGLTF_TYPE_VEC3, true);
   if (!nrm.empty()) prim.attributes["NORMAL"] = add_floats(m, nrm, 3, TINYGLTF_TYPE_VEC3, false);
   if (p.has_colors()) {
@@ -446,6 +463,60 @@ std::vector<std::uint8_t> encode_lod_glb(const std::vector<const ImpostorLevel*>
   }
   tinygltf::Scene scene;
   scene.nodes.push_back(nodes[0]);
+  m.scenes.push_back(scene);
+  m.defaultScene = 0;
+  return write_glb(m);
+}
+
+}  // namespace qf
+
+namespace qf {
+
+std::vector<std::uint8_t> encode_mesh_glb(const TriangleMesh& mesh, bool smooth_normals, const GltfOptions& options) {
+  if (mesh.triangles.empty()) throw std::invalid_argument("encode_mesh_glb: a mesh without triangles");
+  tinygltf::Model m = new_model(options);
+  m.samplers.clear();
+  const bool coloured = mesh.colors.size() == mesh.positions.size() && !mesh.colors.empty();
+  add_lod_material(m, "mesh_lod", coloured);
+  std::vector<float> pos;
+  for (Vec3f q : mesh.positions) pos.insert(pos.end(), {q.x, q.y, q.z});
+  tinygltf::Primitive prim;
+  prim.mode = TINYGLTF_MODE_TRIANGLES;
+  prim.material = 0;
+  prim.attributes["POSITION"] = add_floats(m, pos, 3, TINYGLTF_TYPE_VEC3, true);
+  if (smooth_normals) {
+    std::vector<Vec3f> vn(mesh.positions.size());
+    for (const Triangle& t : mesh.triangles) {
+      const Vec3f n = cross(mesh.positions[t[1]] - mesh.positions[t[0]], mesh.positions[t[2]] - mesh.positions[t[0]]);
+      for (std::uint32_t v : t) vn[v] = vn[v] + n;
+    }
+    std::vector<float> nrm;
+    for (Vec3f n : vn) {
+      const Vec3f u = dot(n, n) > 0 ? normalized(n) : Vec3f{0, 0, 1};
+      nrm.insert(nrm.end(), {u.x, u.y, u.z});
+    }
+    prim.attributes["NORMAL"] = add_floats(m, nrm, 3, TINYGLTF_TYPE_VEC3, false);
+  }
+  if (coloured) prim.attributes["COLOR_0"] = add_colors(m, mesh.colors);
+  std::vector<std::uint32_t> idx;
+  for (const Triangle& t : mesh.triangles) idx.insert(idx.end(), t.begin(), t.end());
+  tinygltf::Accessor ia;
+  ia.bufferView = add_view(m, idx.data(), idx.size() * sizeof(std::uint32_t), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+  ia.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+  ia.count = idx.size();
+  ia.type = TINYGLTF_TYPE_SCALAR;
+  m.accessors.push_back(ia);
+  prim.indices = static_cast<int>(m.accessors.size() - 1);
+  tinygltf::Mesh gm;
+  gm.name = "mesh_lod";
+  gm.primitives.push_back(prim);
+  m.meshes.push_back(gm);
+  tinygltf::Node node;
+  node.name = gm.name;
+  node.mesh = 0;
+  m.nodes.push_back(node);
+  tinygltf::Scene scene;
+  scene.nodes.push_back(0);
   m.scenes.push_back(scene);
   m.defaultScene = 0;
   return write_glb(m);

@@ -30,7 +30,7 @@ struct TextureOptions {
   float width = 1.0f;                              // radial support = width x point radius
   RadialNormalization normalization = RadialNormalization::kWhenAtLeastOne;
   bool extend_colors = true;  // texels with alpha 0 take the colour of the nearest coloured texel
-  Rgb8 base_color{200, 200, 200};  // for inputs without colours
+  Rgb8 base_color = kUncolouredColor;  // for inputs without colours
 };
 
 // An RGBA8 image, rows from t = -half_v (row 0) upward; texel (i, j) is centred at

@@ -86,6 +86,10 @@ grep -q "sampled (gl" "$work/err" && ok || bad "convert reports the GL sampling:
 expect 0 "convert a mesh on the CPU" -- "$bake" convert "$qsplat/pyr.ply" "$work/pyr_cpu.xyz" --ldi 64 --sampler cpu
 n_gl=$(wc -l <"$work/pyr.xyz") n_cpu=$(wc -l <"$work/pyr_cpu.xyz")
 (( n_gl > 5000 && n_gl - n_cpu < 20 && n_cpu - n_gl < 20 )) && ok || bad "GL and CPU sample counts: $n_gl vs $n_cpu"
+# --vertices: a mesh's vertices as the point set (an OFF with a blank line after its counts keeps all three)
+printf "OFF\n3 1 0\n\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n" >"$work/blank.off"
+expect 0 "convert a mesh's vertices" -- "$bake" convert "$work/blank.off" "$work/blank.xyz" --vertices
+[[ $(wc -l <"$work/blank.xyz") == 3 && $(tail -1 "$work/blank.xyz") == "0 1 0" ]] && ok || bad "convert --vertices: $(cat "$work/blank.xyz")"
 expect 2 "convert bad sampler" -- "$bake" convert "$qsplat/pyr.ply" "$work/pyr.xyz" --sampler vulkan
 expect 0 "generate a mesh" -- "$bake" generate cube --mesh --subdivisions 2 -o "$work/cube_mesh.ply" -q
 printf "OFF\n3 0 0\n0 0 0\n1 0 0\n0 1 0\n" >"$work/notris.off"

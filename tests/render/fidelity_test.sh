@@ -10,7 +10,7 @@ dir=${QF_MODELS:-$HOME/.cache/quasiflat/models}
 [[ -f "$dir/bunny00.off" ]] || { echo "models not fetched (scripts/fetch-models.sh); skipping"; exit 77; }
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-awk 'NR == 1 { next } NR == 2 { n = $1; next } n > 0 { print $1, $2, $3; n-- }' "$dir/bunny00.off" >"$work/bunny00.xyz"
+"$bake" convert "$dir/bunny00.off" "$work/bunny00.xyz" --vertices -q || { echo "FAIL: convert"; exit 1; }
 "$bake" "$work/bunny00.xyz" -o "$work/out" --primitives 300 --cache "$work/cache" -q || { echo "FAIL: bake"; exit 1; }
 "$render" eval "$dir/bunny00.off" "$work"/out/*.glb -o "$work/eval.json" || { echo "FAIL: eval"; exit 1; }
 python3 - "$work/eval.json" <<'PY'

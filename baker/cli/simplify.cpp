@@ -1,0 +1,86 @@
+// The simplify command: a triangle mesh in, edge-collapse LODs out (meshoptimizer), one .glb per
+// triangle budget and a manifest with each LOD's triangles and error. Written like the bake:
+// staged, manifest last.
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+
+#include "cli/commands.h"
+#include "core/error.h"
+#include "gltf/glb.h"
+#include "pipeline/asset.h"
+#include "simplify/simplify.h"
+
+namespace qf::cli {
+
+CommandSpec simplify_spec() {
+  return {"simplify", "MESH -o OUTDIR --triangles N,N,... [options]",
+          "simplify a triangle mesh by edge collapse (meshoptimizer) into one .glb per triangle budget",
+          "Each LOD comes from the original mesh: edges are collapsed by quadric error until the budget\n"
+          "is met or no collapse keeps the topology. Vertex colours are kept; STEM_S<i>.glb holds the\n"
+          "triangles with smooth normals (or none with --normals flat: engines then shade each triangle\n"
+          "flat). manifest.json gives each LOD's triangles, vertices, bytes and meshoptimizer's error.",
+          {{"output", 'o', "OUTDIR", "", "output folder (created if needed); required"},
+           {"triangles", 't', "N,N,...", "", "triangle budgets, one LOD each; required"},
+           {"normals", 0, "smooth|flat", "smooth", "vertex normals area-weighted over the LOD's triangles, or none"},
+           drop_nonfinite_option(),
+           {"quiet", 'q', "", "", "print nothing on success"}},
+          1, 1};
+}
+
+int run_simplify(const ParsedArgs& args) {
+  const std::string& in = args.positional[0];
+  if (!args.has("output")) throw UsageError("simplify needs -o OUTDIR (see qf-bake simplify --help)");
+  if (!args.has("triangles")) throw UsageError("simplify needs --triangles N,N,... (see qf-bake simplify --help)");
+  const std::string normals = args.get("normals", "smooth");
+  if (normals != "smooth" && normals != "flat") throw UsageError("--normals must be smooth or flat, got '" + normals + "'");
+  std::vector<std::size_t> budgets;
+  for (const std::string& t : split_list(args.get("triangles"))) {
+    char* end = nullptr;
+    const long long v = std::strtoll(t.c_str(), &end, 10);
+    if (!end || *end || v < 1) throw UsageError("--triangles expects positive integers separated by commas, got '" + t + "'");
+    budgets.push_back(static_cast<std::size_t>(v));
+  }
+  ReadOptions ro;
+  ro.drop_nonfinite = args.flag("drop-nonfinite");
+  const Model model = read_model(in, ro, nullptr);
+  if (!model.is_mesh) throw InputError("simplify.needs_mesh", in, "", "is a point set; simplify takes triangle meshes (.off, .obj, .ply with faces)");
+  if (model.mesh.triangles.empty()) throw InputError("mesh.no_triangles", in, "", "is a mesh without triangles; nothing to simplify");
+
+  const auto start = std::chrono::steady_clock::now();
+  const std::string stem = std::filesystem::path(in).stem().string();
+  std::vector<OutputFile> files;
+  nlohmann::json levels = nlohmann::json::array();
+  for (std::size_t i = 0; i < budgets.size(); ++i) {
+    const SimplifiedMesh s = simplify_mesh(model.mesh, budgets[i]);
+    const std::string name = stem + "_S" + std::to_string(i) + ".glb";
+    files.push_back({name, encode_mesh_glb(s.mesh, normals == "smooth")});
+    levels.push_back({{"file", name},
+                      {"target_triangles", budgets[i]},
+                      {"triangles", s.mesh.triangles.size()},
+                      {"vertices", s.mesh.positions.size()},
+                      {"bytes", files.back().bytes.size()},
+                      {"error", canonical_double(static_cast<float>(s.error))}});
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const nlohmann::json manifest{{"input", in},
+                                {"triangles", model.mesh.triangles.size()},
+                                {"vertices", model.mesh.positions.size()},
+                                {"method", "meshoptimizer simplify (edge collapse, quadric error)"},
+                                {"normals", normals},
+                                {"levels", levels},
+                                {"generator", "quasiflat qf-bake simplify"}};
+  write_asset(args.get("output"), files, manifest, nullptr, "qf-simplify");
+  if (!args.flag("quiet")) {
+    std::fprintf(stderr, "qf-bake simplify: %s (%zu triangles) -> %s, %zu LODs in %.3f s\n", in.c_str(), model.mesh.triangles.size(),
+                 args.get("output").c_str(), budgets.size(), seconds);
+    for (const auto& l : levels)
+      std::fprintf(stderr, "  %s: %zu triangles, error %.4g\n", l["file"].get<std::string>().c_str(), l["triangles"].get<std::size_t>(),
+                   l["error"].get<double>());
+  }
+  return 0;
+}
+
+}  // namespace qf::cli
