@@ -29,18 +29,30 @@ struct AccessorReader {
   const tinygltf::Model& m;
   const std::string& path;
 
+  // The accessor `index` names, or a clear error when it names none.
+  const tinygltf::Accessor& accessor(int index) const {
+    if (index < 0 || index >= static_cast<int>(m.accessors.size()))
+      fail(path, "accessor", "accessor " + std::to_string(index) + " does not exist (" + std::to_string(m.accessors.size()) + " accessors)");
+    return m.accessors[static_cast<std::size_t>(index)];
+  }
+
   const unsigned char* base(const tinygltf::Accessor& a, std::size_t elem_size, std::size_t& stride) const {
     if (a.bufferView < 0 || a.bufferView >= static_cast<int>(m.bufferViews.size())) fail(path, "accessor", "accessor without a valid bufferView");
     const tinygltf::BufferView& v = m.bufferViews[static_cast<std::size_t>(a.bufferView)];
-    const tinygltf::Buffer& b = m.buffers.at(static_cast<std::size_t>(v.buffer));
+    if (v.buffer < 0 || v.buffer >= static_cast<int>(m.buffers.size()))
+      fail(path, "accessor", "bufferView " + std::to_string(a.bufferView) + " names buffer " + std::to_string(v.buffer) + ", which does not exist");
+    const tinygltf::Buffer& b = m.buffers[static_cast<std::size_t>(v.buffer)];
     stride = v.byteStride ? v.byteStride : elem_size;
-    const std::size_t need = a.byteOffset + v.byteOffset + (a.count ? (a.count - 1) * stride + elem_size : 0);
-    if (need > b.data.size()) fail(path, "accessor", "accessor reaches past the end of its buffer");
+    // In this order so that no product wraps: a count the buffer cannot hold fails before it is multiplied.
+    const std::size_t start = a.byteOffset + v.byteOffset;
+    if (start > b.data.size() || (a.count && ((a.count - 1) > (b.data.size() - start) / std::max<std::size_t>(stride, 1) ||
+                                              (a.count - 1) * stride + elem_size > b.data.size() - start)))
+      fail(path, "accessor", "accessor reaches past the end of its buffer");
     return b.data.data() + v.byteOffset + a.byteOffset;
   }
 
   std::vector<float> floats(int index, int components) const {
-    const tinygltf::Accessor& a = m.accessors.at(static_cast<std::size_t>(index));
+    const tinygltf::Accessor& a = accessor(index);
     if (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || tinygltf::GetNumComponentsInType(a.type) != components)
       fail(path, "accessor", "expected a float accessor with " + std::to_string(components) + " components");
     std::size_t stride = 0;
@@ -52,7 +64,7 @@ struct AccessorReader {
   }
 
   std::vector<std::uint32_t> indices(int index) const {
-    const tinygltf::Accessor& a = m.accessors.at(static_cast<std::size_t>(index));
+    const tinygltf::Accessor& a = accessor(index);
     const int size = tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(a.componentType));
     if (a.type != TINYGLTF_TYPE_SCALAR || (size != 1 && size != 2 && size != 4)) fail(path, "accessor", "bad index accessor");
     std::size_t stride = 0;
@@ -117,7 +129,7 @@ tinygltf::Model read_gltf(const std::string& path) {
 std::vector<Rgb8> read_colors(const AccessorReader& read, const tinygltf::Primitive& prim, std::size_t n) {
   const auto col = prim.attributes.find("COLOR_0");
   if (col == prim.attributes.end()) return std::vector<Rgb8>(n, kBaseColor);
-  const tinygltf::Accessor& a = read.m.accessors.at(static_cast<std::size_t>(col->second));
+  const tinygltf::Accessor& a = read.accessor(col->second);
   if (a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT || a.type != TINYGLTF_TYPE_VEC4 || a.count != n)
     fail(read.path, "colors", "COLOR_0 must be normalized unsigned short RGBA, one per vertex");
   std::size_t stride = 0;
@@ -203,7 +215,7 @@ ImpostorScene impostor_scene(const tinygltf::Model& m, const std::string& path);
 // UNSIGNED_SHORT (glTF 2.0 3.7.2.1 allows these for COLOR_n and TEXCOORD_n). VEC3 colours get
 // alpha 1 when `components` is 4.
 std::vector<float> attribute_floats(const AccessorReader& read, int index, int components) {
-  const tinygltf::Accessor& a = read.m.accessors.at(static_cast<std::size_t>(index));
+  const tinygltf::Accessor& a = read.accessor(index);
   const int have = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(a.type));
   if (a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT && have == components) return read.floats(index, components);
   const int size = a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ? 1 : a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 2 : 0;
