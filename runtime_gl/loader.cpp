@@ -11,6 +11,8 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
+#include <type_traits>
 
 #include "analysis/local_frames.h"
 #include "analysis/neighborhoods.h"
@@ -79,12 +81,27 @@ struct AccessorReader {
   }
 };
 
+// A number of an extension as the integer type T (int or uint32_t, exact in a double), or a clear
+// error when T cannot hold it: casting an out-of-range or NaN double is undefined (found by the glb
+// fuzz target).
 template <class T>
-std::vector<T> number_array(const tinygltf::Value& ext, const char* key) {
+T to_integer(double d, const std::string& path, const char* key) {
+  static_assert(std::is_integral_v<T> && sizeof(T) <= 4, "bounds must be exact in a double");
+  if (!(d >= static_cast<double>(std::numeric_limits<T>::lowest()) && d <= static_cast<double>(std::numeric_limits<T>::max())))
+    fail(path, "extension", std::string(key) + ": " + std::to_string(d) + " is out of range");
+  return static_cast<T>(d);
+}
+
+template <class T>
+std::vector<T> number_array(const tinygltf::Value& ext, const char* key, const std::string& path) {
   std::vector<T> out;
   if (!ext.Has(key)) return out;
   const tinygltf::Value& a = ext.Get(key);
-  for (std::size_t i = 0; i < a.ArrayLen(); ++i) out.push_back(static_cast<T>(a.Get(static_cast<int>(i)).GetNumberAsDouble()));
+  for (std::size_t i = 0; i < a.ArrayLen(); ++i) {
+    const double d = a.Get(static_cast<int>(i)).GetNumberAsDouble();
+    if constexpr (std::is_integral_v<T>) out.push_back(to_integer<T>(d, path, key));
+    else out.push_back(static_cast<T>(d));
+  }
   return out;
 }
 
@@ -106,10 +123,30 @@ Image to_image(const tinygltf::Image& img, const std::string& path) {
 Image white_image() { return Image{1, 1, {255, 255, 255, 255}}; }
 
 
+// tinygltf 2.7.0 hands an image's bufferView to stb_image without checking that it lies within its
+// buffer (a crafted byteLength read past the end, found by the glb fuzz target): this image loader
+// checks the view first (tinygltf has checked that the view and its buffer exist), then decodes with
+// tinygltf's own stb_image loader and its default options (user data null: RGBA, as before).
+bool load_image_checked(tinygltf::Image* image, const int index, std::string* err, std::string* warn, int width,
+                        int height, const unsigned char* bytes, int size, void* user) {
+  if (image->bufferView >= 0) {
+    const tinygltf::Model& m = *static_cast<const tinygltf::Model*>(user);
+    const tinygltf::BufferView& v = m.bufferViews.at(static_cast<std::size_t>(image->bufferView));
+    const std::size_t buffer = m.buffers.at(static_cast<std::size_t>(v.buffer)).data.size();
+    if (v.byteOffset > buffer || v.byteLength > buffer - v.byteOffset || size < 0 ||
+        static_cast<std::size_t>(size) != v.byteLength) {
+      if (err) *err += "image[" + std::to_string(index) + "] bufferView reaches past the end of its buffer";
+      return false;
+    }
+  }
+  return tinygltf::LoadImageData(image, index, err, warn, width, height, bytes, size, nullptr);
+}
+
 tinygltf::Model read_gltf(const std::string& path) {
   if (!std::filesystem::is_regular_file(path)) throw InputError("file.unreadable", path, "", "cannot open: no such file");
   tinygltf::Model m;
   tinygltf::TinyGLTF loader;
+  loader.SetImageLoader(&load_image_checked, &m);
   std::string err, warn;
   const bool binary = path.size() >= 4 && path.compare(path.size() - 4, 4, ".glb") == 0;
   const bool ok = binary ? loader.LoadBinaryFromFile(&m, &err, &warn, path) : loader.LoadASCIIFromFile(&m, &err, &warn, path);
@@ -480,11 +517,11 @@ ImpostorScene impostor_scene(const tinygltf::Model& m, const std::string& path) 
   const auto ext_it = m.extensions.find("QF_impostor_level");
   if (ext_it != m.extensions.end()) {
     const tinygltf::Value& ext = ext_it->second;
-    const std::vector<float> center = number_array<float>(ext, "center"), normal = number_array<float>(ext, "normal"),
-                             rect = number_array<float>(ext, "atlasRect");
-    const auto quads = static_cast<std::size_t>(ext.Get("quadCount").GetNumberAsInt());
-    s.offsets = number_array<std::uint32_t>(ext, "neighborOffsets");
-    s.neighbors = number_array<std::uint32_t>(ext, "neighbors");
+    const std::vector<float> center = number_array<float>(ext, "center", path), normal = number_array<float>(ext, "normal", path),
+                             rect = number_array<float>(ext, "atlasRect", path);
+    const auto quads = static_cast<std::size_t>(to_integer<std::uint32_t>(ext.Get("quadCount").GetNumberAsDouble(), path, "quadCount"));
+    s.offsets = number_array<std::uint32_t>(ext, "neighborOffsets", path);
+    s.neighbors = number_array<std::uint32_t>(ext, "neighbors", path);
     if (center.size() != quads * 3 || normal.size() != quads * 3 || rect.size() != quads * 5 || s.offsets.size() != quads + 1 ||
         s.offsets.back() != s.neighbors.size())
       fail(path, "extension", "QF_impostor_level arrays do not match quadCount " + std::to_string(quads));
@@ -492,7 +529,7 @@ ImpostorScene impostor_scene(const tinygltf::Model& m, const std::string& path) 
       if (nb >= quads) fail(path, "extension", "a neighbour index is out of range");
     std::vector<std::size_t> next(groups.size(), 0);
     for (std::size_t k = 0; k < quads; ++k) {
-      const auto image = static_cast<int>(rect[k * 5]);
+      const int image = to_integer<int>(rect[k * 5], path, "atlasRect");
       std::size_t g = 0;
       while (g < groups.size() && !(groups[g].material == image && next[g] + 2 <= groups[g].first.size())) ++g;
       if (g == groups.size()) fail(path, "extension", "quad " + std::to_string(k) + " has no triangles in its atlas image's primitive");
@@ -507,7 +544,7 @@ ImpostorScene impostor_scene(const tinygltf::Model& m, const std::string& path) 
       s.items.push_back(it);
     }
     s.has_extension = true;
-    s.level = ext.Has("level") ? ext.Get("level").GetNumberAsInt() : -1;
+    s.level = ext.Has("level") ? to_integer<int>(ext.Get("level").GetNumberAsDouble(), path, "level") : -1;
     if (ext.Has("alphaRef")) s.alpha_ref = static_cast<float>(ext.Get("alphaRef").GetNumberAsDouble());
   } else {
     // Plain glTF: consecutive triangle pairs sharing an edge are quads; others stand alone.
