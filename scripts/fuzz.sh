@@ -5,10 +5,11 @@
 #   scripts/fuzz.sh SECONDS [TARGET...]     targets: ply qsplat off obj xyz manifest glb cache (default: all)
 #
 # Prints one line per target (executions, executions/s, corpus size, coverage features) and closes
-# with "N passed, N failed"; exits 1 when any target found a crash, leak, timeout or out-of-memory
-# (its input is left in build-fuzz/artifacts/TARGET/, its log in build-fuzz/logs/TARGET.log), 2 on
-# bad usage or a failed build. The corpus each run grows is kept in build-fuzz/corpus/TARGET and
-# seeded from tests/fuzz/seeds and tests/data (valid and malformed files).
+# with exactly "N passed, N failed" (also when the build fails: 0 passed); exits 1 when any target
+# found a crash, leak, timeout or out-of-memory (its input is left in build-fuzz/artifacts/TARGET/,
+# its log in build-fuzz/logs/TARGET.log), 2 on bad usage or a failed build. The corpus each run
+# grows is kept in build-fuzz/corpus/TARGET and seeded from tests/fuzz/seeds and tests/data (valid
+# and malformed files).
 # Environment: QF_FUZZ_TIMEOUT (seconds per input, default 10), QF_FUZZ_JOBS (targets at once,
 # default: the number of cores), QF_FUZZ_BUILD (build folder, default build-fuzz).
 set -uo pipefail
@@ -35,16 +36,18 @@ cores="$(nproc)"
 jobs="${QF_FUZZ_JOBS:-$cores}"
 
 # 1. Build (clang + libFuzzer: packages clang and libclang-rt-14-dev, scripts/install-deps.sh).
-command -v clang++ >/dev/null || { echo "fuzz.sh: clang++ not found (scripts/install-deps.sh installs it)" >&2; exit 2; }
+command -v clang++ >/dev/null || { echo "fuzz.sh: clang++ not found (scripts/install-deps.sh installs it)" >&2; echo "0 passed, ${#targets[@]} failed"; exit 2; }
+# A failed build still closes with the "N passed, N failed" line (every target failed).
+build_failed() { echo "fuzz.sh: $1" >&2; echo "0 passed, ${#targets[@]} failed"; exit 2; }
 if [[ ! -f "$build/build.ninja" ]]; then
   cmake -S "$root/tests/fuzz" -B "$build" -G Ninja -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ >"$build.configure.log" 2>&1 ||
-    { cat "$build.configure.log" >&2; echo "fuzz.sh: configuring $build failed" >&2; exit 2; }
+    { cat "$build.configure.log" >&2; build_failed "configuring $build failed"; }
   rm -f "$build.configure.log"
 fi
 build_targets=()
 for t in "${targets[@]}"; do build_targets+=("fuzz_$t"); done
 cmake --build "$build" -j "$cores" --target "${build_targets[@]}" >"$build/build.log" 2>&1 ||
-  { tail -40 "$build/build.log" >&2; echo "fuzz.sh: build failed (log: $build/build.log)" >&2; exit 2; }
+  { tail -40 "$build/build.log" >&2; build_failed "build failed (log: $build/build.log)"; }
 
 # 2. Seeds: tests/fuzz/seeds/TARGET plus the files of tests/data with the target's extensions.
 extensions() {
