@@ -24,6 +24,7 @@ packages=(
   python3-jsonschema                              # validates our JSON outputs against schemas/ in tests
   clang libclang-rt-14-dev                        # libFuzzer + sanitizer runtimes: scripts/fuzz.sh, tests/fuzz
   chromium                                        # three.js renders (scripts/three-render): engine-truth test, fidelity league
+  slurm-wlm munge python3-yaml                    # the slurm test: a one-node cluster runs scripts/slurm/; the README's Kubernetes YAML
 )
 
 missing=()
