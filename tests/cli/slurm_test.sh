@@ -12,6 +12,8 @@
 set -u
 bake=$1 src=$2
 source "$(dirname "$0")/test_lib.sh"
+# Nothing from a surrounding job or shell steers ours (sbatch reads SBATCH_* as options).
+unset QF_SHARDS $(compgen -e | grep -E '^(SLURM|SBATCH|SALLOC|SRUN|SQUEUE|SINFO|SCONTROL)_')
 schemas=$src/schemas slurm_dir=$src/scripts/slurm
 listing() { (cd "$1" && find . -path ./batch-report\* -prune -o -type f ! -name report.json -print0 | sort -z | xargs -0 sha256sum); }
 
@@ -155,10 +157,10 @@ PartitionName=qf Nodes=$node Default=YES MaxTime=INFINITE State=UP
 EOF
 slurmctld -D -f "$SLURM_CONF" >"$work/log/slurmctld.out" 2>&1 & daemons+=($!)
 slurmd -D -N "$node" -f "$SLURM_CONF" >"$work/log/slurmd.out" 2>&1 & daemons+=($!)
-# If this shell dies without its trap (SIGKILL), the daemons go with it.
-( trap '' INT TERM; while kill -0 $$ 2>/dev/null; do sleep 2; done
-  kill -9 "${daemons[@]}" "$(cat "$work/munge/munged.pid" 2>/dev/null)" 2>/dev/null ) >/dev/null 2>&1 &
-watchdog=$!
+# If this shell dies without its trap (SIGKILL), the daemons and their jobs go with it.
+( trap '' INT TERM; cd /; while kill -0 $$ 2>/dev/null; do sleep 2; done
+  kill -9 "${daemons[@]}" "$(cat "$work/munge/munged.pid" 2>/dev/null)" $(held) 2>/dev/null; rm -rf "$work" ) >/dev/null 2>&1 &
+watchdog=$!; disown "$watchdog"
 for _ in $(seq 60); do
   [[ $(sinfo -h -n "$node" -o %T 2>/dev/null) == idle ]] && break
   kill -0 "${daemons[@]}" 2>/dev/null || break
