@@ -48,8 +48,8 @@ stop_cluster() {
 trap 'stop_cluster; pkill -9 -f "$work/" 2>/dev/null; rm -rf "$work"' EXIT
 trap 'exit 1' INT TERM
 skip() {  # the checks so far count; skip only if they passed
-  echo "slurm: skipped: $*"
-  [[ $fail -eq 0 ]] || finish slurm
+  echo "slurm: the cluster part is skipped: $*"
+  [[ $fail -eq 0 ]] || { finish slurm; exit 1; }
   exit 77
 }
 
