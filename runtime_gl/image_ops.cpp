@@ -122,6 +122,10 @@ ViewMetrics compare_renders(const RenderPair& reference, const RenderPair& impos
   m.mae = n_either > 0 ? sum / (3 * n_either) : 0.0;
   const double mse = n_either > 0 ? sum2 / (3 * n_either) : 0.0;
   m.psnr = mse > 0 ? std::min(99.0, 10 * std::log10(1.0 / mse)) : 99.0;
+  // Mean grey (0..255, the mean of R, G, B) over each image's own covered pixels.
+  const double n_imp = total(in_i);
+  if (n_imp > 0) m.brightness = 255 * total(IBA::mul(col_i, IBA::channels(in_i, 3, {0, 0, 0}))) / (3 * n_imp);
+  if (n_ref > 0) m.reference_brightness = 255 * total(IBA::mul(col_r, IBA::channels(in_r, 3, {0, 0, 0}))) / (3 * n_ref);
   if (n_ref > 0) {
     m.holes = (n_ref - n_both) / n_ref;
     m.see_through = (n_both - total(IBA::mul(in_r, solid_i))) / n_ref;

@@ -33,6 +33,8 @@ struct ViewMetrics {
   double holes = 0;        // share of reference-covered pixels where the impostor's c < 0.5
   double see_through = 0;  // share of reference-covered pixels where the impostor's 0.5 <= c < 0.9
   std::size_t covered = 0; // pixels covered by the reference
+  double brightness = 0;   // mean grey (0..255) over the impostor's covered pixels (c >= 0.5)
+  double reference_brightness = 0;  // the same over the reference's
 };
 struct RenderPair {
   Image over_black, over_white;

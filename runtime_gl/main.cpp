@@ -238,7 +238,9 @@ ordered_json metrics_json(const ViewMetrics& m) {
           {"iou", canonical_double(static_cast<float>(m.iou))},
           {"mae", canonical_double(static_cast<float>(m.mae))},
           {"holes", canonical_double(static_cast<float>(m.holes))},
-          {"see_through", canonical_double(static_cast<float>(m.see_through))}};
+          {"see_through", canonical_double(static_cast<float>(m.see_through))},
+          {"brightness", canonical_double(static_cast<float>(m.brightness))},
+          {"reference_brightness", canonical_double(static_cast<float>(m.reference_brightness))}};
 }
 
 // The eval's cameras as JSON, for renderers outside qf-render (scripts/three-render): per view

@@ -7,12 +7,16 @@
 # vertex clustering (vertices/s per level) on bunny00, the dragon and a 1M-triangle sphere.
 # batch: assets per minute on the CGAL model set with -j 1 and -j 2 (cold and warm hierarchy
 # cache), and the per-asset overhead of a rerun with nothing to do (10 models, 200 small sets).
-# usage: scripts/bench.sh [io|analysis|amg|render|bake|sample|cluster|batch]...   (default: all)
+# fidelity: the league of issue 15 (scripts/fidelity_table.py): impostor levels (engine and overlap
+# methods) vs meshoptimizer simplify at twice the triangles (flat, smooth normals) and the nearest
+# vertex-clustering LOD, PSNR / IoU / holes / bytes at 256 and 64 pixels, on bunny00, fandisk,
+# elephant, the dragon and the coloured point set b9_training.
+# usage: scripts/bench.sh [io|analysis|amg|render|bake|sample|cluster|batch|fidelity]...   (default: all)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh >/dev/null
 what=("$@")
-[[ ${#what[@]} -eq 0 ]] && what=(io analysis amg render bake sample cluster batch)
+[[ ${#what[@]} -eq 0 ]] && what=(io analysis amg render bake sample cluster batch fidelity)
 for w in "${what[@]}"; do
   case $w in
     io) build/bin/qf-bench-io ;;
@@ -113,7 +117,12 @@ for w in "${what[@]}"; do
       start=$(date +%s.%N); build/bin/qf-bake --version >/dev/null; end=$(date +%s.%N)
       echo "process start-up alone (qf-bake --version): $(echo "($end - $start) * 1000" | bc | cut -d. -f1) ms"
       rm -rf "$tmp" ;;
-    *) echo "unknown benchmark '$w' (io, analysis, amg, render, bake, sample, cluster, batch)" >&2; exit 2 ;;
+    fidelity)
+      models=$(scripts/fetch-models.sh bunny00.off fandisk.off elephant.off ChineseDragon-10kv.off b9_training.ply | tail -1)
+      tmp=$(mktemp -d)
+      python3 scripts/fidelity_table.py build/bin "$models" "$tmp"
+      rm -rf "$tmp" ;;
+    *) echo "unknown benchmark '$w' (io, analysis, amg, render, bake, sample, cluster, batch, fidelity)" >&2; exit 2 ;;
   esac
   echo
 done

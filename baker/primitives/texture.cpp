@@ -7,6 +7,7 @@
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <deque>
 
@@ -158,6 +159,19 @@ void extend_colors(Texture& tex) {
   }
 }
 
+// The unit normal of an accumulated normal `v` (tangent space), tilted towards the quad's normal
+// until its z is at least `min_z`, its direction about z kept (TextureOptions::normal_flattening).
+std::array<double, 3> within_cone(const double* v, double min_z) {
+  const double len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+  if (!(len > 0)) return {0, 0, 1};
+  const std::array<double, 3> n{v[0] / len, v[1] / len, v[2] / len};
+  if (n[2] >= min_z) return n;
+  const double xy = std::hypot(n[0], n[1]);
+  if (!(xy > 0)) return {0, 0, 1};
+  const double s = std::sqrt(1 - min_z * min_z) / xy;
+  return {n[0] * s, n[1] * s, min_z};
+}
+
 }  // namespace
 
 Texture resample_texture(const std::vector<Vec3f>& positions, const std::vector<Rgb8>& colors,
@@ -196,6 +210,8 @@ Texture resample_texture(const std::vector<Vec3f>& positions, const std::vector<
   if (o.method == ResampleMethod::kLinearAffine) interpolate_triangles(samples, tex, r, acc);
   splat_radial(samples, tex, r, o, acc);
   tex.rgba.assign(4 * n, 0);
+  const double deviation = rect.error / std::max(1e-30, std::hypot(double(rect.half_u), double(rect.half_v)));
+  const double min_z = std::clamp(o.normal_flattening * deviation, 0.0, o.max_min_normal_z);
   if (!normals.empty()) {
     tex.normals.assign(4 * n, 255);
     for (std::size_t k = 0; k < n; ++k) tex.normals[4 * k] = tex.normals[4 * k + 1] = 128;  // (0, 0, 1)
@@ -204,10 +220,8 @@ Texture resample_texture(const std::vector<Vec3f>& positions, const std::vector<
     const double w = acc.weight[k], vw = acc.value_weight[k];
     if (!(w > 0) || !(vw > 0)) continue;  // no Psi here: alpha 0, the colour comes from extend_colors
     if (!normals.empty()) {
-      const double* v = &acc.value[kChannels * k + 3];
-      const double len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-      if (len > 0)
-        for (int c = 0; c < 3; ++c) tex.normals[4 * k + static_cast<std::size_t>(c)] = to8(127.5 * (v[c] / len + 1.0));
+      const std::array<double, 3> nm = within_cone(&acc.value[kChannels * k + 3], min_z);
+      for (int c = 0; c < 3; ++c) tex.normals[4 * k + static_cast<std::size_t>(c)] = to8(127.5 * (nm[static_cast<std::size_t>(c)] + 1.0));
     }
     // Colours are always a weighted mean; alpha is normalised only as the criterion says (an
     // interpolated texel has weight 1 already).
