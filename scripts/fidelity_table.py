@@ -50,7 +50,7 @@ def main():
         src = os.path.join(a.models, name)
         stem = os.path.splitext(name)[0]
         out = os.path.join(a.work, stem)
-        run(f"{a.bins}/qf-bake", src, "-o", out, "--primitives", a.budgets, "--no-cache", "-q")
+        run(f"{a.bins}/qf-bake", src, "-o", out, "--primitives", a.budgets, "--no-cache", "--mesh-lods", "clustering", "-q")
         manifest = json.load(open(os.path.join(out, "manifest.json")))
         is_mesh = "mesh_lods" in manifest
         clusters = manifest["mesh_lods"]["levels"] if is_mesh else []

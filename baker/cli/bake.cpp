@@ -38,7 +38,11 @@ CommandSpec bake_spec() {
                     {"lod-screen-height", 0, "PX", "1080", "screen height the MSFT_screencoverage values assume"},
                     {"point-seed", 0, "S", "1", "mesh inputs: seed of the point impostor's random order (STEM_points.glb)"},
                     {"no-points", 0, "", "", "mesh inputs: do not write the point impostor"},
-                    {"no-mesh-lods", 0, "", "", "mesh inputs: do not write the vertex-clustering LODs (STEM_C<i>.glb, cells = diagonal/128../8)"},
+                    {"mesh-lods", 0, "simplify|clustering|none", "simplify",
+                     "mesh inputs: the mesh LODs beside the impostors: simplify = meshoptimizer's edge collapse\n"
+                     "(STEM_S<i>.glb at the input's triangles / 4, 16, 64, 256, 1024), clustering = seed 002's\n"
+                     "vertex clustering with thick edges (STEM_C<i>.glb, cells = diagonal / 128 .. 8)"},
+                    {"no-mesh-lods", 0, "", "", "the same as --mesh-lods none"},
                     drop_nonfinite_option(),
                     {"quiet", 'q', "", "", "print nothing on success"}},
                    1, 1};
@@ -83,7 +87,12 @@ AssetOptions read_asset_options(const ParsedArgs& args) {
   a.sample = read_sample_options(args);
   a.point_seed = static_cast<std::uint64_t>(args.get_int("point-seed", 1, 0, 1ll << 62));
   a.point_impostor = !args.flag("no-points");
-  a.mesh_lods = !args.flag("no-mesh-lods");
+  const std::string lods = args.flag("no-mesh-lods") ? "none" : args.get("mesh-lods", "simplify");
+  if (lods != "simplify" && lods != "clustering" && lods != "none")
+    throw UsageError("--mesh-lods: expected simplify, clustering or none, got '" + lods + "'");
+  a.mesh_lods = lods == "simplify" ? AssetOptions::MeshLods::kSimplify
+                : lods == "clustering" ? AssetOptions::MeshLods::kClustering
+                                       : AssetOptions::MeshLods::kNone;
   return a;
 }
 

@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/file_io.h"
 #include "gltf/glb.h"
+#include "simplify/simplify.h"
 
 namespace qf {
 
@@ -32,6 +33,31 @@ std::vector<double> default_cluster_cells(const TriangleMesh& mesh) {
   std::vector<double> cells;
   for (double f : {128.0, 64.0, 32.0, 16.0, 8.0}) cells.push_back(mesh.bounds().diagonal() / f);
   return cells;
+}
+
+std::vector<std::size_t> default_simplify_budgets(const TriangleMesh& mesh) {
+  std::vector<std::size_t> budgets;
+  for (std::size_t d = 4; d <= 1024; d *= 4)
+    if (mesh.triangles.size() / d >= 16) budgets.push_back(mesh.triangles.size() / d);
+  return budgets;
+}
+
+nlohmann::json simplify_level_files(const TriangleMesh& mesh, const std::vector<std::size_t>& budgets, const std::string& stem,
+                                    std::vector<OutputFile>& files) {
+  const double diagonal = mesh.bounds().diagonal();
+  nlohmann::json levels = nlohmann::json::array();
+  for (std::size_t i = 0; i < budgets.size(); ++i) {
+    const SimplifiedMesh s = simplify_mesh(mesh, budgets[i]);
+    const std::string name = stem + "_S" + std::to_string(i) + ".glb";
+    files.push_back({name, encode_mesh_glb(s.mesh, true)});
+    levels.push_back({{"file", name},
+                      {"triangles", s.mesh.triangles.size()},
+                      {"vertices", s.mesh.positions.size()},
+                      {"bytes", files.back().bytes.size()},
+                      {"error", canonical_double(static_cast<float>(s.error))},
+                      {"max_screen_pixels", static_cast<long long>(s.error > 0 ? std::min(0.5 * diagonal / s.error, 1e9) : 1e9)}});
+  }
+  return levels;
 }
 
 nlohmann::json cluster_level_files(const std::vector<LodMesh>& lods, const std::string& stem, bool draco,
@@ -88,18 +114,27 @@ AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::
   TriangleMesh mesh;
   const PointSet points = load_point_set(path, o.read, o.sample, "bake", a.read, &a.sampled, &mesh);
   const bool is_mesh = !a.sampled.backend.empty();
-  // 2. Mesh inputs: vertex-clustering LODs for near and middle distances beside the impostors.
+  // 2. Mesh inputs: mesh LODs for near and middle distances beside the impostors.
   std::vector<LodMesh> mesh_lods;
-  const auto cluster_start = std::chrono::steady_clock::now();
-  if (is_mesh && o.mesh_lods) {
+  nlohmann::json mesh_lod_entries;
+  const auto lods_start = std::chrono::steady_clock::now();
+  if (is_mesh && o.mesh_lods == AssetOptions::MeshLods::kClustering) {
     const VertexGrading grading = grade_vertices(mesh);
     ClusterOptions co;
     for (double c : default_cluster_cells(mesh)) {
       co.cell = static_cast<float>(c);
       mesh_lods.push_back(cluster_mesh(mesh, grading, co));
     }
+    mesh_lod_entries = {{"method", "clustering"},
+                        {"levels", cluster_level_files(mesh_lods, stem, false, a.files)},
+                        {"lod_rule", "largest cell_width <= X * R, R = 2 D tan(fov/2) / window height, X = 5; "
+                                     "thick line width = _THICKNESS / R pixels"}};
+  } else if (is_mesh && o.mesh_lods == AssetOptions::MeshLods::kSimplify && !default_simplify_budgets(mesh).empty()) {
+    mesh_lod_entries = {{"method", "simplify"},
+                        {"levels", simplify_level_files(mesh, default_simplify_budgets(mesh), stem, a.files)},
+                        {"lod_rule", "coarsest level whose max_screen_pixels >= the object's on-screen size (bounding-box diagonal, pixels)"}};
   }
-  const double cluster_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - cluster_start).count();
+  const double lods_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - lods_start).count();
   // 3. The impostor levels.
   a.result = bake(points, o.bake, path);
   BakeResult& r = a.result;
@@ -136,11 +171,9 @@ AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::
                                   {"switch_screen_height", info.reference_height},
                                   {"switch_fov_degrees", canonical_double(info.reference_fov_degrees)}};
   }
-  if (!mesh_lods.empty()) {
-    manifest["mesh_lods"] = {{"levels", cluster_level_files(mesh_lods, stem, false, a.files)},
-                             {"lod_rule", "largest cell_width <= X * R, R = 2 D tan(fov/2) / window height, X = 5; "
-                                          "thick line width = _THICKNESS / R pixels"}};
-    r.times.push_back({"mesh lods", cluster_seconds, 0, 0});
+  if (!mesh_lod_entries.is_null()) {
+    manifest["mesh_lods"] = std::move(mesh_lod_entries);
+    r.times.push_back({"mesh lods", lods_seconds, 0, 0});
   }
   // 5. The report: what was read, the settings, the figures, per-stage time and memory.
   nlohmann::json stages = nlohmann::json::array();
@@ -172,7 +205,10 @@ AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::
                 {"merge", o.bake.merge},
                 {"texel_factor", canonical_double(o.bake.texture.texel_factor)},
                 {"max_texture", o.bake.texture.max_side},
-                {"lod_file", o.bake.lod_file}}},
+                {"lod_file", o.bake.lod_file},
+                {"mesh_lods", o.mesh_lods == AssetOptions::MeshLods::kSimplify     ? "simplify"
+                              : o.mesh_lods == AssetOptions::MeshLods::kClustering ? "clustering"
+                                                                                   : "none"}}},
               {"levels", levels},
               {"stages", stages},
               {"sampling", sampling},

@@ -14,7 +14,7 @@ printf '{"output": "out", "assets": [%s]}\n' "${list%,}" >"$work/cgal.json"
 [[ $rc -eq 0 ]] && ok || bad "CGAL batch: exit $rc: $(tail -5 "$work/err")"
 [[ $(field "$work/out/batch-report.json" 'r["totals"]["baked"]') == ${#models[@]} ]] && ok || bad "every model baked"
 validate "$work/out/batch-report.json" "$schemas/batch-report.schema.json"
-[[ -f $work/out/bunny00/bunny00_points.glb && -f $work/out/bunny00/bunny00_C4.glb && -f $work/out/kitten/manifest.json ]] && ok || bad "mesh and point outputs"
+[[ -f $work/out/bunny00/bunny00_points.glb && -f $work/out/bunny00/bunny00_S4.glb && -f $work/out/kitten/manifest.json ]] && ok || bad "mesh and point outputs"
 "$bake" batch "$work/cgal.json" -j 2 -q; rc=$?
 [[ $rc -eq 0 && $(field "$work/out/batch-report.json" 'r["totals"]["up to date"]') == ${#models[@]} ]] && ok || bad "second run does no work"
 finish batch_models

@@ -33,7 +33,7 @@ validate "$work/batch.json" "$schemas/batch.schema.json"
 [[ $rc -eq 0 ]] && ok || bad "first batch: exit $rc: $(tail -5 "$work/err1")"
 [[ $(field "$work/out/batch-report.json" 'r["totals"]["baked"]') == 6 ]] && ok || bad "first batch bakes 6 assets"
 validate "$work/out/batch-report.json" "$schemas/batch-report.schema.json"
-[[ -f $work/out/box-mesh/box_C0.glb && ! -f $work/out/box-mesh/box_points.glb && -f $work/out/globe/globe_points.glb ]] && ok ||
+[[ -f $work/out/box-mesh/box_S0.glb && ! -f $work/out/box-mesh/box_points.glb && -f $work/out/globe/globe_points.glb ]] && ok ||
   bad "per-asset settings and names apply (box-mesh without points, globe with)"
 [[ $(field "$work/out/batch-report.json" 'min(a["primitives"] for a in r["assets"])') -gt 0 ]] && ok || bad "every asset has primitives"
 [[ $(field "$work/out/batch-report.json" 'all(a["peak_mb"] > 10 for a in r["assets"])') == True ]] && ok || bad "peak memory per asset"

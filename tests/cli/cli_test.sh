@@ -202,7 +202,8 @@ for l in m["levels"]:
 assert m["levels"][0]["primitives"] > m["levels"][1]["primitives"]
 PY
 # a mesh input: sampled, then baked; the report carries the sampling
-expect 0 "bake a mesh" -- "$bake" "$work/cube_mesh.ply" -o "$work/meshbake" --primitives 50 --ldi 64 -q
+expect 0 "generate a finer mesh" -- "$bake" generate sphere --mesh --subdivisions 8 -o "$work/ball_mesh.ply" -q
+expect 0 "bake a mesh" -- "$bake" "$work/ball_mesh.ply" -o "$work/meshbake" --primitives 50 --ldi 64 -q
 /usr/bin/python3 -c 'import json,sys; s=json.load(open(sys.argv[1]))["sampling"]; assert s["ldi_size"]==64 and s["backend"]=="cpu" and sum(s["points_per_axis"])>1000' \
   "$work/meshbake/report.json" 2>"$work/err" && ok || bad "bake report sampling: $(tail -1 "$work/err")"
 /usr/bin/python3 - "$work/meshbake" <<'PY' 2>"$work/err" && ok || bad "mesh bake outputs: $(tail -1 "$work/err")"
@@ -211,9 +212,26 @@ d = sys.argv[1]
 m = json.load(open(os.path.join(d, "manifest.json")))
 assert os.path.getsize(os.path.join(d, m["point_impostor"]["file"])) > 1000
 lods = m["mesh_lods"]["levels"]
-assert len(lods) == 5 and all(os.path.exists(os.path.join(d, l["file"])) for l in lods)
-assert lods[0]["cell_width"] < lods[-1]["cell_width"] and lods[0]["triangles"] >= lods[-1]["triangles"]
+assert m["mesh_lods"]["method"] == "simplify" and len(lods) >= 2, m["mesh_lods"]
+assert all(os.path.exists(os.path.join(d, l["file"])) and l["file"].endswith(f"_S{i}.glb") for i, l in enumerate(lods))
+assert all(a["triangles"] > b["triangles"] and a["error"] <= b["error"] and a["max_screen_pixels"] >= b["max_screen_pixels"]
+           for a, b in zip(lods, lods[1:])), lods
 PY
+# --mesh-lods clustering: seed 002's vertex-clustering LODs instead (cell widths d/128..d/8)
+expect 0 "bake a mesh with clustering LODs" -- "$bake" "$work/ball_mesh.ply" -o "$work/meshbake_c" --primitives 50 --ldi 64 --mesh-lods clustering -q
+expect 0 "a mesh too small to simplify" -- "$bake" "$work/cube_mesh.ply" -o "$work/meshbake_s" --primitives 20 --ldi 64 -q
+/usr/bin/python3 -c 'import json,sys; m=json.load(open(sys.argv[1])); assert "mesh_lods" not in m' "$work/meshbake_s/manifest.json" 2>"$work/err" && ok ||
+  bad "48 triangles get no simplify LODs: $(tail -1 "$work/err")"
+/usr/bin/python3 - "$work/meshbake_c" <<'PY' 2>"$work/err" && ok || bad "clustering mesh LODs: $(tail -1 "$work/err")"
+import json, os, sys
+d = sys.argv[1]
+m = json.load(open(os.path.join(d, "manifest.json")))
+lods = m["mesh_lods"]["levels"]
+assert m["mesh_lods"]["method"] == "clustering" and len(lods) == 5 and all(os.path.exists(os.path.join(d, l["file"])) for l in lods)
+assert lods[0]["cell_width"] < lods[-1]["cell_width"] and lods[0]["triangles"] >= lods[-1]["triangles"]
+assert not any(f.endswith("_S0.glb") for f in os.listdir(d))
+PY
+expect 2 "--mesh-lods takes a known method" -- "$bake" "$work/cube_mesh.ply" -o "$work/meshbake_x" --mesh-lods decimate -q
 # cluster: vertex-clustering LODs of a mesh, a manifest with cell widths, same bytes twice
 expect 0 "cluster" -- "$bake" cluster "$work/cube_mesh.ply" -o "$work/cl1" --cells 0.2,0.5,1 --draco
 expect 0 "cluster again" -- "$bake" cluster "$work/cube_mesh.ply" -o "$work/cl2" --cells 0.2,0.5,1 --draco -q
