@@ -1,8 +1,11 @@
-// Greedy domain merging with additive Psi-weighted moments (thesis 3.4).
+// Greedy domain merging with additive Psi-weighted moments (thesis 3.4), then sliver absorption and
+// crease trimming (issue 15 item 4: one quad per face of the octahedron and the cube).
 #include "domains/merge.h"
 
 #include <Eigen/Eigenvalues>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 #include <numeric>
@@ -36,10 +39,9 @@ Plane plane_of(const Moments& m, const Eigen::Vector3d& origin) {
   return {trace > 0 ? ev(0) / trace : 0.0, eig.eigenvectors().col(0)};
 }
 
-}  // namespace
-
-SparseMatrix merge_domains(const SparseMatrix& psi, const std::vector<Vec3f>& positions, const MergeOptions& options,
-                           MergeReport* report) {
+// Step 1: the thesis' greedy merge; Psi M with groups numbered in order of their representatives.
+SparseMatrix greedy_merge(const SparseMatrix& psi, const std::vector<Vec3f>& positions, const MergeOptions& options,
+                          std::size_t& merges_out) {
   const auto m = static_cast<std::size_t>(psi.cols());
   // 1. Per-function moments, relative to the bounding-box centre.
   Bounds box;
@@ -133,8 +135,207 @@ SparseMatrix merge_domains(const SparseMatrix& psi, const std::vector<Vec3f>& po
     for (const auto& kv : row) inner.push_back(kv.first), values.push_back(kv.second);
     outer[static_cast<std::size_t>(i) + 1] = static_cast<std::int32_t>(values.size());
   }
-  if (report) report->merges = merges, report->before = m, report->after = static_cast<std::size_t>(count);
+  merges_out = merges;
   return from_rows(psi.rows(), count, outer, inner, values);
+}
+
+// What the cleaning steps need of a domain: its Psi mass, weighted plane (normal oriented by the
+// weighted mean point normal) and how well its points' normals agree (|weighted mean normal|).
+struct Shape {
+  double mass = 0;
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero(), normal = Eigen::Vector3d::UnitZ();
+  double coherence = 1;  // 1 without normals
+};
+
+Eigen::Vector3d v3(Vec3f p) { return {double(p.x), double(p.y), double(p.z)}; }
+
+std::vector<Shape> shapes_of(const SparseMatrix& psi, const std::vector<Vec3f>& positions, const std::vector<Vec3f>& normals) {
+  const auto m = static_cast<std::size_t>(psi.cols());
+  Bounds box;
+  for (const Vec3f& p : positions) box.add(p);
+  const Eigen::Vector3d origin = v3(box.center());
+  std::vector<Moments> mo(m);
+  std::vector<Eigen::Vector3d> nsum(m, Eigen::Vector3d::Zero());
+  for (Eigen::Index i = 0; i < psi.rows(); ++i) {
+    const Eigen::Vector3d x = v3(positions[static_cast<std::size_t>(i)]) - origin;
+    for (SparseMatrix::InnerIterator it(psi, i); it; ++it) {
+      const auto c = static_cast<std::size_t>(it.col());
+      mo[c].w += it.value(), mo[c].s += it.value() * x, mo[c].ss += it.value() * x * x.transpose();
+      if (!normals.empty()) nsum[c] += it.value() * v3(normals[static_cast<std::size_t>(i)]);
+    }
+  }
+  std::vector<Shape> out(m);
+  for (std::size_t c = 0; c < m; ++c) {
+    if (!(mo[c].w > 0)) continue;
+    Shape& s = out[c];
+    s.mass = mo[c].w;
+    s.centroid = mo[c].s / mo[c].w + origin;
+    s.normal = plane_of(mo[c], origin).normal;
+    if (!normals.empty()) {
+      s.coherence = nsum[c].norm() / mo[c].w;
+      if (s.normal.dot(nsum[c]) < 0) s.normal = -s.normal;
+    }
+  }
+  return out;
+}
+
+// Step 2: slivers. A domain's neighbours here are the domains it shares a point with (any weight,
+// so a sliver whose weights never exceed tau is found too). Each point's weight in a sliver goes
+// to the non-sliver domain that fits the point best (normal first, distance to its plane second),
+// among the point's own domains and the sliver's neighbours. A sliver without a non-sliver
+// neighbour stays.
+SparseMatrix absorb_slivers(const SparseMatrix& psi, const std::vector<Vec3f>& positions, const std::vector<Vec3f>& normals,
+                            const std::vector<Shape>& shapes, const MergeOptions& o, std::size_t& slivers) {
+  const auto m = static_cast<std::size_t>(psi.cols());
+  // 1. The heaviest neighbour of each domain: per row, the two heaviest domains in it.
+  std::vector<double> heaviest(m, 0.0);
+  for (Eigen::Index i = 0; i < psi.rows(); ++i) {
+    std::int64_t first = -1, second = -1;
+    for (SparseMatrix::InnerIterator it(psi, i); it; ++it) {
+      const std::int64_t c = it.col();
+      if (first < 0 || shapes[std::size_t(c)].mass > shapes[std::size_t(first)].mass) second = first, first = c;
+      else if (second < 0 || shapes[std::size_t(c)].mass > shapes[std::size_t(second)].mass) second = c;
+    }
+    for (SparseMatrix::InnerIterator it(psi, i); it; ++it) {
+      const std::int64_t other = it.col() == first ? second : first;
+      if (other >= 0) heaviest[std::size_t(it.col())] = std::max(heaviest[std::size_t(it.col())], shapes[std::size_t(other)].mass);
+    }
+  }
+  // 2. Slivers: light next to a neighbour, or lighter but with their normals split.
+  const double cos_split = std::cos(o.straddle_angle_degrees * 3.14159265358979323846 / 180.0);
+  std::vector<char> sliver(m, 0);
+  for (std::size_t c = 0; c < m; ++c)
+    sliver[c] = shapes[c].mass < o.sliver_share * heaviest[c] ||
+                (!normals.empty() && shapes[c].mass < o.straddle_share * heaviest[c] && shapes[c].coherence < cos_split);
+  // 3. Each sliver's non-sliver neighbours (sorted, unique).
+  std::vector<std::vector<std::uint32_t>> targets(m);
+  for (Eigen::Index i = 0; i < psi.rows(); ++i)
+    for (SparseMatrix::InnerIterator it(psi, i); it; ++it)
+      if (sliver[std::size_t(it.col())])
+        for (SparseMatrix::InnerIterator jt(psi, i); jt; ++jt)
+          if (!sliver[std::size_t(jt.col())]) targets[std::size_t(it.col())].push_back(static_cast<std::uint32_t>(jt.col()));
+  slivers = 0;
+  for (auto& t : targets) {
+    std::sort(t.begin(), t.end());
+    t.erase(std::unique(t.begin(), t.end()), t.end());
+    slivers += !t.empty();
+  }
+  if (slivers == 0) return psi;
+  // 4. Move the weights, point by point.
+  Bounds box;
+  for (const Vec3f& p : positions) box.add(p);
+  const double diag = std::max(double(box.diagonal()), 1e-30);
+  std::vector<std::int32_t> outer(static_cast<std::size_t>(psi.rows()) + 1, 0), inner;
+  std::vector<double> values;
+  std::map<std::int32_t, double> row;
+  for (Eigen::Index i = 0; i < psi.rows(); ++i) {
+    row.clear();
+    const Eigen::Vector3d x = v3(positions[static_cast<std::size_t>(i)]);
+    for (SparseMatrix::InnerIterator it(psi, i); it; ++it) {
+      const auto c = static_cast<std::size_t>(it.col());
+      if (targets[c].empty()) {
+        row[static_cast<std::int32_t>(c)] += it.value();
+        continue;
+      }
+      // The best fitting candidate: lowest (1 - n.N) + distance / diagonal, lowest index on ties.
+      double best_cost = INFINITY;
+      std::int32_t best = -1;
+      auto consider = [&](std::size_t g) {
+        if (sliver[g]) return;
+        double cost = std::fabs(shapes[g].normal.dot(x - shapes[g].centroid)) / diag;
+        if (!normals.empty()) cost += 1.0 - shapes[g].normal.dot(v3(normals[static_cast<std::size_t>(i)]));
+        if (cost < best_cost || (cost == best_cost && std::int32_t(g) < best)) best_cost = cost, best = std::int32_t(g);
+      };
+      for (std::uint32_t g : targets[c]) consider(g);
+      for (SparseMatrix::InnerIterator jt(psi, i); jt; ++jt) consider(static_cast<std::size_t>(jt.col()));
+      row[best] += it.value();
+    }
+    for (const auto& kv : row) inner.push_back(kv.first), values.push_back(kv.second);
+    outer[static_cast<std::size_t>(i) + 1] = static_cast<std::int32_t>(values.size());
+  }
+  return from_rows(psi.rows(), psi.cols(), outer, inner, values);
+}
+
+// Step 3: creases. A point whose normal lies within crease_angle of some of its domains' planes
+// gives its weight in the others (beyond crease_angle) to those, in proportion to their weights.
+SparseMatrix trim_creases(const SparseMatrix& psi, const std::vector<Vec3f>& normals, const std::vector<Shape>& shapes,
+                          const MergeOptions& o, std::size_t& trimmed) {
+  const double cos_crease = std::cos(o.crease_angle_degrees * 3.14159265358979323846 / 180.0);
+  std::vector<std::int32_t> outer(static_cast<std::size_t>(psi.rows()) + 1, 0), inner;
+  std::vector<double> values;
+  trimmed = 0;
+  for (Eigen::Index i = 0; i < psi.rows(); ++i) {
+    const Eigen::Vector3d n = v3(normals[static_cast<std::size_t>(i)]);
+    auto fitting = [&](std::size_t c) { return shapes[c].normal.dot(n) >= cos_crease; };
+    double kept = 0, moved = 0;
+    for (SparseMatrix::InnerIterator it(psi, i); it; ++it)
+      (fitting(static_cast<std::size_t>(it.col())) ? kept : moved) += it.value();
+    const bool trim = kept > 0 && moved > 0;
+    for (SparseMatrix::InnerIterator it(psi, i); it; ++it) {
+      const bool fits = fitting(static_cast<std::size_t>(it.col()));
+      if (trim && !fits) {
+        ++trimmed;
+        continue;
+      }
+      inner.push_back(static_cast<std::int32_t>(it.col()));
+      values.push_back(trim ? it.value() * (kept + moved) / kept : it.value());
+    }
+    outer[static_cast<std::size_t>(i) + 1] = static_cast<std::int32_t>(values.size());
+  }
+  return from_rows(psi.rows(), psi.cols(), outer, inner, values);
+}
+
+// Step 4: columns without any weight left are removed, the others keep their order; `column`
+// receives each old column's new index (-1: removed).
+SparseMatrix drop_empty_columns(const SparseMatrix& psi, std::vector<std::int32_t>& column) {
+  column.assign(static_cast<std::size_t>(psi.cols()), -1);
+  for (Eigen::Index k = 0; k < psi.nonZeros(); ++k) column[static_cast<std::size_t>(psi.innerIndexPtr()[k])] = 0;
+  std::int32_t count = 0;
+  for (std::int32_t& c : column)
+    if (c == 0) c = count++;
+  if (count == psi.cols()) return psi;
+  std::vector<std::int32_t> outer(psi.outerIndexPtr(), psi.outerIndexPtr() + psi.rows() + 1), inner;
+  inner.reserve(static_cast<std::size_t>(psi.nonZeros()));
+  for (Eigen::Index k = 0; k < psi.nonZeros(); ++k) inner.push_back(column[static_cast<std::size_t>(psi.innerIndexPtr()[k])]);
+  return from_rows(psi.rows(), count, outer, inner, std::vector<double>(psi.valuePtr(), psi.valuePtr() + psi.nonZeros()));
+}
+
+}  // namespace
+
+SparseMatrix merge_domains(const SparseMatrix& psi, const std::vector<Vec3f>& positions, const std::vector<Vec3f>& normals,
+                           const MergeOptions& options, MergeReport* report) {
+  MergeReport r;
+  r.before = static_cast<std::size_t>(psi.cols());
+  SparseMatrix out = greedy_merge(psi, positions, options, r.merges);
+  if (options.crease_true) {
+    out = absorb_slivers(out, positions, normals, shapes_of(out, positions, normals), options, r.slivers);
+    // The neighbour graph as the domains touch before trimming: faces meeting at a crease stay
+    // neighbours (the overlap renderer blends a quad's neighbours before locking it).
+    const std::vector<std::array<std::uint32_t, 2>> touching = make_domains(out, options.domains).edges;
+    if (!normals.empty()) out = trim_creases(out, normals, shapes_of(out, positions, normals), options, r.trimmed);
+    std::vector<std::int32_t> column;
+    out = drop_empty_columns(out, column);
+    for (const auto& e : touching)
+      if (column[e[0]] >= 0 && column[e[1]] >= 0)
+        r.edges.push_back({static_cast<std::uint32_t>(column[e[0]]), static_cast<std::uint32_t>(column[e[1]])});
+  } else {
+    r.edges = make_domains(out, options.domains).edges;
+  }
+  r.after = static_cast<std::size_t>(out.cols());
+  if (report) *report = std::move(r);
+  return out;
+}
+
+SparseMatrix merge_domains(const SparseMatrix& psi, const std::vector<Vec3f>& positions, const MergeOptions& options,
+                           MergeReport* report) {
+  MergeOptions plain = options;
+  plain.crease_true = false;
+  return merge_domains(psi, positions, {}, plain, report);
+}
+
+std::size_t count_domains(const SparseMatrix& psi, const DomainOptions& options) {
+  const Domains d = make_domains(psi, options);
+  return d.count() - d.empty;
 }
 
 }  // namespace qf

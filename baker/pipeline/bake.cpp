@@ -47,6 +47,54 @@ std::vector<std::size_t> chosen_levels(const AmgHierarchy& h, const BakeOptions&
 
 }  // namespace
 
+// --merge with --primitives counts the quads delivered, after merging: every level of up to
+// kMergeCandidates x N + 32 functions (and the level nearest N before merging) is merged, and the
+// one whose merged domain count is nearest N wins, ties to the finer level (measured on the
+// octahedron and cube, 8k-64k points, seeds 1-6: every level from ~3x the faces to ~50 functions
+// merges into one domain per face, the coarser ones into fewer, spanning two faces; the level
+// nearest N before merging gave 5 or 7 quads for 8). A cap, not every level: the finest levels
+// merge into the same domains at many times the cost.
+constexpr std::size_t kMergeCandidates = 4;
+
+std::vector<MergedLevel> choose_merged_levels(const AmgHierarchy& h, const BakeOptions& o, const std::vector<Vec3f>& positions,
+                                              const std::vector<Vec3f>& normals) {
+  const std::size_t wants = o.primitives.size();
+  std::vector<std::size_t> nearest;
+  for (std::size_t n : o.primitives) nearest.push_back(level_by_primitives(h, n));
+  auto candidate = [&](std::size_t k, std::size_t level) {
+    return level == nearest[k] || (level > 0 && h.levels[level].size <= kMergeCandidates * o.primitives[k] + 32);
+  };
+  std::vector<MergedLevel> best(wants);
+  std::vector<char> set(wants, 0);
+  auto consider = [&](std::size_t level, const SparseMatrix& raw) {
+    bool wanted = false;
+    for (std::size_t k = 0; k < wants; ++k) wanted |= candidate(k, level);
+    if (!wanted) return;
+    MergeReport report;
+    SparseMatrix merged = merge_domains(raw, positions, normals, o.merge_options, &report);
+    const std::size_t count = count_domains(merged, o.domains);
+    for (std::size_t k = 0; k < wants; ++k) {
+      if (!candidate(k, level)) continue;
+      const auto gap = [&](std::size_t c) { return c > o.primitives[k] ? c - o.primitives[k] : o.primitives[k] - c; };
+      MergedLevel& b = best[k];
+      if (set[k] && (gap(count) > gap(b.quads) || (gap(count) == gap(b.quads) && level > b.level))) continue;
+      b = {level, count, merged, report.edges};
+      set[k] = 1;
+    }
+  };
+  bool level0 = false;
+  for (std::size_t k = 0; k < wants; ++k) level0 |= candidate(k, 0);
+  if (level0) consider(0, basis_at_level(h, 0));
+  for_each_basis(h, h.level_count() - 1, o.basis, consider);  // fine to coarse
+  std::vector<MergedLevel> out;
+  for (MergedLevel& b : best) {
+    bool seen = false;
+    for (const MergedLevel& u : out) seen |= u.level == b.level;
+    if (!seen) out.push_back(std::move(b));
+  }
+  return out;
+}
+
 AmgHierarchy cached_hierarchy(const PointSet& points, const AnalysisOptions& analysis, const AmgOptions& amg,
                               const std::string& cache_dir, std::string& state, std::vector<Vec3f>* estimated_normals) {
   const std::string key = hierarchy_cache_key(points, analysis, amg);
@@ -99,22 +147,37 @@ BakeResult bake(const PointSet& input, const BakeOptions& o, const std::string& 
   watch.lap("hierarchy");
   // Normals orient the planes and make the normal maps: the input's, else the analysis' estimate.
   const std::vector<Vec3f>& normals = points.has_normals() ? points.normals : estimated;
-  // 3. Every chosen level: basis, domains, rectangles, textures, atlas, glb.
-  const std::vector<std::size_t> levels = chosen_levels(h, o);
-  const std::size_t deepest = *std::max_element(levels.begin(), levels.end());
-  std::vector<std::pair<std::size_t, SparseMatrix>> bases;
-  if (std::find(levels.begin(), levels.end(), std::size_t{0}) != levels.end()) bases.push_back({0, basis_at_level(h, 0)});
-  for_each_basis(h, deepest, o.basis, [&](std::size_t l, const SparseMatrix& psi) {
-    if (std::find(levels.begin(), levels.end(), l) != levels.end()) bases.push_back({l, psi});
-  });
+  // 3. Every chosen level: basis (merged with --merge), domains, rectangles, textures, atlas, glb.
+  std::vector<std::size_t> levels;
+  std::vector<MergedLevel> bases;  // quads and edges filled only when merged
+  if (o.merge && o.levels.empty()) {
+    // Chosen by the merged count; the bases come merged.
+    bases = choose_merged_levels(h, o, points.positions, normals);
+    for (const MergedLevel& b : bases) levels.push_back(b.level);
+  } else {
+    levels = chosen_levels(h, o);
+    const std::size_t deepest = *std::max_element(levels.begin(), levels.end());
+    if (std::find(levels.begin(), levels.end(), std::size_t{0}) != levels.end()) bases.push_back({0, 0, basis_at_level(h, 0), {}});
+    for_each_basis(h, deepest, o.basis, [&](std::size_t l, const SparseMatrix& psi) {
+      if (std::find(levels.begin(), levels.end(), l) != levels.end()) bases.push_back({l, 0, psi, {}});
+    });
+    if (o.merge)
+      for (MergedLevel& b : bases) {
+        MergeReport report;
+        b.psi = merge_domains(b.psi, points.positions, normals, o.merge_options, &report);
+        b.edges = std::move(report.edges);
+      }
+  }
   watch.lap("basis");
   std::vector<ImpostorLevel> kept;  // for the MSFT_lod file
   for (std::size_t level : levels) {
     SparseMatrix psi;
-    for (auto& b : bases)
-      if (b.first == level) psi = b.second;
-    if (o.merge) psi = merge_domains(psi, points.positions, o.merge_options);
-    const Domains d = make_domains(psi, o.domains);
+    std::vector<std::array<std::uint32_t, 2>> merged_edges;
+    for (MergedLevel& b : bases)
+      if (b.level == level) psi = std::move(b.psi), merged_edges = std::move(b.edges);
+    Domains d = make_domains(psi, o.domains);
+    // Merged faces trimmed at their crease no longer overlap but stay neighbours there.
+    if (o.merge) d.edges = std::move(merged_edges);
     const std::vector<SupportRect> rects = support_rectangles(points.positions, normals, points.radii, psi, d, o.support);
     const SparseMatrix alpha = domain_partition(psi, d);  // what the rendered sum adds up
     watch.lap("level " + std::to_string(level) + " domains");

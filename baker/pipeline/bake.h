@@ -38,7 +38,9 @@ struct BakeOptions {
   AtlasOptions atlas;
   GltfOptions gltf;
   // Levels to bake: by number (see level_by_index) or, when empty, the levels nearest these counts
-  // of primitives (duplicates removed). The default spans far to middle distances.
+  // of primitives (duplicates removed). The default spans far to middle distances. With merge,
+  // the count is of the quads delivered after merging (each candidate level is merged and the
+  // one with the nearest merged count is taken, ties to the finer level).
   std::vector<long long> levels;
   std::vector<std::size_t> primitives{1000, 300, 100, 30};
   std::string cache_dir;  // empty = no hierarchy cache
@@ -77,6 +79,20 @@ struct BakeResult {
   std::vector<StageTime> times;
   std::vector<std::string> warnings;
 };
+
+// --merge with the levels chosen by primitives: the level whose merged basis delivers the number
+// of quads nearest each of o.primitives (ties to the finer level), candidates being the levels of
+// up to 4 N + 32 functions and the level nearest N before merging. One entry per distinct level,
+// in the order of o.primitives; psi is the merged basis (n x quads' columns). `normals` as for
+// merge_domains.
+struct MergedLevel {
+  std::size_t level = 0;
+  std::size_t quads = 0;  // non-empty domains of psi
+  SparseMatrix psi;
+  std::vector<std::array<std::uint32_t, 2>> edges;  // their neighbour graph (MergeReport::edges)
+};
+std::vector<MergedLevel> choose_merged_levels(const AmgHierarchy& h, const BakeOptions& o, const std::vector<Vec3f>& positions,
+                                              const std::vector<Vec3f>& normals);
 
 // Bakes the chosen levels. Throws InputError("bake.too_small") when the set cannot be decomposed
 // (fewer points than a neighbourhood needs, or no surface: every fan empty), UsageError for a
