@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "core/error.h"
 #include "core/file_io.h"
 #include "io/model_io.h"
 
@@ -45,6 +46,8 @@ AnyScene load_scene(const std::string& path) {
     s.points = std::move(b.points);
     s.cluster = std::move(b.cluster);
     s.engine = std::move(b.engine);
+    s.lods = std::move(b.lods);
+    s.lod_coverage = std::move(b.lod_coverage);
     return s;
   }
   Model m = read_model(path);
@@ -58,6 +61,21 @@ AnyScene load_scene(const std::string& path) {
     s.engine = engine_scene(s.splats);
   }
   return s;
+}
+
+void AnyScene::select_lod(int i) {
+  if (lods.empty() && i == 0) return;
+  if (i < 0 || i >= static_cast<int>(lods.size()))
+    throw UsageError("--lod " + std::to_string(i) + ": the file has " + std::to_string(std::max<std::size_t>(1, lods.size())) + " level(s)");
+  lod = i;
+  impostor = lods[static_cast<std::size_t>(i)].impostor;
+  engine = lods[static_cast<std::size_t>(i)].engine;
+}
+
+int AnyScene::lod_for_coverage(double coverage) const {
+  for (std::size_t i = 0; i < lods.size() && i < lod_coverage.size(); ++i)
+    if (coverage >= lod_coverage[i]) return static_cast<int>(i);
+  return lods.empty() ? 0 : static_cast<int>(lods.size()) - 1;
 }
 
 ViewMetrics mean_of(const std::vector<ViewMetrics>& v) {

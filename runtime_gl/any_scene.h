@@ -22,6 +22,15 @@ struct AnyScene {
   PointImpostorScene points;
   EngineScene engine;                 // the same, as a standard engine draws it (Method::kEngine)
   std::optional<MeshScene> fade_mesh;  // kPoints: the mesh it fades to when near (--mesh)
+  // A combined LOD file: its levels (finest first) and their screen coverages; the fields above
+  // hold the selected one (select_lod), the finest when loaded.
+  std::vector<BakedScene> lods;
+  std::vector<double> lod_coverage;
+  int lod = 0;
+  void select_lod(int i);  // UsageError when out of range
+  // The level an engine shows when the object's bounding sphere spans `coverage` of the screen
+  // height: the first whose MSFT_screencoverage it reaches (the coarsest below them all).
+  int lod_for_coverage(double coverage) const;
   Bounds bounds() const;
   std::string describe() const;      // e.g. "273 quads", "37705 points"
   void attach(Renderer& r) const;    // makes it (and its engine view) the renderer's scene

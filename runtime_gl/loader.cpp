@@ -244,7 +244,8 @@ ClusterScene cluster_scene(const tinygltf::Model& m, const std::string& path) {
   return s;
 }
 
-ImpostorScene impostor_scene(const tinygltf::Model& m, const std::string& path);
+// The impostor level of the file (or of its mesh `only_mesh` alone, >= 0).
+ImpostorScene impostor_scene(const tinygltf::Model& m, const std::string& path, int only_mesh = -1);
 
 // --- the engine's view of a file ---------------------------------------------------------------
 
@@ -401,15 +402,18 @@ EnginePrimitive engine_primitive(const AccessorReader& read, const tinygltf::Pri
   return p;
 }
 
-// The default scene's node tree (scene 0 when none is named; every root node when there are no
-// scenes), every mesh primitive placed by its composed transform.
-EngineScene engine_scene(const tinygltf::Model& m, const std::string& path) {
+// The root nodes of the default scene (scene 0 when none is named; none when there are no scenes).
+std::vector<int> scene_roots(const tinygltf::Model& m) {
+  const int scene = m.defaultScene >= 0 ? m.defaultScene : (m.scenes.empty() ? -1 : 0);
+  if (scene >= 0 && scene < static_cast<int>(m.scenes.size())) return m.scenes[static_cast<std::size_t>(scene)].nodes;
+  return {};
+}
+
+// The node trees under `roots`, every mesh primitive placed by its composed transform.
+EngineScene engine_scene(const tinygltf::Model& m, const std::string& path, const std::vector<int>& roots) {
   EngineScene s;
   for (const tinygltf::Image& img : m.images) s.images.push_back(to_image(img, path));
   AccessorReader read{m, path};
-  std::vector<int> roots;
-  const int scene = m.defaultScene >= 0 ? m.defaultScene : (m.scenes.empty() ? -1 : 0);
-  if (scene >= 0 && scene < static_cast<int>(m.scenes.size())) roots = m.scenes[static_cast<std::size_t>(scene)].nodes;
   std::vector<int> depth(m.nodes.size(), -1);  // on the current path: a cycle guard
   const Mat4d identity{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
   auto visit = [&](auto&& self, int node, const Mat4d& parent, int level) -> void {
@@ -436,10 +440,40 @@ EngineScene engine_scene(const tinygltf::Model& m, const std::string& path) {
 
 }  // namespace
 
+// A combined LOD file (`qf-bake --lod-file`): the scene's one root node lists its lower LODs
+// under MSFT_lod and their screen coverages in its extras. Empty when the file has none.
+std::vector<int> lod_nodes(const tinygltf::Model& m, const std::vector<int>& roots, const std::string& path, std::vector<double>& coverage) {
+  if (roots.size() != 1 || roots[0] < 0 || roots[0] >= static_cast<int>(m.nodes.size())) return {};
+  const tinygltf::Node& root = m.nodes[static_cast<std::size_t>(roots[0])];
+  const auto ext = root.extensions.find("MSFT_lod");
+  if (ext == root.extensions.end()) return {};
+  std::vector<int> nodes{roots[0]};
+  for (int id : number_array<int>(ext->second, "ids", path)) nodes.push_back(id);
+  coverage = number_array<double>(root.extras, "MSFT_screencoverage", path);
+  return nodes;
+}
+
 BakedScene load_baked(const std::string& path) {
   const tinygltf::Model m = read_gltf(path);  // parsed once, whatever it holds
   BakedScene s;
-  s.engine = engine_scene(m, path);
+  const std::vector<int> roots = scene_roots(m);
+  std::vector<double> coverage;
+  const std::vector<int> lods = lod_nodes(m, roots, path, coverage);
+  if (!lods.empty()) {
+    // Each LOD alone, finest first; the file itself stands for the finest.
+    for (int node : lods) {
+      if (node < 0 || node >= static_cast<int>(m.nodes.size())) fail(path, "nodes", "MSFT_lod names node " + std::to_string(node) + ", which does not exist");
+      BakedScene level;
+      level.engine = engine_scene(m, path, {node});
+      level.impostor = impostor_scene(m, path, m.nodes[static_cast<std::size_t>(node)].mesh);
+      s.lods.push_back(std::move(level));
+    }
+    s.lod_coverage = coverage;
+    s.engine = s.lods[0].engine;
+    s.impostor = s.lods[0].impostor;
+    return s;
+  }
+  s.engine = engine_scene(m, path, roots);
   if (m.extensions.count("QF_point_impostor")) {
     s.kind = BakedScene::kPoints;
     s.points = point_scene(m, path);
@@ -456,7 +490,7 @@ ImpostorScene load_gltf(const std::string& path) { return impostor_scene(read_gl
 
 namespace {
 
-ImpostorScene impostor_scene(const tinygltf::Model& m, const std::string& path) {
+ImpostorScene impostor_scene(const tinygltf::Model& m, const std::string& path, int only_mesh) {
   ImpostorScene s;
   AccessorReader read{m, path};
   // Textures: one per glTF image, plus a white one at the end for untextured materials.
@@ -476,8 +510,9 @@ ImpostorScene impostor_scene(const tinygltf::Model& m, const std::string& path) 
     std::vector<std::uint32_t> first;  // first vertex of each triangle
   };
   std::vector<Group> groups;
-  for (const tinygltf::Mesh& mesh : m.meshes) {
-    for (const tinygltf::Primitive& prim : mesh.primitives) {
+  for (std::size_t mi = 0; mi < m.meshes.size(); ++mi) {
+    if (only_mesh >= 0 && mi != static_cast<std::size_t>(only_mesh)) continue;
+    for (const tinygltf::Primitive& prim : m.meshes[mi].primitives) {
       if (prim.mode != TINYGLTF_MODE_TRIANGLES) continue;
       const auto pos_it = prim.attributes.find("POSITION");
       if (pos_it == prim.attributes.end()) fail(path, "mesh", "a triangle primitive has no POSITION");

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "core/types.h"
 #include "runtime_gl/engine_scene.h"
@@ -24,6 +25,10 @@ struct BakedScene {
   PointImpostorScene points;
   ClusterScene cluster;
   EngineScene engine;  // the whole file as a standard engine draws it (any kind)
+  // A combined LOD file (MSFT_lod): every level alone, finest first (the fields above hold the
+  // finest), and down to which screen coverage each is shown (MSFT_screencoverage).
+  std::vector<BakedScene> lods;
+  std::vector<double> lod_coverage;
 };
 BakedScene load_baked(const std::string& path);
 

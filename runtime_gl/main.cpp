@@ -77,6 +77,8 @@ std::vector<OptionSpec> draw_option_specs() {
       {"alpha-mode", 0, "OPAQUE|MASK|BLEND", "the material's", "engine method: draw as this glTF alpha mode"},
       {"alpha-cutoff", 0, "V", "the material's", "engine method, MASK: the cutoff"},
       {"fov", 0, "DEG", "30", "vertical field of view"},
+      {"lod", 0, "N", "by screen coverage", "combined LOD files (qf-bake --lod-file): draw level N (0 = finest) instead of the one\n"
+                                             "MSFT_screencoverage picks for the (first) camera, as UnityGLTF would"},
       {"normalize", 0, "T", "0.5 for overlap, 0 (off) for two-pass and blend-all",
        "where the quads' summed basis covers a pixel by c >= T, draw their weighted mean colour, opaque;\n"
        "below, that colour at coverage c / T (fills see-through gaps, no saturated overlaps; 0 = the plain sum)"},
@@ -131,6 +133,21 @@ const CommandSpec& render_spec() {
   return spec;
 }
 
+// A combined LOD file shows one level: --lod's, else the one its screen coverages pick for
+// `camera` (the object's bounding sphere's diameter on screen / the image height).
+void choose_lod(AnyScene& scene, const ParsedArgs& a, const Camera& camera) {
+  if (scene.lods.empty()) {
+    if (a.has("lod") && a.get_int("lod", 0, 0, 1000) != 0) throw UsageError("--lod: the file has one level");
+    return;
+  }
+  const Sphere s = bounding_sphere(scene.bounds());
+  const double d = std::max(1e-30, static_cast<double>(length(camera.eye - s.center)));
+  const double coverage = 2.0 * s.radius * camera.focal_pixels() / d / camera.height;
+  scene.select_lod(a.has("lod") ? static_cast<int>(a.get_int("lod", 0, 0, 1000)) : scene.lod_for_coverage(coverage));
+  std::cerr << "qf-render: LOD " << scene.lod << " of " << scene.lods.size() << " (" << scene.describe() << ", screen coverage "
+            << coverage << ")\n";
+}
+
 Sphere framing_sphere(const ParsedArgs& a, const AnyScene& scene) {
   if (!a.has("frame")) return bounding_sphere(scene.bounds());
   return bounding_sphere(load_scene(a.get("frame")).bounds());
@@ -162,7 +179,6 @@ int run_render(const ParsedArgs& a) {
 
   HeadlessContext context;
   Renderer renderer(w, h);
-  scene.attach(renderer);
   std::vector<Vec3f> directions;
   const int turntable = static_cast<int>(a.get_int("turntable", 0, 0, 1000));
   const float elevation = static_cast<float>(a.get_double("elevation", 20, -90, 90));
@@ -175,6 +191,8 @@ int run_render(const ParsedArgs& a) {
   } else {
     directions.push_back(orbit_direction(azimuth, elevation));
   }
+  choose_lod(scene, a, orbit_camera(sphere, directions[0], distance, w, h, fov));
+  scene.attach(renderer);
   std::vector<Image> frames;
   DrawStats stats;
   for (const Vec3f& d : directions) {
@@ -280,9 +298,10 @@ int run_eval(const ParsedArgs& a) {
   const Rgb8 background = a.has("background") ? settings.background : Rgb8{128, 128, 128};
   const int views = static_cast<int>(a.get_int("views", 26, 1, 10000));
   const AnyScene reference = load_scene(a.positional[0]);
-  const AnyScene baked = load_scene(a.positional[1]);
+  AnyScene baked = load_scene(a.positional[1]);
   if (reference.kind == AnyScene::kImpostor) throw UsageError("eval: REFERENCE must be a point set or a mesh, not a glTF file");
   const Sphere sphere = bounding_sphere(reference.bounds());
+  choose_lod(baked, a, orbit_camera(sphere, sphere_direction(0, views), 0, w, h));
 
   HeadlessContext context;
   Renderer ref_renderer(w, h), imp_renderer(w, h);
@@ -397,8 +416,9 @@ int run_view(const ParsedArgs& a) {
   auto [w, h] = parse_size(a.get("size", "512"));
   const DrawSettings settings = read_draw_settings(a);
   const long long frames = a.get_int("frames", 0, 0, 1LL << 40);
-  const AnyScene scene = load_scene(a.positional[0]);
+  AnyScene scene = load_scene(a.positional[0]);
   const Sphere sphere = bounding_sphere(scene.bounds());
+  choose_lod(scene, a, orbit_camera(sphere, orbit_direction(30, 20), 0, w, h));
   WindowContext window(w, h, "qf-render: " + a.positional[0]);
   Renderer renderer(w, h, /*offscreen=*/false);
   scene.attach(renderer);

@@ -451,6 +451,8 @@ std::vector<std::uint8_t> encode_lod_glb(const std::vector<const ImpostorLevel*>
   tinygltf::Model m = new_model(options);
   std::vector<int> nodes;
   for (const ImpostorLevel* l : levels) nodes.push_back(add_level(m, *l, options, "impostor_L" + std::to_string(l->level) + "_"));
+  // Named NAME_LOD0..n, finest first: the suffix Unity, Unreal and Godot importers group as LODs.
+  for (std::size_t i = 0; i < nodes.size(); ++i) m.nodes[static_cast<std::size_t>(nodes[i])].name = "impostor_LOD" + std::to_string(i);
   // Only the finest level's node is in the scene: engines without MSFT_lod draw it alone.
   tinygltf::Node& root = m.nodes[static_cast<std::size_t>(nodes[0])];
   if (nodes.size() > 1) {

@@ -48,7 +48,8 @@ ImpostorLevel make_impostor_level(std::size_t level, const std::vector<SupportRe
 // The .glb bytes: identical for identical input (sorted keys, canonical floats, no timestamps).
 std::vector<std::uint8_t> encode_glb(const ImpostorLevel& level, const GltfOptions& options = {});
 
-// All levels in one .glb under MSFT_lod (gltf-notes.md 2.1), finest first: the finest level's node
+// All levels in one .glb under MSFT_lod (gltf-notes.md 2.1), finest first, nodes named
+// impostor_LOD0..n (the LOD-group suffix of Unity, Unreal and Godot): the finest level's node
 // is the scene's only node and lists the others as lower LODs; screen_coverage (one per level, as
 // MSFT_screencoverage) says down to which fraction of the screen height each level is shown. Plain
 // glTF plus MSFT_lod only: a custom runtime reads the per-level files with the QF extension.

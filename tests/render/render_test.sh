@@ -100,6 +100,27 @@ else
   echo "xvfb-run missing (scripts/install-deps.sh installs it): window test not run"; bad "no xvfb-run"
 fi
 
+# 5b. A combined LOD file shows exactly one level: the one its screen coverages pick, or --lod N;
+#     its nodes carry the _LOD0.._LODn names engines group as LODs.
+"$bake" "$root/samples/octahedron.ply" -o "$work/lodf" --lod-file --cache "$work/cache" -q || bad "bake --lod-file"
+lods="$work/lodf/octahedron_lods.glb"
+levels=$(python3 -c 'import json,sys; print(" ".join(str(l["primitives"]) for l in json.load(open(sys.argv[1]))["levels"]))' "$work/lodf/manifest.json")
+for n in 0 1 2 3; do
+  want=$(echo "$levels" | cut -d' ' -f$((n + 1)))
+  if "$render" "$lods" -o "$work/lod.png" --size 64 --lod $n 2>"$work/err" && grep -q "LOD $n of 4 ($want quads" "$work/err"; then ok
+  else bad "--lod $n draws level $n alone ($want quads): $(cat "$work/err")"; fi
+done
+"$render" "$lods" -o "$work/lod.png" --size 64 --distance 1000 2>"$work/err" && grep -q "LOD 3 of 4" "$work/err" && ok ||
+  bad "far away the coarsest level is chosen: $(cat "$work/err")"
+"$render" "$lods" -o "$work/lod.png" --lod 4 2>"$work/err"; [[ $? -eq 2 ]] && grep -q "4 level" "$work/err" && ok || bad "--lod out of range: $(cat "$work/err")"
+python3 - "$lods" <<'PY' && ok || bad "lod file node names"
+import json, struct, sys
+b = open(sys.argv[1], "rb").read()
+n = struct.unpack_from("<I", b, 12)[0]
+g = json.loads(b[20:20 + n])
+assert sorted(x["name"] for x in g["nodes"]) == [f"impostor_LOD{i}" for i in range(4)], [x["name"] for x in g["nodes"]]
+PY
+
 # 6. Errors: exit code, message naming the file, no output left.
 expect() {  # expect CODE PATTERN ARGS...
   local code=$1 pattern=$2; shift 2
