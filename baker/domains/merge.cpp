@@ -259,7 +259,9 @@ SparseMatrix absorb_slivers(const SparseMatrix& psi, const std::vector<Vec3f>& p
 // Step 3: creases. A point whose normal lies within crease_angle of some of its domains' planes
 // gives its weight in the others (beyond crease_angle) to those, in proportion to their weights.
 SparseMatrix trim_creases(const SparseMatrix& psi, const std::vector<Vec3f>& normals, const std::vector<Shape>& shapes,
-                          const MergeOptions& o, std::size_t& trimmed) {
+                          const std::vector<std::array<std::uint32_t, 2>>& edges, const MergeOptions& o, std::size_t& trimmed) {
+  std::vector<std::vector<std::uint32_t>> nb(static_cast<std::size_t>(psi.cols()));
+  for (const auto& e : edges) nb[e[0]].push_back(e[1]), nb[e[1]].push_back(e[0]);
   const double cos_crease = std::cos(o.crease_angle_degrees * 3.14159265358979323846 / 180.0);
   std::vector<std::int32_t> outer(static_cast<std::size_t>(psi.rows()) + 1, 0), inner;
   std::vector<double> values;
@@ -270,6 +272,24 @@ SparseMatrix trim_creases(const SparseMatrix& psi, const std::vector<Vec3f>& nor
     double kept = 0, moved = 0;
     for (SparseMatrix::InnerIterator it(psi, i); it; ++it)
       (fitting(static_cast<std::size_t>(it.col())) ? kept : moved) += it.value();
+    if (kept == 0 && moved > 0) {
+      // None of the point's domains faces its way (a corner where the face's own domain does
+      // not reach): all its weight goes to the best-facing neighbour of its domains, if one fits.
+      double best_fit = cos_crease;
+      std::int32_t best = -1;
+      for (SparseMatrix::InnerIterator it(psi, i); it; ++it)
+        for (std::uint32_t g : nb[static_cast<std::size_t>(it.col())]) {
+          const double fit = shapes[g].normal.dot(n);
+          if (fit > best_fit || (fit == best_fit && best >= 0 && std::int32_t(g) < best)) best_fit = fit, best = std::int32_t(g);
+        }
+      if (best >= 0) {
+        for (SparseMatrix::InnerIterator it(psi, i); it; ++it) ++trimmed;
+        inner.push_back(best);
+        values.push_back(moved);
+        outer[static_cast<std::size_t>(i) + 1] = static_cast<std::int32_t>(values.size());
+        continue;
+      }
+    }
     const bool trim = kept > 0 && moved > 0;
     for (SparseMatrix::InnerIterator it(psi, i); it; ++it) {
       const bool fits = fitting(static_cast<std::size_t>(it.col()));
@@ -311,8 +331,10 @@ SparseMatrix merge_domains(const SparseMatrix& psi, const std::vector<Vec3f>& po
     out = absorb_slivers(out, positions, normals, shapes_of(out, positions, normals), options, r.slivers);
     // The neighbour graph as the domains touch before trimming: faces meeting at a crease stay
     // neighbours (the overlap renderer blends a quad's neighbours before locking it).
-    const std::vector<std::array<std::uint32_t, 2>> touching = make_domains(out, options.domains).edges;
-    if (!normals.empty()) out = trim_creases(out, normals, shapes_of(out, positions, normals), options, r.trimmed);
+    DomainOptions touch = options.domains;
+    touch.neighbor_share = options.crease_neighbor_share;
+    const std::vector<std::array<std::uint32_t, 2>> touching = make_domains(out, touch).edges;
+    if (!normals.empty()) out = trim_creases(out, normals, shapes_of(out, positions, normals), touching, options, r.trimmed);
     std::vector<std::int32_t> column;
     out = drop_empty_columns(out, column);
     for (const auto& e : touching)
