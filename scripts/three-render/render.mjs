@@ -7,15 +7,11 @@
 // usage: node render.mjs FILE.glb CAMERAS.json OUTDIR
 //        node render.mjs --jobs JOBS.json     (a JSON array of {"file", "cameras", "out"}: one browser for all)
 // env:   QF_CHROMIUM  the Chromium executable (default /usr/bin/chromium)
-import { chromium } from 'playwright-core';
 import fs from 'node:fs';
 import path from 'node:path';
 import zlib from 'node:zlib';
-import { fileURLToPath } from 'node:url';
 
-const here = path.dirname(fileURLToPath(import.meta.url));
-const threeRoot = path.join(here, 'node_modules', 'three');
-const origin = 'http://qf-three.invalid';
+import { withThreePage } from './browser.mjs';
 
 // A PNG of RGB rows (colour type 2, 8 bits, filter 0 on every row).
 function encodePng(width, height, rgba) {
@@ -41,9 +37,7 @@ function encodePng(width, height, rgba) {
                         chunk('IDAT', zlib.deflateSync(raw)), chunk('IEND', Buffer.alloc(0))]);
 }
 
-const page_html = `<!doctype html><html><head><script type="importmap">
-{"imports": {"three": "/three/build/three.module.js", "three/addons/": "/three/examples/jsm/"}}
-</script></head><body><script type="module">
+const pageScript = `
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 window.qfRender = async (url, cams) => {
@@ -91,8 +85,7 @@ window.qfRender = async (url, cams) => {
   renderer.dispose();
   return { images: out, warnings };
 };
-window.qfReady = true;
-</script></body></html>`;
+`;
 
 async function main() {
   const args = process.argv.slice(2);
@@ -103,33 +96,14 @@ async function main() {
     console.error('usage: node render.mjs FILE.glb CAMERAS.json OUTDIR | --jobs JOBS.json');
     process.exit(2);
   }
-  const browser = await chromium.launch({
-    executablePath: process.env.QF_CHROMIUM || '/usr/bin/chromium',
-    args: ['--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--ignore-gpu-blocklist', '--no-sandbox'],
-  });
   let failed = 0;
-  try {
-    const page = await browser.newPage();
-    const errors = [];
-    page.on('pageerror', (e) => errors.push(String(e)));
-    let current = null;
-    await page.route(`${origin}/**`, async (route) => {
-      const url = new URL(route.request().url());
-      if (url.pathname === '/') return route.fulfill({ body: page_html, contentType: 'text/html' });
-      if (url.pathname === '/model.glb') return route.fulfill({ body: fs.readFileSync(current), contentType: 'model/gltf-binary' });
-      if (url.pathname.startsWith('/three/')) {
-        const file = path.join(threeRoot, url.pathname.slice('/three/'.length));
-        if (file.startsWith(threeRoot) && fs.existsSync(file)) return route.fulfill({ body: fs.readFileSync(file), contentType: 'text/javascript' });
-      }
-      return route.fulfill({ status: 404, body: 'not found' });
-    });
-    await page.goto(`${origin}/`);
-    await page.waitForFunction(() => window.qfReady === true);
+  let current = null;
+  await withThreePage(pageScript, (p) => (p === 'model.glb' ? current : null), async (page, errors) => {
     for (const job of jobs) {
       current = job.file;
       const cams = JSON.parse(fs.readFileSync(job.cameras, 'utf8'));
       try {
-        const { images, warnings } = await page.evaluate(([u, c]) => window.qfRender(u, c), [`/model.glb?${encodeURIComponent(job.file)}`, cams]);
+        const { images, warnings } = await page.evaluate(([u, c]) => window.qfRender(u, c), [`/files/model.glb?${encodeURIComponent(job.file)}`, cams]);
         fs.mkdirSync(job.out, { recursive: true });
         images.forEach((pair, i) => {
           const v = cams.views[i];
@@ -140,12 +114,10 @@ async function main() {
         console.log(`three-render: ${job.file}: ${images.length} views -> ${job.out}` + (warnings.length ? ` (${warnings.length} warnings)` : ''));
       } catch (e) {
         ++failed;
-        console.error(`three-render: ${job.file}: ${e.message.split('\n')[0]} ${errors.join('; ')}`);
+        console.error(`three-render: ${job.file}: ${e.message.split('\n')[0]} ${errors.splice(0).join('; ')}`);
       }
     }
-  } finally {
-    await browser.close();
-  }
+  });
   process.exit(failed ? 1 : 0);
 }
 
