@@ -9,6 +9,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "gl/shader.h"
+
 namespace qf::render {
 namespace {
 
@@ -134,20 +136,6 @@ void main() {
 }
 )";
 
-GLuint compile(GLenum type, const char* src) {
-  const GLuint s = glCreateShader(type);
-  glShaderSource(s, 1, &src, nullptr);
-  glCompileShader(s);
-  GLint ok = 0;
-  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[2048] = {};
-    glGetShaderInfoLog(s, sizeof log, nullptr, log);
-    throw std::runtime_error(std::string("engine method: shader does not compile: ") + log);
-  }
-  return s;
-}
-
 // Radical inverse in base 2 (Hammersley points).
 float radical_inverse(std::uint32_t bits) {
   bits = (bits << 16u) | (bits >> 16u);
@@ -227,7 +215,7 @@ GLuint upload(const Image& img, GLint internal_format) {
 EngineDrawer::EngineDrawer() : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   m.program = glCreateProgram();
-  const GLuint vs = compile(GL_VERTEX_SHADER, kVertexShader), fs = compile(GL_FRAGMENT_SHADER, kFragmentShader);
+  const GLuint vs = compile_shader(GL_VERTEX_SHADER, kVertexShader, "engine method"), fs = compile_shader(GL_FRAGMENT_SHADER, kFragmentShader, "engine method");
   glAttachShader(m.program, vs);
   glAttachShader(m.program, fs);
   glBindAttribLocation(m.program, kPos, "a_pos");

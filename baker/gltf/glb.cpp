@@ -114,6 +114,32 @@ tinygltf::Model new_model(const GltfOptions& options) {
   return m;
 }
 
+// A uint32 index accessor of `idx`; returns its index.
+int add_indices(tinygltf::Model& m, const std::vector<std::uint32_t>& idx) {
+  tinygltf::Accessor ia;
+  ia.bufferView = add_view(m, idx.data(), idx.size() * sizeof(std::uint32_t), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+  ia.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+  ia.count = idx.size();
+  ia.type = TINYGLTF_TYPE_SCALAR;
+  m.accessors.push_back(ia);
+  return static_cast<int>(m.accessors.size() - 1);
+}
+
+// `mesh` as the model's only mesh, held by its only node, the default scene's one root; returns
+// the node.
+tinygltf::Node& add_single_node_scene(tinygltf::Model& m, tinygltf::Mesh mesh) {
+  tinygltf::Node node;
+  node.name = mesh.name;
+  node.mesh = static_cast<int>(m.meshes.size());
+  m.meshes.push_back(std::move(mesh));
+  m.nodes.push_back(node);
+  tinygltf::Scene scene;
+  scene.nodes.push_back(static_cast<int>(m.nodes.size() - 1));
+  m.scenes.push_back(scene);
+  m.defaultScene = 0;
+  return m.nodes.back();
+}
+
 // Adds a level's materials (one per atlas image: one draw call each in an engine), its quads as one
 // mesh and a node holding it; returns the node's index. `prefix` names the level's objects.
 int add_level(tinygltf::Model& m, const ImpostorLevel& level, const GltfOptions& options, const std::string& prefix) {
@@ -168,13 +194,7 @@ int add_level(tinygltf::Model& m, const ImpostorLevel& level, const GltfOptions&
     prim.attributes["NORMAL"] = add_floats(m, nrm, 3, TINYGLTF_TYPE_VEC3, false);
     prim.attributes["TANGENT"] = add_floats(m, tan, 4, TINYGLTF_TYPE_VEC4, false);
     prim.attributes["TEXCOORD_0"] = add_floats(m, uv, 2, TINYGLTF_TYPE_VEC2, false);
-    tinygltf::Accessor ia;
-    ia.bufferView = add_view(m, idx.data(), idx.size() * sizeof(std::uint32_t), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-    ia.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-    ia.count = idx.size();
-    ia.type = TINYGLTF_TYPE_SCALAR;
-    m.accessors.push_back(ia);
-    prim.indices = static_cast<int>(m.accessors.size() - 1);
+    prim.indices = add_indices(m, idx);
     mesh.primitives.push_back(prim);
   }
   m.meshes.push_back(mesh);
@@ -388,20 +408,11 @@ std::vector<std::uint8_t> encode_cluster_glb(const LodMesh& lod, const GltfOptio
   add_primitive(TINYGLTF_MODE_LINE, ev, nullptr, &et);
   add_primitive(TINYGLTF_MODE_POINTS, lod.points, nullptr, nullptr);
   if (mesh.primitives.empty()) throw std::invalid_argument("encode_cluster_glb: an empty LOD");
-  m.meshes.push_back(mesh);
-  tinygltf::Node node;
-  node.name = mesh.name;
-  node.mesh = 0;
-  node.extras = Value(Value::Object{{"cellWidth", Value(canonical_double(lod.cell))}});
-  m.nodes.push_back(node);
+  add_single_node_scene(m, mesh).extras = Value(Value::Object{{"cellWidth", Value(canonical_double(lod.cell))}});
   if (draco && !tv.empty()) {  // no uncompressed fallback: readers without Draco must refuse the file
     m.extensionsUsed.push_back("KHR_draco_mesh_compression");
     m.extensionsRequired.push_back("KHR_draco_mesh_compression");
   }
-  tinygltf::Scene scene;
-  scene.nodes.push_back(0);
-  m.scenes.push_back(scene);
-  m.defaultScene = 0;
   return write_glb(m);
 }
 
@@ -424,15 +435,7 @@ std::vector<std::uint8_t> encode_point_glb(const PointSet& p, const PointImposto
   tinygltf::Mesh mesh;
   mesh.name = "point_impostor";
   mesh.primitives.push_back(prim);
-  m.meshes.push_back(mesh);
-  tinygltf::Node node;
-  node.name = mesh.name;
-  node.mesh = 0;
-  m.nodes.push_back(node);
-  tinygltf::Scene scene;
-  scene.nodes.push_back(0);
-  m.scenes.push_back(scene);
-  m.defaultScene = 0;
+  add_single_node_scene(m, mesh);
   m.extensions[kPointExtension] = Value(Value::Object{
       {"pixelSize", Value(canonical_double(info.pixel))},
       {"pointCount", Value(static_cast<int>(p.size()))},
@@ -470,10 +473,6 @@ std::vector<std::uint8_t> encode_lod_glb(const std::vector<const ImpostorLevel*>
   return write_glb(m);
 }
 
-}  // namespace qf
-
-namespace qf {
-
 std::vector<std::uint8_t> encode_mesh_glb(const TriangleMesh& mesh, bool smooth_normals, const GltfOptions& options) {
   if (mesh.triangles.empty()) throw std::invalid_argument("encode_mesh_glb: a mesh without triangles");
   tinygltf::Model m = new_model(options);
@@ -502,25 +501,11 @@ std::vector<std::uint8_t> encode_mesh_glb(const TriangleMesh& mesh, bool smooth_
   if (coloured) prim.attributes["COLOR_0"] = add_colors(m, mesh.colors);
   std::vector<std::uint32_t> idx;
   for (const Triangle& t : mesh.triangles) idx.insert(idx.end(), t.begin(), t.end());
-  tinygltf::Accessor ia;
-  ia.bufferView = add_view(m, idx.data(), idx.size() * sizeof(std::uint32_t), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-  ia.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-  ia.count = idx.size();
-  ia.type = TINYGLTF_TYPE_SCALAR;
-  m.accessors.push_back(ia);
-  prim.indices = static_cast<int>(m.accessors.size() - 1);
+  prim.indices = add_indices(m, idx);
   tinygltf::Mesh gm;
   gm.name = "mesh_lod";
   gm.primitives.push_back(prim);
-  m.meshes.push_back(gm);
-  tinygltf::Node node;
-  node.name = gm.name;
-  node.mesh = 0;
-  m.nodes.push_back(node);
-  tinygltf::Scene scene;
-  scene.nodes.push_back(0);
-  m.scenes.push_back(scene);
-  m.defaultScene = 0;
+  add_single_node_scene(m, gm);
   return write_glb(m);
 }
 

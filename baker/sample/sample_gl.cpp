@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "gl/shader.h"
 #include "gl/egl.h"
 #include "sample/sample.h"
 
@@ -34,20 +35,6 @@ void main() {
   color = v_id;
 })";
 
-GLuint compile(GLenum type, const char* source) {
-  const GLuint s = glCreateShader(type);
-  glShaderSource(s, 1, &source, nullptr);
-  glCompileShader(s);
-  GLint ok = 0;
-  glGetShaderiv(s, GL_COMPILE_STATUS, &ok);
-  if (!ok) {
-    char log[1024];
-    glGetShaderInfoLog(s, sizeof log, nullptr, log);
-    throw std::runtime_error(std::string("depth peeling shader: ") + log);
-  }
-  return s;
-}
-
 // GL objects of one peeling run, released on every exit path.
 struct PeelTarget {
   GLuint program = 0, fbo = 0, color = 0, depth[2] = {0, 0}, vbo[2] = {0, 0}, query = 0;
@@ -63,7 +50,7 @@ struct PeelTarget {
 
 void make_program(PeelTarget& t) {
   t.program = glCreateProgram();
-  const GLuint vs = compile(GL_VERTEX_SHADER, kVertexShader), fs = compile(GL_FRAGMENT_SHADER, kFragmentShader);
+  const GLuint vs = compile_shader(GL_VERTEX_SHADER, kVertexShader, "depth peeling"), fs = compile_shader(GL_FRAGMENT_SHADER, kFragmentShader, "depth peeling");
   glAttachShader(t.program, vs);
   glAttachShader(t.program, fs);
   glBindAttribLocation(t.program, 0, "position");
