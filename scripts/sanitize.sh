@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# The sanitizer pass of scripts/test.sh: builds the tests and the CLI with AddressSanitizer +
+# UndefinedBehaviorSanitizer (gcc, RelWithDebInfo, -DQF_SANITIZE=ON) and runs every test label that
+# needs no GL context: unit, readers, cli, gltf, models. Left out: the labels render and engine
+# (qf-render, qf-diff: EGL/OpenGL), the tests of the mesh sampler's GL backend (qf_test_sample's
+# Sample.* tests that draw with OpenGL, SampleModels.*; its CPU backend runs in the tests kept and
+# in every bake) and the label slurm (a one-node Slurm cluster baking the same CGAL models through
+# the same qf-bake batch code as the tests batch and cgal_batch kept here; its own time limit is
+# 400 s, beyond this pass's budget of a few minutes in CI). Two GL users remain, headless through
+# EGL on llvmpipe: cli_test.sh's `convert --sampler gl` and batch_test.sh's `--eval` (qf-render eval);
+# Mesa and LeakSanitizer: tests/lsan.supp, baker/gl/egl.cpp.
+#
+#   scripts/sanitize.sh [BUILD_DIR]     (default build-asan)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build="${1:-build-asan}"
+jobs=$(nproc 2>/dev/null || echo 2)
+
+# The executables the kept tests run (qf-bake for the CLI scripts, qf-render for batch --eval,
+# qf_write_test_levels for the glTF validator); qf-diff, qf_test_points and the benchmarks are not built.
+targets=(qf-bake qf-render qf_test_io qf_test_core qf_test_sample qf_test_clustering qf_test_fans_cgal
+         qf_write_test_levels qf_test_render_cpu)
+# Tests of the GL sampler backend (by name: they share qf_test_sample with CPU-only tests).
+gl_tests='^SampleModels\.|^Sample\.(CountsMatchProjectedAreaOnAnalyticMeshes|PointsLieOnTheSurface|ClosedMeshesHaveEvenLayerCounts|GlMatchesTheCpuReference|PerAxisTrianglesGiveTheSamePointsWithFewerLayers|GlIsDeterministic)$'
+
+cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DQF_SANITIZE=ON >/dev/null
+cmake --build "$build" -j "$jobs" --target "${targets[@]}"
+# -L keeps labelled tests only (so the NOT_BUILT placeholders of unbuilt gtest executables are out).
+ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
+LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp:print_suppressions=0 \
+UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  ctest --test-dir "$build" --output-on-failure -j "$jobs" -L 'unit|readers|cli|gltf|models' -LE 'render|engine|slurm' -E "$gl_tests"
