@@ -297,10 +297,11 @@ void EngineDrawer::Impl::draw_primitive(const EnginePrimitive& p, const EngineMa
   glDrawElements(mode, static_cast<GLsizei>(p.indices.size()), GL_UNSIGNED_INT, p.indices.data());
 }
 
-void EngineDrawer::draw(const Camera& camera, const EngineLights& lights, const std::optional<std::string>& alpha_mode,
-                        float alpha_cutoff) {
+std::size_t EngineDrawer::draw(const Camera& camera, const EngineLights& lights, const std::optional<std::string>& alpha_mode,
+                               float alpha_cutoff) {
   Impl& m = *impl_;
-  if (!m.scene) return;
+  if (!m.scene) return 0;
+  std::size_t drawn = 0;
   auto material_of = [&](const EnginePrimitive& p) {
     EngineMaterial mat = p.material;
     if (p.mode != EnginePrimitive::Mode::kTriangles) return mat;
@@ -337,7 +338,7 @@ void EngineDrawer::draw(const Camera& camera, const EngineLights& lights, const 
     else glDisable(GL_BLEND);
     for (const EnginePrimitive& p : m.scene->primitives) {
       const EngineMaterial mat = material_of(p);
-      if ((mat.alpha == EngineMaterial::Alpha::kBlend) == blend_pass) m.draw_primitive(p, mat);
+      if ((mat.alpha == EngineMaterial::Alpha::kBlend) == blend_pass) m.draw_primitive(p, mat), ++drawn;
     }
   }
   for (GLuint a : {kPos, kNrm, kTan, kUv, kCol}) glDisableVertexAttribArray(a);
@@ -346,6 +347,7 @@ void EngineDrawer::draw(const Camera& camera, const EngineLights& lights, const 
   glDepthMask(GL_TRUE);
   glUseProgram(0);
   glBindTexture(GL_TEXTURE_2D, 0);
+  return drawn;
 }
 
 }  // namespace qf::render

@@ -10,6 +10,7 @@
 // (GLSL 1.30). Needs a current context (egl_context.h); draws into the bound framebuffer.
 #pragma once
 
+#include <cstddef>
 #include <memory>
 #include <optional>
 #include <string>
@@ -31,8 +32,8 @@ class EngineDrawer {
   // Draws the scene over what the framebuffer holds (clear it first): opaque and masked
   // primitives in file order, then blended ones in file order with depth writes off.
   // `alpha_mode` ("OPAQUE", "MASK", "BLEND") and `alpha_cutoff` (>= 0) override every triangle
-  // material's, to measure what another choice would look like.
-  void draw(const Camera& camera, const EngineLights& lights, const std::optional<std::string>& alpha_mode = {},
+  // material's, to measure what another choice would look like. Returns the primitives drawn.
+  std::size_t draw(const Camera& camera, const EngineLights& lights, const std::optional<std::string>& alpha_mode = {},
             float alpha_cutoff = -1);
 
  private:

@@ -204,7 +204,8 @@ int run_render(const ParsedArgs& a) {
   save_png(a.get("output"), out);
   std::cerr << "qf-render: " << a.positional[0] << " (" << scene.describe() << ") -> " << a.get("output") << " (" << out.width << "x"
             << out.height << ", " << method_name(settings.method);
-  if (scene.kind == AnyScene::kImpostor) std::cerr << ", last view: " << stats.color_draws << " colour draws, " << stats.lock_draws << " locks";
+  if (settings.method == Method::kEngine) std::cerr << ", " << stats.color_draws << " primitives";
+  else if (scene.kind == AnyScene::kImpostor) std::cerr << ", last view: " << stats.color_draws << " colour draws, " << stats.lock_draws << " locks";
   if (scene.kind == AnyScene::kPoints)
     std::cerr << ", last view: " << stats.points << " points drawn, point weight " << stats.points_weight;
   std::cerr << ")\n";
