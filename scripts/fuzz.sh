@@ -8,8 +8,8 @@
 # with exactly "N passed, N failed" (also when the build fails: 0 passed); exits 1 when any target
 # found a crash, leak, timeout or out-of-memory (its input is left in build-fuzz/artifacts/TARGET/,
 # its log in build-fuzz/logs/TARGET.log), 2 on bad usage or a failed build. The corpus each run
-# grows is kept in build-fuzz/corpus/TARGET and seeded from tests/fuzz/seeds and tests/data (valid
-# and malformed files).
+# grows is kept in build-fuzz/corpus/TARGET and seeded from tests/fuzz/seeds, tests/fuzz/corpus and
+# tests/data (valid and malformed files).
 # Environment: QF_FUZZ_TIMEOUT (seconds per input, default 10), QF_FUZZ_JOBS (targets at once,
 # default: the number of cores), QF_FUZZ_BUILD (build folder, default build-fuzz).
 set -uo pipefail
@@ -49,7 +49,8 @@ for t in "${targets[@]}"; do build_targets+=("fuzz_$t"); done
 cmake --build "$build" -j "$cores" --target "${build_targets[@]}" >"$build/build.log" 2>&1 ||
   { tail -40 "$build/build.log" >&2; build_failed "build failed (log: $build/build.log)"; }
 
-# 2. Seeds: tests/fuzz/seeds/TARGET plus the files of tests/data with the target's extensions.
+# 2. Seeds: tests/fuzz/seeds/TARGET, the corpus a long run kept (tests/fuzz/corpus/TARGET, merged
+#    with -merge=1) and the files of tests/data with the target's extensions.
 extensions() {
   case "$1" in
     ply) echo ply ;; qsplat) echo qs ;; off) echo off ;; obj) echo obj ;; xyz) echo "xyz pwn" ;;
@@ -68,6 +69,7 @@ prepare_seeds() {
   local t="$1" dir="$build/seeds/$1"
   rm -rf "$dir" && mkdir -p "$dir" "$build/corpus/$t" "$build/artifacts/$t" "$build/logs"
   [[ -d "$root/tests/fuzz/seeds/$t" ]] && cp "$root/tests/fuzz/seeds/$t"/* "$dir"/ 2>/dev/null
+  [[ -d "$root/tests/fuzz/corpus/$t" ]] && cp "$root/tests/fuzz/corpus/$t"/* "$dir"/ 2>/dev/null
   local e f
   for e in $(extensions "$t"); do
     while IFS= read -r -d '' f; do
