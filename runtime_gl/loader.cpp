@@ -383,20 +383,18 @@ EnginePrimitive engine_primitive(const AccessorReader& read, const tinygltf::Pri
     const int r1 = (r + 1) % 3, r2 = (r + 2) % 3, c1 = (c + 1) % 3, c2 = (c + 2) % 3;
     return at(r1, c1) * at(r2, c2) - at(r1, c2) * at(r2, c1);
   };
-  for (std::size_t v = 0; v < p.normals.size() / 3; ++v) {
-    const Vec3f q{p.normals[v * 3], p.normals[v * 3 + 1], p.normals[v * 3 + 2]};
-    Vec3f t;
-    for (int r = 0; r < 3; ++r) t[r] = static_cast<float>(cof(r, 0) * q.x + cof(r, 1) * q.y + cof(r, 2) * q.z);
-    t = normalized(t);
-    std::copy_n(&t.x, 3, &p.normals[v * 3]);
-  }
-  for (std::size_t v = 0; v < p.tangents.size() / 4; ++v) {
-    const Vec3f q{p.tangents[v * 4], p.tangents[v * 4 + 1], p.tangents[v * 4 + 2]};
-    Vec3f t;
-    for (int r = 0; r < 3; ++r) t[r] = static_cast<float>(at(r, 0) * q.x + at(r, 1) * q.y + at(r, 2) * q.z);
-    t = normalized(t);
-    std::copy_n(&t.x, 3, &p.tangents[v * 4]);
-  }
+  // Directions (xyz of every `stride` floats) through a 3x3 matrix m(r, c), renormalised.
+  auto turn = [](std::vector<float>& d, std::size_t stride, auto&& m) {
+    for (std::size_t v = 0; v + 2 < d.size(); v += stride) {
+      const Vec3f q{d[v], d[v + 1], d[v + 2]};
+      Vec3f t;
+      for (int r = 0; r < 3; ++r) t[r] = static_cast<float>(m(r, 0) * q.x + m(r, 1) * q.y + m(r, 2) * q.z);
+      t = normalized(t);
+      std::copy_n(&t.x, 3, &d[v]);
+    }
+  };
+  turn(p.normals, 3, cof);
+  turn(p.tangents, 4, at);
   if (det < 0 && p.mode == EnginePrimitive::Mode::kTriangles)
     for (std::size_t t = 0; t + 2 < p.indices.size(); t += 3) std::swap(p.indices[t + 1], p.indices[t + 2]);
   return p;

@@ -9,9 +9,7 @@
 
 #include "cli/commands.h"
 #include "core/error.h"
-#include "gltf/glb.h"
 #include "pipeline/asset.h"
-#include "simplify/simplify.h"
 
 namespace qf::cli {
 
@@ -21,7 +19,8 @@ CommandSpec simplify_spec() {
           "Each LOD comes from the original mesh: edges are collapsed by quadric error until the budget\n"
           "is met or no collapse keeps the topology. Vertex colours are kept; STEM_S<i>.glb holds the\n"
           "triangles with smooth normals (or none with --normals flat: engines then shade each triangle\n"
-          "flat). manifest.json gives each LOD's triangles, vertices, bytes and meshoptimizer's error.",
+          "flat). manifest.json gives each LOD's triangles, vertices, bytes, meshoptimizer's error and the\n"
+          "largest on-screen size at which that error stays under half a pixel.",
           {{"output", 'o', "OUTDIR", "", "output folder (created if needed); required"},
            {"triangles", 't', "N,N,...", "", "triangle budgets, one LOD each; required"},
            {"normals", 0, "smooth|flat", "smooth", "vertex normals area-weighted over the LOD's triangles, or none"},
@@ -52,18 +51,7 @@ int run_simplify(const ParsedArgs& args) {
   const auto start = std::chrono::steady_clock::now();
   const std::string stem = std::filesystem::path(in).stem().string();
   std::vector<OutputFile> files;
-  nlohmann::json levels = nlohmann::json::array();
-  for (std::size_t i = 0; i < budgets.size(); ++i) {
-    const SimplifiedMesh s = simplify_mesh(model.mesh, budgets[i]);
-    const std::string name = stem + "_S" + std::to_string(i) + ".glb";
-    files.push_back({name, encode_mesh_glb(s.mesh, normals == "smooth")});
-    levels.push_back({{"file", name},
-                      {"target_triangles", budgets[i]},
-                      {"triangles", s.mesh.triangles.size()},
-                      {"vertices", s.mesh.positions.size()},
-                      {"bytes", files.back().bytes.size()},
-                      {"error", canonical_double(static_cast<float>(s.error))}});
-  }
+  const nlohmann::json levels = simplify_level_files(model.mesh, budgets, stem, files, normals == "smooth");
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const nlohmann::json manifest{{"input", in},
                                 {"triangles", model.mesh.triangles.size()},

@@ -43,14 +43,15 @@ std::vector<std::size_t> default_simplify_budgets(const TriangleMesh& mesh) {
 }
 
 nlohmann::json simplify_level_files(const TriangleMesh& mesh, const std::vector<std::size_t>& budgets, const std::string& stem,
-                                    std::vector<OutputFile>& files) {
+                                    std::vector<OutputFile>& files, bool smooth_normals) {
   const double diagonal = mesh.bounds().diagonal();
   nlohmann::json levels = nlohmann::json::array();
   for (std::size_t i = 0; i < budgets.size(); ++i) {
     const SimplifiedMesh s = simplify_mesh(mesh, budgets[i]);
     const std::string name = stem + "_S" + std::to_string(i) + ".glb";
-    files.push_back({name, encode_mesh_glb(s.mesh, true)});
+    files.push_back({name, encode_mesh_glb(s.mesh, smooth_normals)});
     levels.push_back({{"file", name},
+                      {"target_triangles", budgets[i]},
                       {"triangles", s.mesh.triangles.size()},
                       {"vertices", s.mesh.positions.size()},
                       {"bytes", files.back().bytes.size()},
