@@ -85,6 +85,7 @@ PointSet load_points(const std::string& path, const ParsedArgs& args, const std:
   SampleStats stats;
   PointSet points = load_point_set(path, ro, so, command, report, &stats, mesh);
   if (!stats.fallback.empty()) std::cerr << "qf-bake " << command << ": warning: " << stats.fallback << "\n";
+  for (const std::string& w : report.warnings) std::cerr << "qf-bake " << command << ": warning: " << path << ": " << w << "\n";
   if (sampled) *sampled = stats;
   return points;
 }

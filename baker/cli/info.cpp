@@ -45,6 +45,7 @@ int run_info(const ParsedArgs& args) {
   const bool colors = m.is_mesh ? !m.mesh.colors.empty() : m.points.has_colors();
   if (normals) attributes.push_back("normal");
   if (colors) attributes.push_back("color");
+  if (m.is_mesh && !m.mesh.corner_uvs.empty()) attributes.push_back("texcoord");
   if (!m.is_mesh && m.points.has_radii()) attributes.push_back("radius");
   const Bounds b = m.is_mesh ? m.mesh.bounds() : m.points.bounds();
   const std::size_t count = m.is_mesh ? m.mesh.positions.size() : m.points.size();
@@ -68,6 +69,12 @@ int run_info(const ParsedArgs& args) {
       j["polygons_triangulated"] = report.polygons_triangulated;
     }
     if (report.fragments) j["fragments"] = report.fragments;
+    if (m.is_mesh) {
+      j["materials"] = m.mesh.materials.size();
+      j["textures"] = m.mesh.textures.size();
+      j["skipped_primitives"] = report.skipped_primitives;
+    }
+    j["warnings"] = report.warnings;
     std::cout << j.dump(2) << "\n";
     return 0;
   }
@@ -92,6 +99,15 @@ int run_info(const ParsedArgs& args) {
   if (report.dropped_nonfinite)
     std::cout << "dropped:     " << report.dropped_nonfinite << " non-finite points"
               << (m.is_mesh ? " and " + std::to_string(report.dropped_triangles) + " triangles" : "") << "\n";
+  if (m.is_mesh && !m.mesh.materials.empty()) {
+    std::cout << "materials:   " << m.mesh.materials.size();
+    for (const SurfaceMaterial& mat : m.mesh.materials) std::cout << " '" << mat.name << "'";
+    std::cout << "\ntextures:    " << m.mesh.textures.size();
+    for (const TextureImage& t : m.mesh.textures) std::cout << " " << t.width << "x" << t.height;
+    std::cout << "\n";
+  }
+  if (report.skipped_primitives) std::cout << "skipped:     " << report.skipped_primitives << " point or line primitives\n";
+  for (const std::string& w : report.warnings) std::cout << "warning:     " << w << "\n";
   for (const std::string& c : comments) std::cout << "comment:     " << c << "\n";
   return 0;
 }

@@ -59,7 +59,17 @@ std::size_t PointSet::memory_bytes() const {
 }
 
 std::size_t TriangleMesh::memory_bytes() const {
-  return bytes(positions) + bytes(triangles) + bytes(normals) + bytes(colors);
+  std::size_t total = bytes(positions) + bytes(triangles) + bytes(normals) + bytes(colors) +
+                      bytes(triangle_materials) + bytes(corner_uvs);
+  for (const TextureImage& t : textures) total += bytes(t.rgba);
+  return total;
+}
+
+bool TriangleMesh::has_surface_color() const {
+  if (!colors.empty()) return true;
+  for (const SurfaceMaterial& m : materials)
+    if (m.texture >= 0 || m.base_color[0] != 1 || m.base_color[1] != 1 || m.base_color[2] != 1) return true;
+  return false;
 }
 
 }  // namespace qf

@@ -84,13 +84,52 @@ struct PointSet {
 
 using Triangle = std::array<std::uint32_t, 3>;
 
-// An indexed triangle mesh; per-vertex normals/colours are empty or one per position.
+struct Vec2f {
+  float x = 0, y = 0;
+};
+
+// An 8-bit RGBA image as stored in the file (colour sRGB, alpha straight), rows top to bottom:
+// texture coordinate (0, 0) is the top-left corner of texel (0, 0), as in glTF.
+struct TextureImage {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgba;  // width * height * 4
+};
+
+// How a texture coordinate outside [0, 1] is brought back (glTF sampler wrapS / wrapT).
+enum class TextureWrap : std::uint8_t { kRepeat, kClampToEdge, kMirroredRepeat };
+// What a material's alpha means (glTF alphaMode): MASK texels under the cutoff are not surface.
+enum class AlphaMode : std::uint8_t { kOpaque, kMask, kBlend };
+
+// A surface's base colour as glTF defines it: base_color (linear RGBA) x the texture's sRGB texels
+// x the vertex colour. Texture coordinates come with the triangles (TriangleMesh::corner_uvs), with
+// any texture transform already applied.
+struct SurfaceMaterial {
+  std::string name;
+  std::array<float, 4> base_color{1, 1, 1, 1};
+  int texture = -1;  // index into TriangleMesh::textures, or -1
+  TextureWrap wrap_s = TextureWrap::kRepeat, wrap_t = TextureWrap::kRepeat;
+  AlphaMode alpha_mode = AlphaMode::kOpaque;
+  float alpha_cutoff = 0.5f;
+};
+
+// An indexed triangle mesh; per-vertex normals/colours are empty or one per position. Materials are
+// optional: triangle_materials is empty (no material: the default look) or one index into materials
+// per triangle; corner_uvs is empty or one triple per triangle (per corner, since texture seams
+// split what positions share).
 struct TriangleMesh {
   std::vector<Vec3f> positions;
   std::vector<Triangle> triangles;
   std::vector<Vec3f> normals;
   std::vector<Rgb8> colors;
   std::vector<std::string> comments;
+  std::vector<SurfaceMaterial> materials;
+  std::vector<std::uint32_t> triangle_materials;
+  std::vector<std::array<Vec2f, 3>> corner_uvs;
+  std::vector<TextureImage> textures;
+
+  // True when the surface has a colour of its own: vertex colours, or a material with a texture or
+  // a base colour other than white.
+  bool has_surface_color() const;
 
   Bounds bounds() const;
   std::size_t memory_bytes() const;

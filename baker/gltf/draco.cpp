@@ -6,6 +6,7 @@
 #include <draco/mesh/triangle_soup_mesh_builder.h>
 
 #include <algorithm>
+#include <string>
 #include <stdexcept>
 
 namespace qf {
@@ -62,23 +63,43 @@ DracoOutput draco_compress(const DracoInput& in) {
   return out;
 }
 
+DracoMesh draco_decode_mesh(const std::uint8_t* bytes, std::size_t size, const std::vector<std::pair<int, int>>& wanted) {
+  draco::DecoderBuffer buf;
+  buf.Init(reinterpret_cast<const char*>(bytes), size);
+  draco::Decoder decoder;
+  auto decoded = decoder.DecodeMeshFromBuffer(&buf);
+  if (!decoded.ok()) throw std::runtime_error("the Draco stream does not decode (" + decoded.status().error_msg_string() + ")");
+  const draco::Mesh& d = *decoded.value();
+  DracoMesh out;
+  out.points = d.num_points();
+  for (draco::FaceIndex f(0); f < d.num_faces(); ++f)
+    for (int k = 0; k < 3; ++k) out.corners.push_back(d.face(f)[k].value());
+  // ConvertValue scales normalized integer attributes (colours, quantized texture coordinates) to
+  // floats as glTF's normalized accessors would.
+  for (const auto& [id, components] : wanted) {
+    const draco::PointAttribute* a = d.GetAttributeByUniqueId(static_cast<std::uint32_t>(id));
+    if (!a) throw std::runtime_error("the Draco stream has no attribute with id " + std::to_string(id));
+    std::vector<float>& values = out.attributes[id];
+    values.assign(out.points * static_cast<std::size_t>(components), 0.0f);
+    for (draco::PointIndex i(0); i < d.num_points(); ++i)
+      if (!a->ConvertValue<float>(a->mapped_index(i), static_cast<std::int8_t>(components),
+                                  &values[i.value() * static_cast<std::size_t>(components)]))
+        throw std::runtime_error("the Draco attribute " + std::to_string(id) + " does not convert to " +
+                                 std::to_string(components) + " floats");
+  }
+  return out;
+}
+
 void draco_decode(const std::vector<std::uint8_t>& bytes, std::vector<float>& positions, std::vector<std::uint32_t>& corners) {
   draco::DecoderBuffer buf;
   buf.Init(reinterpret_cast<const char*>(bytes.data()), bytes.size());
   draco::Decoder decoder;
   auto decoded = decoder.DecodeMeshFromBuffer(&buf);
   if (!decoded.ok()) throw std::runtime_error("draco: the stream does not decode");
-  const draco::Mesh& d = *decoded.value();
-  const draco::PointAttribute* p = d.GetNamedAttribute(draco::GeometryAttribute::POSITION);
-  positions.clear();
-  corners.clear();
-  for (draco::PointIndex i(0); i < d.num_points(); ++i) {
-    float v[3];
-    p->GetMappedValue(i, v);
-    positions.insert(positions.end(), {v[0], v[1], v[2]});
-  }
-  for (draco::FaceIndex f(0); f < d.num_faces(); ++f)
-    for (int k = 0; k < 3; ++k) corners.push_back(d.face(f)[k].value());
+  const int id = decoded.value()->GetNamedAttribute(draco::GeometryAttribute::POSITION)->unique_id();
+  DracoMesh m = draco_decode_mesh(bytes.data(), bytes.size(), {{id, 3}});
+  positions = std::move(m.attributes[id]);
+  corners = std::move(m.corners);
 }
 
 }  // namespace qf

@@ -3,7 +3,10 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
+#include <map>
+#include <utility>
 #include <vector>
 
 namespace qf {
@@ -28,6 +31,17 @@ struct DracoOutput {
 // Quantisation: positions 14 bits, normals 10 bits; colours are stored losslessly. Throws
 // std::runtime_error when Draco fails.
 DracoOutput draco_compress(const DracoInput& in);
+
+// A decoded Draco mesh (KHR_draco_mesh_compression input): its point count, triangle corners, and
+// the attributes asked for by unique id with the component count glTF's accessor gives them,
+// converted to floats (normalized integers scaled to 0..1 or -1..1). Throws std::runtime_error
+// when the stream does not decode or lacks an attribute.
+struct DracoMesh {
+  std::size_t points = 0;
+  std::vector<std::uint32_t> corners;
+  std::map<int, std::vector<float>> attributes;
+};
+DracoMesh draco_decode_mesh(const std::uint8_t* bytes, std::size_t size, const std::vector<std::pair<int, int>>& wanted);
 
 // The positions (3 per point) and triangle corners a Draco reader gets from `bytes`; throws
 // std::runtime_error when they do not decode. For checks and tools.

@@ -1,4 +1,4 @@
-// encode_png through the plug-in libqf_png.so (gltf/png.cpp), loaded once on first use.
+// encode_png and decode_image through the plug-in libqf_png.so (gltf/png.cpp), loaded once on first use.
 #include <dlfcn.h>
 
 #include <filesystem>
@@ -12,10 +12,17 @@ namespace qf {
 namespace {
 
 using EncodeFn = bool (*)(const std::uint8_t*, int, int, int, std::vector<std::uint8_t>*, std::string*);
+using DecodeFn = bool (*)(const std::uint8_t*, std::size_t, const std::string*, int*, int*, std::vector<std::uint8_t>*,
+                          std::string*);
+
+struct Plugin {
+  EncodeFn encode = nullptr;
+  DecodeFn decode = nullptr;
+};
 
 // Where the plug-in may be: $QF_PLUGIN_DIR, beside the executable (the build tree), the install
 // layout's lib/quasiflat, then the loader's own search path.
-EncodeFn load_encoder() {
+Plugin load_plugin() {
   std::vector<std::string> candidates;
   if (const char* dir = std::getenv("QF_PLUGIN_DIR"); dir && *dir) candidates.push_back(std::string(dir) + "/libqf_png.so");
   std::error_code ec;
@@ -29,40 +36,49 @@ EncodeFn load_encoder() {
   for (const std::string& path : candidates) {
     if (path.find('/') != std::string::npos && !std::filesystem::exists(path, ec)) continue;
     if (void* handle = ::dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL)) {
-      if (void* fn = ::dlsym(handle, "qf_encode_png")) return reinterpret_cast<EncodeFn>(fn);
-      errors += "; " + path + ": no qf_encode_png";
+      void* encode = ::dlsym(handle, "qf_encode_png");
+      void* decode = ::dlsym(handle, "qf_decode_image");
+      if (encode && decode) return Plugin{reinterpret_cast<EncodeFn>(encode), reinterpret_cast<DecodeFn>(decode)};
+      errors += "; " + path + ": no qf_encode_png / qf_decode_image";
     } else {
       errors += std::string("; ") + ::dlerror();
     }
   }
-  throw std::runtime_error("cannot load the PNG encoder plug-in libqf_png.so (looked beside the executable, in "
+  throw std::runtime_error("cannot load the image plug-in libqf_png.so (looked beside the executable, in "
                            "../lib/quasiflat and on the library path" + errors + ")");
 }
 
-EncodeFn encoder() {
+const Plugin& plugin() {
   static std::once_flag once;
-  static EncodeFn fn = nullptr;
+  static Plugin fns;
   static std::string failure;
   std::call_once(once, [] {
     try {
-      fn = load_encoder();
+      fns = load_plugin();
     } catch (const std::exception& e) {
       failure = e.what();
     }
   });
-  if (!fn) throw std::runtime_error(failure);
-  return fn;
+  if (!fns.encode) throw std::runtime_error(failure);
+  return fns;
 }
 
 }  // namespace
 
-void preload_png_encoder() { encoder(); }
+void preload_png_encoder() { plugin(); }
 
 std::vector<std::uint8_t> encode_png(const std::uint8_t* pixels, int width, int height, int channels) {
   std::vector<std::uint8_t> out;
   std::string error;
-  if (!encoder()(pixels, width, height, channels, &out, &error)) throw std::runtime_error(error);
+  if (!plugin().encode(pixels, width, height, channels, &out, &error)) throw std::runtime_error(error);
   return out;
+}
+
+TextureImage decode_image(const std::uint8_t* bytes, std::size_t size, const std::string& name) {
+  TextureImage image;
+  std::string error;
+  if (!plugin().decode(bytes, size, &name, &image.width, &image.height, &image.rgba, &error)) throw std::runtime_error(error);
+  return image;
 }
 
 }  // namespace qf

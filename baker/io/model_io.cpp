@@ -35,9 +35,10 @@ Model read_model(const std::string& path, const ReadOptions& options, ReadReport
   else if (ext == "pwn") m.points = read_xyz(path, true, options, report);
   else if (ext == "off") m.is_mesh = true, m.mesh = read_off(path, options, report);
   else if (ext == "obj") m.is_mesh = true, m.mesh = read_obj(path, options, report);
+  else if (ext == "gltf" || ext == "glb") m.is_mesh = true, m.mesh = read_gltf(path, options, report);
   else
     throw UsageError("unknown input format '." + ext + "' (" + path +
-                     "); supported: .ply .qs .xyz .pwn (point sets), .ply .off .obj (meshes)");
+                     "); supported: .ply .qs .xyz .pwn (point sets), .ply .off .obj .gltf .glb (meshes)");
   return m;
 }
 
@@ -50,9 +51,10 @@ Model decode_model(ByteView bytes, const std::string& path, const ReadOptions& o
   else if (ext == "pwn") m.points = decode_xyz(bytes, path, true, options, report);
   else if (ext == "off") m.is_mesh = true, m.mesh = decode_off(bytes, path, options, report);
   else if (ext == "obj") m.is_mesh = true, m.mesh = decode_obj(bytes, path, options, report);
+  else if (ext == "gltf" || ext == "glb") m.is_mesh = true, m.mesh = decode_gltf(bytes, path, options, report);
   else
     throw UsageError("unknown input format '." + ext + "' (" + path +
-                     "); supported: .ply .qs .xyz .pwn (point sets), .ply .off .obj (meshes)");
+                     "); supported: .ply .qs .xyz .pwn (point sets), .ply .off .obj .gltf .glb (meshes)");
   return m;
 }
 
@@ -61,7 +63,7 @@ const std::vector<std::string>& point_set_extensions() {
   return e;
 }
 const std::vector<std::string>& mesh_extensions() {
-  static const std::vector<std::string> e{"ply", "off", "obj"};
+  static const std::vector<std::string> e{"ply", "off", "obj", "gltf", "glb"};
   return e;
 }
 

@@ -1,7 +1,7 @@
 // Reading and writing every supported file format (architecture.md, "io/").
 //
 // Point sets: PLY (ascii / binary LE / binary BE), QSplat .qs, XYZ, PWN.
-// Triangle meshes: PLY with a face element, OFF (also COFF/NOFF/NCOFF), OBJ.
+// Triangle meshes: PLY with a face element, OFF (also COFF/NOFF/NCOFF), OBJ (+ MTL), glTF 2.0.
 // Every reader throws InputError with the file, the line or byte offset and what was expected;
 // it never returns partial data.
 #pragma once
@@ -27,6 +27,8 @@ struct ReadReport {
   std::size_t dropped_triangles = 0;  // triangles dropped with them
   std::size_t polygons_triangulated = 0;  // faces with more than 3 corners, split into fans
   std::size_t fragments = 0;        // QSplat: data fragments read
+  std::size_t skipped_primitives = 0;  // glTF: point and line primitives (only triangles are baked)
+  std::vector<std::string> warnings;   // what was read but not honoured (glTF skins, morph targets)
 };
 
 // A file's content: a point set or a triangle mesh.
@@ -47,6 +49,16 @@ PointSet read_xyz(const std::string& path, bool require_normals, const ReadOptio
                   ReadReport* report = nullptr);
 TriangleMesh read_off(const std::string& path, const ReadOptions& options = {}, ReadReport* report = nullptr);
 TriangleMesh read_obj(const std::string& path, const ReadOptions& options = {}, ReadReport* report = nullptr);
+// glTF 2.0 (.gltf with external or data-URI buffers and images, .glb): the default scene (else the
+// root nodes) as one mesh in world space: every node transform composed down the tree (mirroring
+// ones keep their winding), TRIANGLES / strips / fans (points and lines skipped and counted), any
+// index type, NORMAL (primitives without it flat, as glTF draws them), COLOR_0, and per material
+// baseColorFactor x baseColorTexture (its texCoord set and KHR_texture_transform applied to the
+// texture coordinates, its sampler's wraps), alphaMode and alphaCutoff. KHR_draco_mesh_compression
+// is decoded; other required extensions are refused (InputError "gltf.unsupported_extension").
+// Skins are read in their bind pose and morph targets ignored, with a warning in the report.
+// Errors name the JSON path: "meshes[0].primitives[1].indices: index 12 out of range (8 vertices)".
+TriangleMesh read_gltf(const std::string& path, const ReadOptions& options = {}, ReadReport* report = nullptr);
 
 // The same readers on bytes already in memory (the path readers map the file and call these; the
 // fuzz targets of tests/fuzz call them directly). `path` names the file in errors; decode_model
@@ -57,6 +69,8 @@ PointSet decode_xyz(ByteView bytes, const std::string& path, bool require_normal
                     ReadReport* report = nullptr);
 TriangleMesh decode_off(ByteView bytes, const std::string& path, const ReadOptions& options = {}, ReadReport* report = nullptr);
 TriangleMesh decode_obj(ByteView bytes, const std::string& path, const ReadOptions& options = {}, ReadReport* report = nullptr);
+// External buffers and images are read relative to `path`'s folder.
+TriangleMesh decode_gltf(ByteView bytes, const std::string& path, const ReadOptions& options = {}, ReadReport* report = nullptr);
 
 // QSplat in memory. decode_qsplat names `path` in errors and returns the leaves in depth-first
 // tree order. encode_qsplat needs normals and radii (it writes colours when the set has them,

@@ -1,0 +1,776 @@
+// glTF 2.0 input (.gltf with external or data-URI buffers and images, .glb): the default scene as
+// one world-space triangle mesh with its base-colour materials (model_io.h, decode_gltf). The one
+// baker file that parses glTF; tinygltf reads the JSON and the buffers, this file checks every
+// accessor against its buffer before reading it, so a malformed file is an InputError naming its
+// JSON path and never a read out of bounds.
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string_view>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "core/color.h"
+#include "core/error.h"
+#include "gltf/draco.h"
+#include "gltf/png.h"
+#include "io/model_io.h"
+
+namespace qf {
+namespace {
+
+using Mat4 = std::array<double, 16>;  // column-major, as glTF stores it
+constexpr Mat4 kIdentity{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+
+// The extensions a file may require: what this reader honours. Anything else required is refused.
+const std::set<std::string>& supported_extensions() {
+  static const std::set<std::string> s{"KHR_texture_transform", "KHR_draco_mesh_compression", "KHR_mesh_quantization",
+                                        "KHR_materials_emissive_strength", "KHR_materials_unlit"};
+  return s;
+}
+
+[[noreturn]] void fail(const std::string& path, const std::string& code, const std::string& where, const std::string& what) {
+  throw InputError("gltf." + code, path, where, what);
+}
+
+// ---- 1. Parsing ----------------------------------------------------------------------------
+
+struct ImageContext {
+  const tinygltf::Model* model = nullptr;
+};
+
+// tinygltf 2.7 hands an image's bufferView to the loader without checking that it lies within its
+// buffer: check it here, then decode through OpenImageIO (PNG, JPEG, and whatever else it reads).
+bool load_image(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
+                const unsigned char* bytes, int size, void* user) {
+  const std::string where = "images[" + std::to_string(index) + "]" + (image->uri.empty() || image->uri.rfind("data:", 0) == 0 ? "" : " (" + image->uri + ")");
+  if (image->bufferView >= 0) {
+    const tinygltf::Model& m = *static_cast<ImageContext*>(user)->model;
+    const tinygltf::BufferView& v = m.bufferViews.at(static_cast<std::size_t>(image->bufferView));
+    const std::size_t buffer = m.buffers.at(static_cast<std::size_t>(v.buffer)).data.size();
+    if (v.byteOffset > buffer || v.byteLength > buffer - v.byteOffset || size < 0 ||
+        static_cast<std::size_t>(size) != v.byteLength) {
+      *err += where + ": its bufferView reaches past the end of its buffer";
+      return false;
+    }
+  }
+  try {
+    TextureImage t = decode_image(bytes, static_cast<std::size_t>(std::max(size, 0)), image->uri);
+    image->width = t.width;
+    image->height = t.height;
+    image->component = 4;
+    image->bits = 8;
+    image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+    image->image = std::move(t.rgba);
+    return true;
+  } catch (const std::exception& e) {
+    *err += where + ": " + e.what();
+    return false;
+  }
+}
+
+// tinygltf skips values of the wrong JSON type and goes on with defaults, so a malformed file would
+// bake as something else. The keys this reader uses are checked first, by the type the glTF schema
+// gives them wherever they appear, naming the first wrong one by its JSON path.
+const char* json_kind(const nlohmann::json& v) {
+  if (v.is_object()) return "an object";
+  if (v.is_array()) return "an array";
+  if (v.is_string()) return "a string";
+  if (v.is_boolean()) return "a boolean";
+  if (v.is_number()) return "a number";
+  return "null";
+}
+
+std::string json_found(const nlohmann::json& v) {
+  return v.is_number() ? v.dump() : json_kind(v);
+}
+
+void check_json_types(const nlohmann::json& j, const std::string& where, const std::string& path) {
+  static const std::set<std::string> uints{"scene", "mesh", "skin", "camera", "indices", "material", "mode", "bufferView",
+                                           "byteOffset", "byteLength", "byteStride", "componentType", "count", "buffer",
+                                           "index", "texCoord", "sampler", "source", "wrapS", "wrapT", "magFilter",
+                                           "minFilter", "target"};
+  static const std::set<std::string> strings{"name", "uri", "mimeType", "type", "alphaMode", "version", "generator"};
+  static const std::set<std::string> numbers{"alphaCutoff", "strength", "metallicFactor", "roughnessFactor"};
+  static const std::set<std::string> objects{"asset", "attributes", "pbrMetallicRoughness", "baseColorTexture", "normalTexture",
+                                             "occlusionTexture", "emissiveTexture", "metallicRoughnessTexture", "extensions",
+                                             "KHR_texture_transform", "KHR_draco_mesh_compression", "sparse"};
+  static const std::set<std::string> arrays{"scenes", "nodes", "meshes", "primitives", "accessors", "bufferViews", "buffers",
+                                            "materials", "textures", "images", "samplers", "children", "targets", "matrix",
+                                            "translation", "baseColorFactor", "emissiveFactor", "min", "max", "weights",
+                                            "extensionsUsed", "extensionsRequired", "offset", "skins", "joints"};
+  auto wrong = [&](const std::string& at, const char* expected, const nlohmann::json& v) {
+    fail(path, "json_type", at, std::string("expected ") + expected + ", found " + json_found(v));
+  };
+  // Only what this reader reads: animations, cameras, skins and other extensions' contents are not.
+  static const std::set<std::string> read_top{"asset", "scene", "scenes", "nodes", "meshes", "accessors", "bufferViews",
+                                              "buffers", "materials", "textures", "images", "samplers",
+                                              "extensionsUsed", "extensionsRequired"};
+  const bool in_extensions = where.size() >= 10 && where.compare(where.size() - 10, 10, "extensions") == 0;
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    const std::string& key = it.key();
+    const nlohmann::json& v = it.value();
+    const std::string at = where.empty() ? key : where + "." + key;
+    if (key == "extras" || (where.empty() && !read_top.count(key))) continue;
+    if (in_extensions && key != "KHR_texture_transform" && key != "KHR_draco_mesh_compression") continue;
+    if (uints.count(key) && !v.is_number_unsigned()) wrong(at, "a non-negative integer", v);
+    if (strings.count(key) && !v.is_string()) wrong(at, "a string", v);
+    if (numbers.count(key) && !v.is_number()) wrong(at, "a number", v);
+    if (objects.count(key) && !v.is_object()) wrong(at, "an object", v);
+    if (arrays.count(key) && !v.is_array()) wrong(at, "an array", v);
+    // node scale and rotation are arrays, a texture transform's a number or an array of numbers.
+    if ((key == "scale" || key == "rotation") && !v.is_number() && !v.is_array()) wrong(at, "a number or an array", v);
+    if (v.is_object()) check_json_types(v, at, path);
+    if (v.is_array())
+      for (std::size_t i = 0; i < v.size(); ++i) {
+        const std::string ai = at + "[" + std::to_string(i) + "]";
+        const bool index_list = key == "children" || key == "joints" || (key == "nodes" && where.rfind("scenes", 0) == 0);
+        if (index_list && !v[i].is_number_unsigned()) wrong(ai, "a node index", v[i]);
+        if (v[i].is_object()) check_json_types(v[i], ai, path);
+      }
+  }
+}
+
+// tinygltf built without Draco (Debian's) refuses a compressed primitive's `indices` accessor, which
+// has no bufferView by design. Such primitives get their triangles from the Draco stream, so the
+// key is dropped from the JSON (of a .gltf, or of a .glb's JSON chunk) before tinygltf sees it.
+std::vector<std::uint8_t> without_draco_indices(ByteView bytes, nlohmann::json j) {
+  const bool binary = bytes.size() >= 20 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+  std::uint32_t json_length = 0;
+  if (binary) std::memcpy(&json_length, bytes.data() + 12, 4);
+  const std::size_t json_start = binary ? 20 : 0;
+  if (!j.contains("meshes") || !j["meshes"].is_array()) return {};
+  for (nlohmann::json& mesh : j["meshes"])
+    if (mesh.is_object() && mesh.contains("primitives") && mesh["primitives"].is_array())
+      for (nlohmann::json& p : mesh["primitives"])
+        if (p.is_object() && p.contains("extensions") && p["extensions"].is_object() &&
+            p["extensions"].contains("KHR_draco_mesh_compression"))
+          p.erase("indices");
+  std::string json = j.dump();
+  if (!binary) return std::vector<std::uint8_t>(json.begin(), json.end());
+  json.resize((json.size() + 3) / 4 * 4, ' ');
+  const std::size_t rest = json_start + json_length;
+  std::vector<std::uint8_t> out(bytes.data(), bytes.data() + 12);
+  const auto put32 = [&out](std::uint32_t v) { out.insert(out.end(), reinterpret_cast<std::uint8_t*>(&v), reinterpret_cast<std::uint8_t*>(&v) + 4); };
+  put32(static_cast<std::uint32_t>(json.size()));
+  put32(0x4E4F534A);  // "JSON"
+  out.insert(out.end(), json.begin(), json.end());
+  out.insert(out.end(), bytes.data() + rest, bytes.data() + bytes.size());
+  const auto total = static_cast<std::uint32_t>(out.size());
+  std::memcpy(out.data() + 8, &total, 4);
+  return out;
+}
+
+// The JSON of a .gltf, or of a .glb's first chunk; null when it does not parse (tinygltf then says why).
+nlohmann::json json_of(ByteView bytes) {
+  const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+  std::uint32_t length = 0;
+  if (binary && bytes.size() >= 20) std::memcpy(&length, bytes.data() + 12, 4);
+  if (binary && (bytes.size() < 20 || length > bytes.size() - 20)) return nullptr;
+  const char* text = reinterpret_cast<const char*>(bytes.data() + (binary ? 20 : 0));
+  nlohmann::json j = nlohmann::json::parse(text, text + (binary ? length : bytes.size()), nullptr, false);
+  return j.is_discarded() || !j.is_object() ? nlohmann::json() : j;
+}
+
+tinygltf::Model parse(ByteView bytes, const std::string& path) {
+  std::vector<std::uint8_t> rewritten;
+  const nlohmann::json j = json_of(bytes);
+  if (j.is_object()) {
+    check_json_types(j, "", path);
+    const std::string_view view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    if (view.find("KHR_draco_mesh_compression") != std::string_view::npos) rewritten = without_draco_indices(bytes, j);
+    if (!rewritten.empty()) bytes = ByteView(rewritten.data(), rewritten.size());
+  }
+  tinygltf::Model m;
+  tinygltf::TinyGLTF loader;
+  ImageContext context{&m};
+  loader.SetImageLoader(&load_image, &context);
+  std::string err, warn;
+  std::error_code ec;
+  std::string base = std::filesystem::absolute(std::filesystem::path(path).parent_path(), ec).string();
+  const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+  const bool ok = binary ? loader.LoadBinaryFromMemory(&m, &err, &warn, bytes.data(), static_cast<unsigned>(bytes.size()), base)
+                         : loader.LoadASCIIFromString(&m, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
+                                                      static_cast<unsigned>(bytes.size()), base);
+  if (!ok) {
+    while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
+    std::replace(err.begin(), err.end(), '\n', ';');
+    fail(path, "parse", "", err.empty() ? "is not a readable glTF 2.0 file" : err);
+  }
+  for (const std::string& e : m.extensionsRequired)
+    if (!supported_extensions().count(e))
+      fail(path, "unsupported_extension", "extensionsRequired",
+           "requires the extension " + e + ", which quasiflat does not support (supported: KHR_texture_transform, "
+           "KHR_draco_mesh_compression, KHR_mesh_quantization)");
+  return m;
+}
+
+// ---- 2. Accessors ----------------------------------------------------------------------------
+
+// Reads accessors of one file, every read checked against its buffer view and buffer.
+class Accessors {
+ public:
+  Accessors(const tinygltf::Model& m, const std::string& path) : m_(m), path_(path) {}
+
+  // `components` floats per element; normalized integers become 0..1 / -1..1, other integers
+  // their value (KHR_mesh_quantization). `allowed` is the set of component counts glTF allows.
+  std::vector<float> floats(int index, int components, const std::string& where) const {
+    const tinygltf::Accessor& a = accessor(index, where);
+    if (tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(a.type)) != components)
+      fail(path_, "accessor_type", where, "expected a " + std::to_string(components) + "-component accessor, found type " +
+                                              std::to_string(tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(a.type))));
+    std::vector<float> out(a.count * static_cast<std::size_t>(components));
+    const int csize = tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(a.componentType));
+    if (csize <= 0) fail(path_, "accessor_type", where, "unknown componentType " + std::to_string(a.componentType));
+    std::size_t stride = 0;
+    const unsigned char* base = data(a, static_cast<std::size_t>(csize) * static_cast<std::size_t>(components), stride, where);
+    for (std::size_t i = 0; i < a.count; ++i)
+      for (int c = 0; c < components; ++c)
+        out[i * static_cast<std::size_t>(components) + static_cast<std::size_t>(c)] =
+            component(base + i * stride + static_cast<std::size_t>(c * csize), a.componentType, a.normalized);
+    return out;
+  }
+
+  // Triangle-list or strip/fan vertex indices (unsigned byte, short or int), each < `vertices`.
+  std::vector<std::uint32_t> indices(int index, std::size_t vertices, const std::string& where) const {
+    const tinygltf::Accessor& a = accessor(index, where);
+    const int ct = a.componentType;
+    if (a.type != TINYGLTF_TYPE_SCALAR || (ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+                                           ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT && ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
+      fail(path_, "indices", where, "expected scalar unsigned byte, short or int indices");
+    const std::size_t csize = static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(ct)));
+    std::size_t stride = 0;
+    const unsigned char* base = data(a, csize, stride, where);
+    std::vector<std::uint32_t> out(a.count);
+    for (std::size_t i = 0; i < a.count; ++i) {
+      const unsigned char* p = base + i * stride;
+      std::uint32_t v = 0;
+      if (csize == 1) v = *p;
+      else if (csize == 2) { std::uint16_t s; std::memcpy(&s, p, 2); v = s; }
+      else std::memcpy(&v, p, 4);
+      if (v >= vertices)
+        fail(path_, "index_range", where, "index " + std::to_string(v) + " out of range (" + std::to_string(vertices) + " vertices)");
+      out[i] = v;
+    }
+    return out;
+  }
+
+  std::size_t count(int index, const std::string& where) const { return accessor(index, where).count; }
+
+ private:
+  const tinygltf::Accessor& accessor(int index, const std::string& where) const {
+    if (index < 0 || static_cast<std::size_t>(index) >= m_.accessors.size())
+      fail(path_, "accessor", where, "accessor " + std::to_string(index) + " does not exist (" +
+                                         std::to_string(m_.accessors.size()) + " accessors)");
+    const tinygltf::Accessor& a = m_.accessors[static_cast<std::size_t>(index)];
+    if (a.sparse.isSparse) fail(path_, "sparse", where, "sparse accessors are not supported; store the values densely");
+    if (a.bufferView < 0) fail(path_, "accessor", where, "accessor " + std::to_string(index) + " has no bufferView");
+    return a;
+  }
+
+  // The first element's bytes and the stride, after checking that count elements of `elem` bytes
+  // lie within the view and the view within its buffer.
+  const unsigned char* data(const tinygltf::Accessor& a, std::size_t elem, std::size_t& stride, const std::string& where) const {
+    if (static_cast<std::size_t>(a.bufferView) >= m_.bufferViews.size())
+      fail(path_, "buffer_view", where, "bufferView " + std::to_string(a.bufferView) + " does not exist");
+    const tinygltf::BufferView& v = m_.bufferViews[static_cast<std::size_t>(a.bufferView)];
+    if (v.buffer < 0 || static_cast<std::size_t>(v.buffer) >= m_.buffers.size())
+      fail(path_, "buffer", where, "buffer " + std::to_string(v.buffer) + " does not exist");
+    const std::size_t buffer = m_.buffers[static_cast<std::size_t>(v.buffer)].data.size();
+    if (v.byteOffset > buffer || v.byteLength > buffer - v.byteOffset)
+      fail(path_, "buffer_view", where, "bufferView " + std::to_string(a.bufferView) + " (" + std::to_string(v.byteLength) +
+                                            " bytes at " + std::to_string(v.byteOffset) + ") reaches past its buffer (" +
+                                            std::to_string(buffer) + " bytes)");
+    stride = v.byteStride ? v.byteStride : elem;
+    const std::size_t need = a.count == 0 ? 0 : a.byteOffset + (a.count - 1) * stride + elem;
+    if (a.count && (a.count - 1 > (SIZE_MAX - elem - a.byteOffset) / stride || need > v.byteLength))
+      fail(path_, "accessor_bounds", where, "the accessor (" + std::to_string(a.count) + " elements) reaches past its bufferView (" +
+                                                std::to_string(v.byteLength) + " bytes)");
+    return m_.buffers[static_cast<std::size_t>(v.buffer)].data.data() + v.byteOffset + a.byteOffset;
+  }
+
+  static float component(const unsigned char* p, int type, bool normalized) {
+    switch (type) {
+      case TINYGLTF_COMPONENT_TYPE_FLOAT: { float f; std::memcpy(&f, p, 4); return f; }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? *p / 255.0f : *p;
+      case TINYGLTF_COMPONENT_TYPE_BYTE: { const auto s = static_cast<std::int8_t>(*p); return normalized ? std::max(s / 127.0f, -1.0f) : s; }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { std::uint16_t s; std::memcpy(&s, p, 2); return normalized ? s / 65535.0f : s; }
+      case TINYGLTF_COMPONENT_TYPE_SHORT: { std::int16_t s; std::memcpy(&s, p, 2); return normalized ? std::max(s / 32767.0f, -1.0f) : s; }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { std::uint32_t s; std::memcpy(&s, p, 4); return static_cast<float>(s); }
+      default: return 0;
+    }
+  }
+
+  const tinygltf::Model& m_;
+  const std::string& path_;
+};
+
+// ---- 3. Materials and textures ---------------------------------------------------------------
+
+TextureWrap wrap_of(int mode) {
+  if (mode == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE) return TextureWrap::kClampToEdge;
+  if (mode == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT) return TextureWrap::kMirroredRepeat;
+  return TextureWrap::kRepeat;
+}
+
+// KHR_texture_transform of a texture reference: uv' = T R S uv, and the texCoord set it names.
+struct UvTransform {
+  double a = 1, b = 0, c = 0, d = 1, ox = 0, oy = 0;  // u' = a u + b v + ox, v' = c u + d v + oy
+  int tex_coord = 0;
+  Vec2f apply(Vec2f uv) const {
+    return {static_cast<float>(a * uv.x + b * uv.y + ox), static_cast<float>(c * uv.x + d * uv.y + oy)};
+  }
+};
+
+double number_at(const tinygltf::Value& v, int i, double fallback) {
+  if (!v.IsArray() || static_cast<std::size_t>(i) >= v.ArrayLen() || !v.Get(i).IsNumber()) return fallback;
+  return v.Get(i).GetNumberAsDouble();
+}
+
+UvTransform uv_transform(const tinygltf::TextureInfo& info) {
+  UvTransform t;
+  t.tex_coord = info.texCoord;
+  const auto it = info.extensions.find("KHR_texture_transform");
+  if (it == info.extensions.end() || !it->second.IsObject()) return t;
+  const tinygltf::Value& e = it->second;
+  const double r = e.Has("rotation") && e.Get("rotation").IsNumber() ? e.Get("rotation").GetNumberAsDouble() : 0.0;
+  const double sx = number_at(e.Get("scale"), 0, 1), sy = number_at(e.Get("scale"), 1, 1);
+  t.a = std::cos(r) * sx, t.b = std::sin(r) * sy;
+  t.c = -std::sin(r) * sx, t.d = std::cos(r) * sy;
+  t.ox = number_at(e.Get("offset"), 0, 0), t.oy = number_at(e.Get("offset"), 1, 0);
+  if (e.Has("texCoord") && e.Get("texCoord").IsInt()) t.tex_coord = e.Get("texCoord").GetNumberAsInt();
+  return t;
+}
+
+// The file's materials as the mesh keeps them; textures are taken on first use.
+class MaterialTable {
+ public:
+  MaterialTable(const tinygltf::Model& m, const std::string& path, TriangleMesh& mesh) : m_(m), path_(path), mesh_(mesh) {}
+
+  // The mesh's material index for glTF material `index` (-1: the glTF default material).
+  std::uint32_t material(int index) {
+    const auto found = ids_.find(index);
+    if (found != ids_.end()) return found->second;
+    SurfaceMaterial out;
+    if (index >= 0) {
+      if (static_cast<std::size_t>(index) >= m_.materials.size())
+        fail(path_, "material", "materials[" + std::to_string(index) + "]", "does not exist (" + std::to_string(m_.materials.size()) + " materials)");
+      const tinygltf::Material& g = m_.materials[static_cast<std::size_t>(index)];
+      out.name = g.name;
+      const std::vector<double>& f = g.pbrMetallicRoughness.baseColorFactor;
+      for (std::size_t c = 0; c < 4 && c < f.size(); ++c) out.base_color[c] = static_cast<float>(f[c]);
+      out.alpha_mode = g.alphaMode == "MASK" ? AlphaMode::kMask : g.alphaMode == "BLEND" ? AlphaMode::kBlend : AlphaMode::kOpaque;
+      out.alpha_cutoff = static_cast<float>(g.alphaCutoff);
+      const tinygltf::TextureInfo& info = g.pbrMetallicRoughness.baseColorTexture;
+      if (info.index >= 0) {
+        const std::string where = "materials[" + std::to_string(index) + "].pbrMetallicRoughness.baseColorTexture";
+        if (static_cast<std::size_t>(info.index) >= m_.textures.size())
+          fail(path_, "texture", where, "texture " + std::to_string(info.index) + " does not exist");
+        const tinygltf::Texture& tex = m_.textures[static_cast<std::size_t>(info.index)];
+        if (tex.source < 0 || static_cast<std::size_t>(tex.source) >= m_.images.size())
+          fail(path_, "image", "textures[" + std::to_string(info.index) + "].source", "names no image of the file");
+        if (tex.sampler >= 0 && static_cast<std::size_t>(tex.sampler) < m_.samplers.size()) {
+          out.wrap_s = wrap_of(m_.samplers[static_cast<std::size_t>(tex.sampler)].wrapS);
+          out.wrap_t = wrap_of(m_.samplers[static_cast<std::size_t>(tex.sampler)].wrapT);
+        }
+        out.texture = image(tex.source);
+        transforms_[index] = uv_transform(info);
+      }
+    }
+    const auto id = static_cast<std::uint32_t>(mesh_.materials.size());
+    mesh_.materials.push_back(out);
+    ids_[index] = id;
+    return id;
+  }
+
+  // The texture-coordinate set and transform material `index` samples its base colour with.
+  const UvTransform* transform(int index) const {
+    const auto it = transforms_.find(index);
+    return it == transforms_.end() ? nullptr : &it->second;
+  }
+
+ private:
+  int image(int source) {
+    const auto found = images_.find(source);
+    if (found != images_.end()) return found->second;
+    const tinygltf::Image& g = m_.images[static_cast<std::size_t>(source)];
+    if (g.image.empty() || g.width <= 0 || g.height <= 0 || g.component != 4)
+      fail(path_, "image", "images[" + std::to_string(source) + "]" + (g.uri.empty() ? "" : " (" + g.uri + ")"),
+           "could not be read: the image file is missing or unreadable");
+    TextureImage t;
+    t.width = g.width;
+    t.height = g.height;
+    t.rgba = g.image;
+    const int id = static_cast<int>(mesh_.textures.size());
+    mesh_.textures.push_back(std::move(t));
+    images_[source] = id;
+    return id;
+  }
+
+  const tinygltf::Model& m_;
+  const std::string& path_;
+  TriangleMesh& mesh_;
+  std::map<int, std::uint32_t> ids_;
+  std::map<int, int> images_;
+  std::map<int, UvTransform> transforms_;
+};
+
+// ---- 4. Primitives ---------------------------------------------------------------------------
+
+// One primitive's vertex attributes in its mesh's space, and its triangles.
+struct PrimitiveData {
+  std::vector<float> positions, normals, colors, uvs;  // 3, 3, 4, 2 per vertex (empty when absent)
+  std::vector<std::uint32_t> corners;                   // 3 per triangle
+};
+
+// Triangle corners from the primitive's index list (or 0..n-1) by its mode; -1 for modes that
+// have no triangles (points, lines).
+bool triangle_corners(int mode, const std::vector<std::uint32_t>& idx, std::vector<std::uint32_t>& out) {
+  if (mode == TINYGLTF_MODE_TRIANGLES) {
+    for (std::size_t i = 0; i + 2 < idx.size(); i += 3) out.insert(out.end(), {idx[i], idx[i + 1], idx[i + 2]});
+  } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+    // Every other triangle of a strip turns the other way; swapping its first two corners keeps the
+    // winding of the first.
+    for (std::size_t i = 0; i + 2 < idx.size(); ++i)
+      if (i % 2 == 0) out.insert(out.end(), {idx[i], idx[i + 1], idx[i + 2]});
+      else out.insert(out.end(), {idx[i + 1], idx[i], idx[i + 2]});
+  } else if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+    for (std::size_t i = 1; i + 1 < idx.size(); ++i) out.insert(out.end(), {idx[0], idx[i], idx[i + 1]});
+  } else {
+    return false;
+  }
+  return true;
+}
+
+// The attribute accessor `name` of a primitive, or -1.
+int attribute(const tinygltf::Primitive& p, const std::string& name) {
+  const auto it = p.attributes.find(name);
+  return it == p.attributes.end() ? -1 : it->second;
+}
+
+PrimitiveData draco_primitive(const tinygltf::Model& m, const tinygltf::Primitive& p, const tinygltf::Value& ext,
+                              int uv_set, const std::string& path, const std::string& where) {
+  const std::string w = where + ".extensions.KHR_draco_mesh_compression";
+  if (!ext.Has("bufferView") || !ext.Get("bufferView").IsInt()) fail(path, "draco", w, "has no bufferView");
+  const int view = ext.Get("bufferView").GetNumberAsInt();
+  if (view < 0 || static_cast<std::size_t>(view) >= m.bufferViews.size()) fail(path, "draco", w, "names a bufferView that does not exist");
+  const tinygltf::BufferView& v = m.bufferViews[static_cast<std::size_t>(view)];
+  if (v.buffer < 0 || static_cast<std::size_t>(v.buffer) >= m.buffers.size()) fail(path, "draco", w, "names a buffer that does not exist");
+  const std::vector<unsigned char>& buffer = m.buffers[static_cast<std::size_t>(v.buffer)].data;
+  if (v.byteOffset > buffer.size() || v.byteLength > buffer.size() - v.byteOffset)
+    fail(path, "draco", w, "its bufferView reaches past its buffer");
+  const tinygltf::Value& ids = ext.Get("attributes");
+  auto id_of = [&](const std::string& name) { return ids.Has(name) && ids.Get(name).IsInt() ? ids.Get(name).GetNumberAsInt() : -1; };
+  const int pos = id_of("POSITION"), nrm = id_of("NORMAL"), col = id_of("COLOR_0"), uv = id_of("TEXCOORD_" + std::to_string(uv_set));
+  if (pos < 0) fail(path, "draco", w, "has no POSITION attribute");
+  int col_components = 4;
+  if (col >= 0 && attribute(p, "COLOR_0") >= 0 && static_cast<std::size_t>(attribute(p, "COLOR_0")) < m.accessors.size())
+    col_components = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(m.accessors[static_cast<std::size_t>(attribute(p, "COLOR_0"))].type));
+  std::vector<std::pair<int, int>> wanted{{pos, 3}};
+  if (nrm >= 0) wanted.push_back({nrm, 3});
+  if (col >= 0) wanted.push_back({col, col_components == 3 ? 3 : 4});
+  if (uv >= 0) wanted.push_back({uv, 2});
+  DracoMesh d;
+  try {
+    d = draco_decode_mesh(buffer.data() + v.byteOffset, v.byteLength, wanted);
+  } catch (const std::exception& e) {
+    fail(path, "draco", w, e.what());
+  }
+  PrimitiveData out;
+  out.positions = std::move(d.attributes[pos]);
+  if (nrm >= 0) out.normals = std::move(d.attributes[nrm]);
+  if (col >= 0) {
+    std::vector<float>& c = d.attributes[col];
+    if (col_components == 3) {
+      out.colors.reserve(d.points * 4);
+      for (std::size_t i = 0; i < d.points; ++i) out.colors.insert(out.colors.end(), {c[3 * i], c[3 * i + 1], c[3 * i + 2], 1.0f});
+    } else {
+      out.colors = std::move(c);
+    }
+  }
+  if (uv >= 0) out.uvs = std::move(d.attributes[uv]);
+  for (std::uint32_t c : d.corners)
+    if (c >= d.points) fail(path, "draco", w, "a decoded corner is out of range");
+  if (p.mode == TINYGLTF_MODE_TRIANGLES || p.mode == -1) out.corners = std::move(d.corners);
+  else triangle_corners(p.mode, d.corners, out.corners);
+  return out;
+}
+
+PrimitiveData read_primitive(const tinygltf::Model& m, const Accessors& read, const tinygltf::Primitive& p, int uv_set,
+                             const std::string& path, const std::string& where) {
+  const auto draco = p.extensions.find("KHR_draco_mesh_compression");
+  if (draco != p.extensions.end()) return draco_primitive(m, p, draco->second, uv_set, path, where);
+  PrimitiveData out;
+  const int pos = attribute(p, "POSITION");
+  if (pos < 0) fail(path, "no_position", where + ".attributes", "has no POSITION attribute");
+  out.positions = read.floats(pos, 3, where + ".attributes.POSITION");
+  const std::size_t n = out.positions.size() / 3;
+  auto same_count = [&](int index, const std::string& name) {
+    if (read.count(index, where + ".attributes." + name) != n)
+      fail(path, "attribute_count", where + ".attributes." + name,
+           "has " + std::to_string(read.count(index, where + ".attributes." + name)) + " elements, POSITION has " + std::to_string(n));
+  };
+  if (const int a = attribute(p, "NORMAL"); a >= 0) same_count(a, "NORMAL"), out.normals = read.floats(a, 3, where + ".attributes.NORMAL");
+  if (const int a = attribute(p, "COLOR_0"); a >= 0) {
+    same_count(a, "COLOR_0");
+    const std::size_t k = read.count(a, where + ".attributes.COLOR_0");
+    const int comps = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(m.accessors[static_cast<std::size_t>(a)].type));
+    const std::vector<float> c = read.floats(a, comps == 3 ? 3 : 4, where + ".attributes.COLOR_0");
+    out.colors.resize(k * 4, 1.0f);
+    for (std::size_t i = 0; i < k; ++i)
+      for (int j = 0; j < (comps == 3 ? 3 : 4); ++j) out.colors[i * 4 + static_cast<std::size_t>(j)] = c[i * static_cast<std::size_t>(comps == 3 ? 3 : 4) + static_cast<std::size_t>(j)];
+  }
+  const std::string uv_name = "TEXCOORD_" + std::to_string(uv_set);
+  if (const int a = attribute(p, uv_name); a >= 0) same_count(a, uv_name), out.uvs = read.floats(a, 2, where + ".attributes." + uv_name);
+  std::vector<std::uint32_t> idx;
+  if (p.indices >= 0) {
+    idx = read.indices(p.indices, n, where + ".indices");
+  } else {
+    idx.resize(n);
+    for (std::size_t i = 0; i < n; ++i) idx[i] = static_cast<std::uint32_t>(i);
+  }
+  triangle_corners(p.mode, idx, out.corners);
+  return out;
+}
+
+// ---- 5. The scene ----------------------------------------------------------------------------
+
+Mat4 multiply(const Mat4& a, const Mat4& b) {
+  Mat4 r{};
+  for (int c = 0; c < 4; ++c)
+    for (int row = 0; row < 4; ++row)
+      for (int k = 0; k < 4; ++k) r[c * 4 + row] += a[k * 4 + row] * b[c * 4 + k];
+  return r;
+}
+
+Mat4 local_matrix(const tinygltf::Node& n) {
+  if (n.matrix.size() == 16) {
+    Mat4 m;
+    std::copy(n.matrix.begin(), n.matrix.end(), m.begin());
+    return m;
+  }
+  // T * R * S, R from the unit quaternion (x, y, z, w).
+  const double tx = n.translation.size() == 3 ? n.translation[0] : 0, ty = n.translation.size() == 3 ? n.translation[1] : 0,
+               tz = n.translation.size() == 3 ? n.translation[2] : 0;
+  double x = 0, y = 0, z = 0, w = 1;
+  if (n.rotation.size() == 4) x = n.rotation[0], y = n.rotation[1], z = n.rotation[2], w = n.rotation[3];
+  const double sx = n.scale.size() == 3 ? n.scale[0] : 1, sy = n.scale.size() == 3 ? n.scale[1] : 1, sz = n.scale.size() == 3 ? n.scale[2] : 1;
+  return Mat4{(1 - 2 * (y * y + z * z)) * sx, (2 * (x * y + z * w)) * sx, (2 * (x * z - y * w)) * sx, 0,
+              (2 * (x * y - z * w)) * sy, (1 - 2 * (x * x + z * z)) * sy, (2 * (y * z + x * w)) * sy, 0,
+              (2 * (x * z + y * w)) * sz, (2 * (y * z - x * w)) * sz, (1 - 2 * (x * x + y * y)) * sz, 0,
+              tx, ty, tz, 1};
+}
+
+double determinant3(const Mat4& m) {
+  return m[0] * (m[5] * m[10] - m[9] * m[6]) - m[4] * (m[1] * m[10] - m[9] * m[2]) + m[8] * (m[1] * m[6] - m[5] * m[2]);
+}
+
+struct SceneReader {
+  const tinygltf::Model& m;
+  const std::string& path;
+  const ReadOptions& options;
+  ReadReport* report;
+  Accessors read;
+  TriangleMesh mesh;
+  MaterialTable materials;
+  bool any_normals = false, any_colors = false, any_uvs = false;
+  std::vector<std::pair<std::size_t, std::size_t>> flat_ranges;  // vertices of primitives without NORMAL
+  std::size_t skipped = 0;
+
+  SceneReader(const tinygltf::Model& model, const std::string& p, const ReadOptions& o, ReadReport* r)
+      : m(model), path(p), options(o), report(r), read(model, p), materials(model, p, mesh) {}
+
+  void warn(const std::string& text) {
+    if (report && std::find(report->warnings.begin(), report->warnings.end(), text) == report->warnings.end())
+      report->warnings.push_back(text);
+  }
+
+  // Depth-first over the node tree; `on_path` catches cycles (a node among its own ancestors).
+  void node(int index, const Mat4& parent, std::vector<char>& on_path, const std::string& where) {
+    if (index < 0 || static_cast<std::size_t>(index) >= m.nodes.size())
+      fail(path, "node", where, "node " + std::to_string(index) + " does not exist (" + std::to_string(m.nodes.size()) + " nodes)");
+    const std::string here = "nodes[" + std::to_string(index) + "]";
+    if (on_path[static_cast<std::size_t>(index)]) fail(path, "node_cycle", here, "is its own ancestor (the node tree has a cycle)");
+    on_path[static_cast<std::size_t>(index)] = 1;
+    const tinygltf::Node& n = m.nodes[static_cast<std::size_t>(index)];
+    const Mat4 world = multiply(parent, local_matrix(n));
+    if (n.mesh >= 0) {
+      if (static_cast<std::size_t>(n.mesh) >= m.meshes.size()) fail(path, "mesh", here + ".mesh", "names a mesh that does not exist");
+      // A skinned mesh's node transform is ignored (glTF 3.7.3.3); with the joints at rest the
+      // vertices are where the mesh stores them.
+      if (n.skin >= 0) warn("skins are not animated: " + here + " is baked in its bind pose");
+      add_mesh(n.mesh, n.skin >= 0 ? kIdentity : world);
+    }
+    for (int child : n.children) node(child, world, on_path, here + ".children");
+    on_path[static_cast<std::size_t>(index)] = 0;
+  }
+
+  void add_mesh(int index, const Mat4& world) {
+    const tinygltf::Mesh& g = m.meshes[static_cast<std::size_t>(index)];
+    const bool mirror = determinant3(world) < 0;
+    for (std::size_t k = 0; k < g.primitives.size(); ++k) {
+      const tinygltf::Primitive& p = g.primitives[k];
+      const std::string where = "meshes[" + std::to_string(index) + "].primitives[" + std::to_string(k) + "]";
+      const int mode = p.mode < 0 ? TINYGLTF_MODE_TRIANGLES : p.mode;
+      if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+        ++skipped;
+        continue;
+      }
+      if (!p.targets.empty()) warn("morph targets are not applied: meshes[" + std::to_string(index) + "] is baked without them");
+      const std::uint32_t material = materials.material(p.material);
+      const UvTransform* uvt = materials.transform(p.material);
+      const PrimitiveData d = read_primitive(m, read, p, uvt ? uvt->tex_coord : 0, path, where);
+      add_primitive(d, world, mirror, material, uvt, where);
+    }
+  }
+
+  void add_primitive(const PrimitiveData& d, const Mat4& world, bool mirror, std::uint32_t material, const UvTransform* uvt,
+                     const std::string& where) {
+    const std::size_t n = d.positions.size() / 3, first = mesh.positions.size();
+    // Normals go by the inverse transpose; its scale does not matter as they are normalized.
+    const double* w = world.data();
+    const double i00 = w[5] * w[10] - w[9] * w[6], i01 = w[8] * w[6] - w[4] * w[10], i02 = w[4] * w[9] - w[8] * w[5];
+    const double i10 = w[9] * w[2] - w[1] * w[10], i11 = w[0] * w[10] - w[8] * w[2], i12 = w[8] * w[1] - w[0] * w[9];
+    const double i20 = w[1] * w[6] - w[5] * w[2], i21 = w[4] * w[2] - w[0] * w[6], i22 = w[0] * w[5] - w[4] * w[1];
+    std::vector<std::uint32_t> remap(n, UINT32_MAX);
+    for (std::size_t i = 0; i < n; ++i) {
+      const double x = d.positions[3 * i], y = d.positions[3 * i + 1], z = d.positions[3 * i + 2];
+      const Vec3f p{static_cast<float>(w[0] * x + w[4] * y + w[8] * z + w[12]), static_cast<float>(w[1] * x + w[5] * y + w[9] * z + w[13]),
+                    static_cast<float>(w[2] * x + w[6] * y + w[10] * z + w[14])};
+      if (!is_finite(p)) {
+        if (!options.drop_nonfinite)
+          fail(path, "nonfinite", where + ".attributes.POSITION", "vertex " + std::to_string(i) + " has a non-finite coordinate (see --drop-nonfinite)");
+        if (report) ++report->dropped_nonfinite;
+        continue;
+      }
+      remap[i] = static_cast<std::uint32_t>(mesh.positions.size());
+      mesh.positions.push_back(p);
+      if (!d.normals.empty()) {
+        const double a = d.normals[3 * i], b = d.normals[3 * i + 1], c = d.normals[3 * i + 2];
+        mesh.normals.push_back(normalized({static_cast<float>(i00 * a + i01 * b + i02 * c), static_cast<float>(i10 * a + i11 * b + i12 * c),
+                                           static_cast<float>(i20 * a + i21 * b + i22 * c)}));
+      }
+      if (!d.colors.empty()) {
+        const float* c = &d.colors[4 * i];
+        mesh.colors.push_back({linear_to_srgb8(c[0]), linear_to_srgb8(c[1]), linear_to_srgb8(c[2])});
+      }
+    }
+    const std::size_t added = mesh.positions.size() - first;
+    fill_missing(first, added, !d.normals.empty(), !d.colors.empty());
+    for (std::size_t t = 0; t + 2 < d.corners.size(); t += 3) {
+      Triangle tri{remap[d.corners[t]], remap[d.corners[t + 1]], remap[d.corners[t + 2]]};
+      if (tri[0] == UINT32_MAX || tri[1] == UINT32_MAX || tri[2] == UINT32_MAX) {
+        if (report) ++report->dropped_triangles;
+        continue;
+      }
+      std::array<Vec2f, 3> uv{};
+      for (int k = 0; k < 3; ++k)
+        if (!d.uvs.empty()) {
+          const std::size_t v = d.corners[t + static_cast<std::size_t>(k)];
+          const Vec2f raw{d.uvs[2 * v], d.uvs[2 * v + 1]};
+          uv[static_cast<std::size_t>(k)] = uvt ? uvt->apply(raw) : raw;
+        }
+      if (mirror) std::swap(tri[1], tri[2]), std::swap(uv[1], uv[2]);
+      mesh.triangles.push_back(tri);
+      mesh.triangle_materials.push_back(material);
+      mesh.corner_uvs.push_back(uv);
+    }
+    if (!d.uvs.empty()) any_uvs = true;
+  }
+
+  // Keeps normals and colours one per vertex when only some primitives have them: colours default
+  // to white (glTF's factor 1), and vertices without normals are remembered to get flat ones.
+  void fill_missing(std::size_t first, std::size_t added, bool has_normals, bool has_colors) {
+    if (has_normals && !any_normals) {
+      any_normals = true;
+      mesh.normals.insert(mesh.normals.begin(), first, Vec3f{});
+    } else if (!has_normals && any_normals) {
+      mesh.normals.resize(first + added);
+    }
+    if (!has_normals && added) flat_ranges.push_back({first, first + added});
+    if (has_colors && !any_colors) {
+      any_colors = true;
+      mesh.colors.insert(mesh.colors.begin(), first, Rgb8{255, 255, 255});
+    } else if (!has_colors && any_colors) {
+      mesh.colors.resize(first + added, Rgb8{255, 255, 255});
+    }
+  }
+
+  // glTF draws primitives without NORMAL flat (3.7.2.1). Where other primitives have normals, the
+  // flat ones' triangles get vertices of their own carrying the face normal.
+  void make_flat_normals() {
+    if (!any_normals) {
+      mesh.normals.clear();
+      return;
+    }
+    std::vector<char> flat(mesh.positions.size(), 0);
+    for (const auto& [a, b] : flat_ranges)
+      for (std::size_t i = a; i < b; ++i) flat[i] = 1;
+    for (Triangle& t : mesh.triangles) {
+      if (!flat[t[0]]) continue;
+      const Vec3f normal = normalized(cross(mesh.positions[t[1]] - mesh.positions[t[0]], mesh.positions[t[2]] - mesh.positions[t[0]]));
+      for (std::uint32_t& v : t) {
+        mesh.positions.push_back(mesh.positions[v]);
+        mesh.normals.push_back(normal);
+        if (!mesh.colors.empty()) mesh.colors.push_back(mesh.colors[v]);
+        v = static_cast<std::uint32_t>(mesh.positions.size() - 1);
+      }
+    }
+    // The shared copies of the flat vertices are no longer used; leaving them costs nothing in
+    // sampling (only triangles are drawn).
+  }
+};
+
+std::vector<int> scene_roots(const tinygltf::Model& m, const std::string& path, ReadReport* report) {
+  if (!m.scenes.empty()) {
+    const int s = m.defaultScene >= 0 && static_cast<std::size_t>(m.defaultScene) < m.scenes.size() ? m.defaultScene : 0;
+    return m.scenes[static_cast<std::size_t>(s)].nodes;
+  }
+  // No scene: take the nodes that are no node's child, as viewers do.
+  std::vector<char> child(m.nodes.size(), 0);
+  for (const tinygltf::Node& n : m.nodes)
+    for (int c : n.children)
+      if (c >= 0 && static_cast<std::size_t>(c) < child.size()) child[static_cast<std::size_t>(c)] = 1;
+  std::vector<int> roots;
+  for (std::size_t i = 0; i < m.nodes.size(); ++i)
+    if (!child[i]) roots.push_back(static_cast<int>(i));
+  if (report) report->warnings.push_back("the file has no scene: baked its " + std::to_string(roots.size()) + " root nodes");
+  if (roots.empty()) fail(path, "no_scene", "scenes", "the file has no scene and no nodes, so nothing to bake");
+  return roots;
+}
+
+}  // namespace
+
+TriangleMesh decode_gltf(ByteView bytes, const std::string& path, const ReadOptions& options, ReadReport* report) {
+  // 1. JSON, buffers and images (decoded), required extensions.
+  const tinygltf::Model m = parse(bytes, path);
+  // 2. The default scene's nodes, each mesh placed by its world transform.
+  SceneReader scene(m, path, options, report);
+  std::vector<char> on_path(m.nodes.size(), 0);
+  for (int root : scene_roots(m, path, report)) scene.node(root, kIdentity, on_path, "scenes");
+  // 3. Flat normals where a primitive has none, and one surface description for the whole mesh.
+  scene.make_flat_normals();
+  if (!scene.any_uvs) scene.mesh.corner_uvs.clear();
+  if (report) {
+    report->format = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0 ? "glb" : "gltf";
+    report->skipped_primitives = scene.skipped;
+  }
+  if (scene.mesh.triangles.empty())
+    fail(path, "no_triangles", "scenes",
+         "the scene has no triangles to bake" +
+             (scene.skipped ? " (" + std::to_string(scene.skipped) + " point or line primitives skipped)" : std::string()));
+  return std::move(scene.mesh);
+}
+
+TriangleMesh read_gltf(const std::string& path, const ReadOptions& options, ReadReport* report) {
+  const InputFile file(path);
+  return decode_gltf(file.bytes(), path, options, report);
+}
+
+}  // namespace qf
