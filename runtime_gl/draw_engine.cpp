@@ -272,8 +272,17 @@ void EngineDrawer::Impl::draw_primitive(const EnginePrimitive& p, const EngineMa
   glUniform1i(loc("u_has_tangents"), !p.tangents.empty());
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, base_map ? srgb[static_cast<std::size_t>(mat.base_texture)] : 0);
+  // Wraps are the material's sampler's (images may be shared by textures with other samplers).
+  if (base_map) {
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, mat.base_wrap_s);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, mat.base_wrap_t);
+  }
   glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_2D, normal_map ? linear[static_cast<std::size_t>(mat.normal_texture)] : 0);
+  if (normal_map) {
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, mat.normal_wrap_s);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, mat.normal_wrap_t);
+  }
   glActiveTexture(GL_TEXTURE0);
   if (mat.double_sided || !lit) glDisable(GL_CULL_FACE);
   else glEnable(GL_CULL_FACE);

@@ -19,8 +19,12 @@ namespace qf::render {
 struct EngineMaterial {
   std::array<float, 4> base_color{1, 1, 1, 1};  // linear RGBA factor
   int base_texture = -1;                        // index into EngineScene::images (sRGB), -1 none
+  int base_wrap_s = 10497, base_wrap_t = 10497;  // its sampler's wraps (glTF codes = GL enums)
+  // KHR_texture_transform, applied to the primitive's uvs when loading: u' = a u + b v + c, v' = d u + e v + f.
+  std::array<float, 6> uv_transform{1, 0, 0, 0, 1, 0};
   float metallic = 1, roughness = 1;
   int normal_texture = -1;                      // tangent-space normal map (linear), -1 none
+  int normal_wrap_s = 10497, normal_wrap_t = 10497;
   float normal_scale = 1;
   enum class Alpha { kOpaque, kMask, kBlend } alpha = Alpha::kOpaque;
   float alpha_cutoff = 0.5f;

@@ -330,8 +330,31 @@ EngineMaterial engine_material(const tinygltf::Model& m, int index, int& uv_set)
     const int src = m.textures[static_cast<std::size_t>(texture)].source;
     return src >= 0 && src < static_cast<int>(m.images.size()) ? src : -1;
   };
+  auto wraps_of = [&](int texture, int& s, int& t) {
+    if (texture < 0 || texture >= static_cast<int>(m.textures.size())) return;
+    const int sampler = m.textures[static_cast<std::size_t>(texture)].sampler;
+    if (sampler < 0 || sampler >= static_cast<int>(m.samplers.size())) return;
+    s = m.samplers[static_cast<std::size_t>(sampler)].wrapS;
+    t = m.samplers[static_cast<std::size_t>(sampler)].wrapT;
+  };
   out.base_texture = image_of(pbr.baseColorTexture.index);
   if (out.base_texture >= 0) uv_set = pbr.baseColorTexture.texCoord;
+  wraps_of(pbr.baseColorTexture.index, out.base_wrap_s, out.base_wrap_t);
+  wraps_of(mat.normalTexture.index, out.normal_wrap_s, out.normal_wrap_t);
+  // KHR_texture_transform of the base colour texture (three.js applies it): uv' = T R S uv.
+  const auto tt = pbr.baseColorTexture.extensions.find("KHR_texture_transform");
+  if (tt != pbr.baseColorTexture.extensions.end() && tt->second.IsObject()) {
+    const tinygltf::Value& e = tt->second;
+    auto num = [](const tinygltf::Value& v, int i, double fallback) {
+      return v.IsArray() && static_cast<std::size_t>(i) < v.ArrayLen() && v.Get(i).IsNumber() ? v.Get(i).GetNumberAsDouble() : fallback;
+    };
+    const double r = e.Get("rotation").IsNumber() ? e.Get("rotation").GetNumberAsDouble() : 0.0;
+    const double sx = num(e.Get("scale"), 0, 1), sy = num(e.Get("scale"), 1, 1);
+    out.uv_transform = {static_cast<float>(std::cos(r) * sx), static_cast<float>(std::sin(r) * sy),
+                        static_cast<float>(num(e.Get("offset"), 0, 0)), static_cast<float>(-std::sin(r) * sx),
+                        static_cast<float>(std::cos(r) * sy), static_cast<float>(num(e.Get("offset"), 1, 0))};
+    if (e.Get("texCoord").IsInt()) uv_set = e.Get("texCoord").GetNumberAsInt();
+  }
   out.metallic = static_cast<float>(pbr.metallicFactor);
   out.roughness = static_cast<float>(pbr.roughnessFactor);
   out.normal_texture = image_of(mat.normalTexture.index);
@@ -362,12 +385,29 @@ EnginePrimitive engine_primitive(const AccessorReader& read, const tinygltf::Pri
   if ((!p.normals.empty() && p.normals.size() != n * 3) || (!p.tangents.empty() && p.tangents.size() != n * 4) ||
       (!p.uvs.empty() && p.uvs.size() != n * 2) || (!p.colors.empty() && p.colors.size() != n * 4))
     fail(read.path, "mesh", "a primitive's attributes differ in count from POSITION");
+  const std::array<float, 6>& k = p.material.uv_transform;
+  for (std::size_t v = 0; v + 1 < p.uvs.size(); v += 2) {
+    const float u0 = p.uvs[v], v0 = p.uvs[v + 1];
+    p.uvs[v] = k[0] * u0 + k[1] * v0 + k[2];
+    p.uvs[v + 1] = k[3] * u0 + k[4] * v0 + k[5];
+  }
   if (prim.indices >= 0) {
     p.indices = read.indices(prim.indices);
     for (std::uint32_t i : p.indices)
       if (i >= n) fail(read.path, "mesh", "index " + std::to_string(i) + " out of range (" + std::to_string(n) + " vertices)");
   } else {
     for (std::uint32_t i = 0; i < n; ++i) p.indices.push_back(i);
+  }
+  // Strips and fans as triangle lists (every other strip triangle turned back to the first's winding).
+  if (prim.mode == TINYGLTF_MODE_TRIANGLE_STRIP || prim.mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+    std::vector<std::uint32_t> list;
+    for (std::size_t i = 0; i + 2 < p.indices.size(); ++i) {
+      const std::size_t f = prim.mode == TINYGLTF_MODE_TRIANGLE_FAN ? 0 : i;
+      if (prim.mode == TINYGLTF_MODE_TRIANGLE_FAN) list.insert(list.end(), {p.indices[f], p.indices[i + 1], p.indices[i + 2]});
+      else if (i % 2 == 0) list.insert(list.end(), {p.indices[i], p.indices[i + 1], p.indices[i + 2]});
+      else list.insert(list.end(), {p.indices[i + 1], p.indices[i], p.indices[i + 2]});
+    }
+    p.indices = std::move(list);
   }
   // World space: points by the matrix, normals by its inverse transpose (the cofactor matrix,
   // normalised), tangents by the matrix; a negative determinant mirrors, so flip the winding.
@@ -422,7 +462,8 @@ EngineScene engine_scene(const tinygltf::Model& m, const std::string& path, cons
     const Mat4d world = multiply(parent, local_transform(n));
     if (n.mesh >= 0 && n.mesh < static_cast<int>(m.meshes.size()))
       for (const tinygltf::Primitive& prim : m.meshes[static_cast<std::size_t>(n.mesh)].primitives)
-        if (prim.mode == TINYGLTF_MODE_TRIANGLES || prim.mode == TINYGLTF_MODE_LINE || prim.mode == TINYGLTF_MODE_POINTS)
+        if (prim.mode == TINYGLTF_MODE_TRIANGLES || prim.mode == TINYGLTF_MODE_TRIANGLE_STRIP ||
+            prim.mode == TINYGLTF_MODE_TRIANGLE_FAN || prim.mode == TINYGLTF_MODE_LINE || prim.mode == TINYGLTF_MODE_POINTS)
           s.primitives.push_back(engine_primitive(read, prim, world));
     for (int child : n.children) self(self, child, world, level + 1);
     depth[static_cast<std::size_t>(node)] = -1;

@@ -230,7 +230,9 @@ const CommandSpec& eval_spec() {
         "holes (impostor coverage < 0.5) or see-through (0.5 <= coverage < 0.9). Coverage is measured from\n"
         "renders over black and over white; colours are compared over --background. BAKED is a baked .glb\n"
         "(impostor level, cluster LOD, point impostor), or another point set or mesh: a second sampling of\n"
-        "the reference's surface shows the metric's own floor (the splats' ragged edges differ).";
+        "the reference's surface shows the metric's own floor (the splats' ragged edges differ).\n"
+        "REFERENCE may also be a glTF asset (textured, as an artist made it): it is then drawn, and BAKED\n"
+        "scored, by the engine method only.";
     s.options = draw_option_specs();
     for (OptionSpec& o : s.options) {
       if (o.name == "size") o.default_text = "256";
@@ -300,7 +302,9 @@ int run_eval(const ParsedArgs& a) {
   const int views = static_cast<int>(a.get_int("views", 26, 1, 10000));
   const AnyScene reference = load_scene(a.positional[0]);
   AnyScene baked = load_scene(a.positional[1]);
-  if (reference.kind == AnyScene::kImpostor) throw UsageError("eval: REFERENCE must be a point set or a mesh, not a glTF file");
+  // A glTF reference (a textured game asset) has one look: its materials as an engine draws them,
+  // so both sides are drawn and scored by the engine method alone.
+  if (reference.kind == AnyScene::kImpostor) settings.method = Method::kEngine;
   const Sphere sphere = bounding_sphere(reference.bounds());
   choose_lod(baked, a, orbit_camera(sphere, sphere_direction(0, views), 0, w, h));
 

@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/random.h"
+#include "sample/surface_color.h"
 
 namespace qf {
 namespace {
@@ -72,6 +73,10 @@ PointSet points_from_layers(const TriangleMesh& mesh, const SampleGrid& grid, co
   }
   const bool smooth = mesh.normals.size() == mesh.positions.size();
   const bool coloured = mesh.colors.size() == mesh.positions.size();
+  // Material meshes (glTF, OBJ + MTL) take their colour as glTF defines it; meshes without
+  // materials (PLY, OFF) keep their vertex colours interpolated as stored, as they always were.
+  const bool materials = !mesh.triangle_materials.empty();
+  const bool shaded = materials && mesh.has_surface_color();
   const double s = grid.pixel;
   PointSet out;
   for (const AxisLayers& L : layers) {
@@ -102,6 +107,11 @@ PointSet points_from_layers(const TriangleMesh& mesh, const SampleGrid& grid, co
           double sum = 0;
           for (double& x : w) sum += (x = std::clamp(x, 0.0, 1.0));
           for (double& x : w) x /= sum;
+          SurfaceColor material;
+          if (materials) {
+            material = surface_color(mesh, t, w);
+            if (!material.surface) continue;  // an alpha cut-out: no surface here
+          }
           out.positions.push_back(pos);
           // 3. Normal, colour, radius.
           Vec3f normal{static_cast<float>(n.n[0]), static_cast<float>(n.n[1]), static_cast<float>(n.n[2])};
@@ -111,7 +121,9 @@ PointSet points_from_layers(const TriangleMesh& mesh, const SampleGrid& grid, co
             normal = normalized(m, normal);
           }
           out.normals.push_back(normal);
-          if (coloured) {
+          if (shaded) {
+            out.colors.push_back(material.color);
+          } else if (coloured) {
             double c[3] = {0, 0, 0};
             for (int k = 0; k < 3; ++k) {
               const Rgb8 col = mesh.colors[tri[static_cast<std::size_t>(k)]];

@@ -87,8 +87,10 @@ std::array<AxisLayers, 3> peel_layers_cpu(const TriangleMesh& mesh, const Sample
 std::array<AxisLayers, 3> peel_layers_gl(const TriangleMesh& mesh, const SampleGrid& grid, const SampleOptions& options);
 
 // The point set from the layers: position = pixel centre at the triangle's depth, normal = the
-// vertex normals interpolated (else the triangle's), colour = vertex colours interpolated (none
-// when the mesh has none), radius = half the diagonal of the pixel's footprint on the triangle's
+// vertex normals interpolated (else the triangle's), colour = the material's (surface_color.h:
+// base colour x texture x vertex colour) for meshes with materials, else the vertex colours
+// interpolated (none when the mesh has none); fragments where a MASK material is cut out give no
+// point, radius = half the diagonal of the pixel's footprint on the triangle's
 // plane, (s/2) sqrt(1 + 1/n_a^2). Points in axis, pixel, depth order.
 PointSet points_from_layers(const TriangleMesh& mesh, const SampleGrid& grid, const std::array<AxisLayers, 3>& layers,
                             SampleStats* stats = nullptr);
