@@ -53,14 +53,20 @@ void NonFiniteFilter::apply(TriangleMesh& mesh, ReadReport* report) const {
   std::uint32_t next = 0;
   for (std::size_t i = 0; i < n; ++i) remap[i] = drop[i] ? 0 : next++;
   std::size_t w = 0, removed = 0;
-  for (const Triangle& t : mesh.triangles) {
+  for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
+    const Triangle t = mesh.triangles[i];
     if (drop[t[0]] || drop[t[1]] || drop[t[2]]) {
       ++removed;
       continue;
     }
+    // Per-triangle materials and texture coordinates move with their triangles.
+    if (!mesh.triangle_materials.empty()) mesh.triangle_materials[w] = mesh.triangle_materials[i];
+    if (!mesh.corner_uvs.empty()) mesh.corner_uvs[w] = mesh.corner_uvs[i];
     mesh.triangles[w++] = {remap[t[0]], remap[t[1]], remap[t[2]]};
   }
   mesh.triangles.resize(w);
+  if (!mesh.triangle_materials.empty()) mesh.triangle_materials.resize(w);
+  if (!mesh.corner_uvs.empty()) mesh.corner_uvs.resize(w);
   erase_indices(mesh.positions, drop);
   erase_indices(mesh.normals, drop);
   erase_indices(mesh.colors, drop);

@@ -6,6 +6,7 @@
 
 #include "core/file_io.h"
 #include "io/model_io.h"
+#include "io/mtl_read.h"
 #include "io/reader_util.h"
 
 namespace qf {
@@ -214,9 +215,16 @@ TriangleMesh decode_obj(ByteView bytes, const std::string& path, const ReadOptio
   TriangleMesh mesh;
   std::vector<Vec3f> vn;                 // the file's normals, by vn index
   std::vector<std::int64_t> normal_of;   // per vertex: index into vn of its first corner's normal, or -1
-  struct Corner { long long v, n; };
+  struct Corner { long long v, t, n; };
   std::vector<Corner> face;
   bool any_color = false;
+  // Texture coordinates and materials (vt, mtllib, usemtl): per triangle, -1 where none is named.
+  std::vector<Vec2f> vt;
+  std::vector<std::array<long long, 3>> triangle_vt;
+  std::vector<long long> triangle_material;
+  io::MaterialLibrary library;
+  long long material = -1;
+  bool any_vt = false, any_material = false;
   // OBJ indices are 1-based; negative ones count back from the last element defined so far.
   auto resolve = [&](std::string_view t, std::size_t count, std::size_t line, const char* what) -> long long {
     long long i;
@@ -256,29 +264,56 @@ TriangleMesh decode_obj(ByteView bytes, const std::string& path, const ReadOptio
       float n[3];
       for (float& x : n) x = number(tok.next_on_line(), path, line, "obj.bad_number", "a normal component");
       vn.push_back(as_unit({n[0], n[1], n[2]}));
+    } else if (key == "vt") {
+      float uv[2];
+      for (float& x : uv) x = number(tok.next_on_line(), path, line, "obj.bad_number", "a texture coordinate");
+      vt.push_back({uv[0], 1 - uv[1]});  // OBJ's v runs up the image, glTF's (ours) down
+    } else if (key == "mtllib" || key == "usemtl") {
+      std::vector<std::string_view> words;
+      for (std::string_view t = tok.next_on_line(); !t.empty(); t = tok.next_on_line()) words.push_back(t);
+      if (key == "mtllib") {
+        // One file per word is the format; a name with spaces is far more common in practice.
+        const std::string whole = io::join_words(words);
+        if (!whole.empty()) io::read_mtl(path, whole, mesh, library, report);
+      } else {
+        const std::string name = io::join_words(words);
+        if (!library.by_name.count(name)) {
+          library.by_name[name] = static_cast<std::uint32_t>(mesh.materials.size());
+          mesh.materials.push_back({});
+          mesh.materials.back().name = name;
+        }
+        material = library.by_name[name];
+        any_material = true;
+      }
     } else if (key == "f") {
       face.clear();
       for (std::string_view t = tok.next_on_line(); !t.empty(); t = tok.next_on_line()) {
         // v, v/vt, v/vt/vn or v//vn
         const std::size_t s1 = t.find('/');
         const std::string_view tv = t.substr(0, s1);
-        long long n = -1;
+        long long n = -1, c = -1;
         if (s1 != std::string_view::npos) {
           const std::size_t s2 = t.find('/', s1 + 1);
+          const std::string_view tt = t.substr(s1 + 1, s2 == std::string_view::npos ? std::string_view::npos : s2 - s1 - 1);
+          if (!tt.empty()) c = resolve(tt, vt.size(), line, "texture coordinate");
           if (s2 != std::string_view::npos && s2 + 1 < t.size()) n = resolve(t.substr(s2 + 1), vn.size(), line, "normal");
         }
-        face.push_back({resolve(tv, mesh.positions.size(), line, "vertex"), n});
+        face.push_back({resolve(tv, mesh.positions.size(), line, "vertex"), c, n});
+        if (c >= 0) any_vt = true;
       }
       if (face.size() < 3)
         throw InputError("obj.face", path, at_line(line), "face with " + std::to_string(face.size()) + " corners, expected at least 3");
       for (const Corner& c : face)
         if (c.n >= 0 && normal_of[static_cast<std::size_t>(c.v)] < 0) normal_of[static_cast<std::size_t>(c.v)] = c.n;
       if (face.size() > 3 && report) ++report->polygons_triangulated;
-      for (std::size_t k = 1; k + 1 < face.size(); ++k)
+      for (std::size_t k = 1; k + 1 < face.size(); ++k) {
         mesh.triangles.push_back({static_cast<std::uint32_t>(face[0].v), static_cast<std::uint32_t>(face[k].v),
                                   static_cast<std::uint32_t>(face[k + 1].v)});
+        triangle_vt.push_back({face[0].t, face[k].t, face[k + 1].t});
+        triangle_material.push_back(material);
+      }
     }
-    // Everything else (vt, o, g, s, usemtl, mtllib, l, p, comments) carries nothing we use.
+    // Everything else (o, g, s, l, p, comments) carries nothing we use.
     tok.skip_line();
   }
   if (mesh.positions.empty())
@@ -289,6 +324,22 @@ TriangleMesh decode_obj(ByteView bytes, const std::string& path, const ReadOptio
     mesh.normals.reserve(normal_of.size());
     for (std::int64_t n : normal_of) mesh.normals.push_back(vn[static_cast<std::size_t>(n)]);
   }
+  // Materials and texture coordinates per triangle, when the file names any (a default material
+  // for triangles before the first usemtl).
+  if (any_material) {
+    std::uint32_t fallback = UINT32_MAX;
+    for (long long m : triangle_material) {
+      if (m < 0 && fallback == UINT32_MAX) fallback = static_cast<std::uint32_t>(mesh.materials.size()), mesh.materials.push_back({});
+      mesh.triangle_materials.push_back(m < 0 ? fallback : static_cast<std::uint32_t>(m));
+    }
+  }
+  if (any_vt)
+    for (const auto& t : triangle_vt) {
+      std::array<Vec2f, 3> uv{};
+      for (int k = 0; k < 3; ++k)
+        if (t[static_cast<std::size_t>(k)] >= 0) uv[static_cast<std::size_t>(k)] = vt[static_cast<std::size_t>(t[static_cast<std::size_t>(k)])];
+      mesh.corner_uvs.push_back(uv);
+    }
   nonfinite.apply(mesh, report);
   if (report) report->format = "obj";
   return mesh;
