@@ -46,6 +46,7 @@ AnyScene load_scene(const std::string& path) {
     s.points = std::move(b.points);
     s.cluster = std::move(b.cluster);
     s.engine = std::move(b.engine);
+    s.asset = b.asset;
     s.lods = std::move(b.lods);
     s.lod_coverage = std::move(b.lod_coverage);
     return s;

@@ -15,6 +15,7 @@ namespace qf::render {
 
 struct AnyScene {
   enum Kind { kImpostor, kSplats, kMesh, kPoints, kCluster } kind = kImpostor;
+  bool asset = false;  // a glTF file the baker did not write (no QF extension): an input's own look
   ClusterScene cluster;
   ImpostorScene impostor;
   SplatScene splats;

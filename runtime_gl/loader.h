@@ -21,6 +21,7 @@ ImpostorScene load_gltf(const std::string& path);
 // load_gltf reads it. Throws InputError ("render.gltf.*") naming the file.
 struct BakedScene {
   enum Kind { kImpostor, kPoints, kCluster } kind = kImpostor;
+  bool asset = false;  // kImpostor without QF_impostor_level: a game asset, not a baked level
   ImpostorScene impostor;
   PointImpostorScene points;
   ClusterScene cluster;

@@ -304,6 +304,8 @@ int run_eval(const ParsedArgs& a) {
   AnyScene baked = load_scene(a.positional[1]);
   // A glTF reference (a textured game asset) has one look: its materials as an engine draws them,
   // so both sides are drawn and scored by the engine method alone.
+  if (reference.kind == AnyScene::kImpostor && !reference.asset)
+    throw UsageError("eval: REFERENCE must be a point set, a mesh or a glTF asset, not a baked level");
   if (reference.kind == AnyScene::kImpostor) settings.method = Method::kEngine;
   const Sphere sphere = bounding_sphere(reference.bounds());
   choose_lod(baked, a, orbit_camera(sphere, sphere_direction(0, views), 0, w, h));

@@ -23,6 +23,7 @@ packages=(
   libmeshoptimizer-dev                            # edge-collapse mesh LODs (qf-bake simplify); the clustering benchmark
   python3-jsonschema                              # validates our JSON outputs against schemas/ in tests
   clang libclang-rt-14-dev                        # libFuzzer + sanitizer runtimes: scripts/fuzz.sh, tests/fuzz
+  assimp-testmodels                               # glTF 2.0 and OBJ test models, valid and malformed: the assets test
   chromium                                        # three.js renders (scripts/three-render): engine-truth test, fidelity league
   slurm-wlm munge python3-yaml                    # the slurm test: a one-node cluster runs scripts/slurm/; the README's Kubernetes YAML
 )
