@@ -11,7 +11,12 @@
 # methods) vs meshoptimizer simplify at twice the triangles (flat, smooth normals) and the nearest
 # vertex-clustering LOD, PSNR / IoU / holes / bytes at 256 and 64 pixels, on bunny00, fandisk,
 # elephant, the dragon and the coloured point set b9_training.
-# usage: scripts/bench.sh [io|analysis|amg|render|bake|sample|cluster|batch|fidelity]...   (default: all)
+# big: one big asset (issue 20): a generated torus and bunny00's mesh sampled by depth peeling, at
+# 1M and 10M points each, baked with the defaults on 2 threads: seconds per stage, wall and CPU
+# (user + sys) time and peak RSS of the whole command (GNU time -v), bytes per point, and the
+# growth exponents from 1M to 10M (scripts/big_table.py). Needs ~12 GB and ~15 minutes; not part
+# of "all" (CI does not run it).
+# usage: scripts/bench.sh [io|analysis|amg|render|bake|sample|cluster|batch|fidelity|big]...   (default: all but big)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh >/dev/null
@@ -117,12 +122,35 @@ for w in "${what[@]}"; do
       start=$(date +%s.%N); build/bin/qf-bake --version >/dev/null; end=$(date +%s.%N)
       echo "process start-up alone (qf-bake --version): $(echo "($end - $start) * 1000" | bc | cut -d. -f1) ms"
       rm -rf "$tmp" ;;
+    big)
+      models=$(scripts/fetch-models.sh bunny00.off | tail -1)
+      tmp=$(mktemp -d)
+      build/bin/qf-bake generate torus --points 1000000 -o "$tmp/torus1M.ply" -q
+      build/bin/qf-bake generate torus --points 10000000 -o "$tmp/torus10M.ply" -q
+      echo "one big asset: qf-bake IN -o OUT --no-cache, default settings, 2 threads (stage seconds from report.json;"
+      echo "wall, CPU = user + sys and peak = max RSS of the whole command from /usr/bin/time -v; B/pt = peak / points)"
+      echo
+      rows=()
+      bake_big() {  # NAME IN [options]
+        local name=$1 n=${#rows[@]}; shift
+        rm -rf "$tmp/out"
+        OMP_NUM_THREADS=2 /usr/bin/time -v build/bin/qf-bake "$@" -o "$tmp/out" --no-cache -q 2>"$tmp/time$n.txt"
+        cp "$tmp/out/report.json" "$tmp/report$n.json"
+        rows+=("$name" "$tmp/report$n.json" "$tmp/time$n.txt")
+      }
+      bake_big "torus 1M" "$tmp/torus1M.ply"
+      bake_big "torus 10M" "$tmp/torus10M.ply"
+      # bunny00 at LDI 700 and 2200: ~1M and ~10M sampled points (about 2 ldi^2 for this model).
+      bake_big "bunny00-mesh LDI-700" "$models/bunny00.off" --ldi 700
+      bake_big "bunny00-mesh LDI-2200" "$models/bunny00.off" --ldi 2200
+      python3 scripts/big_table.py "${rows[@]}"
+      rm -rf "$tmp" ;;
     fidelity)
       models=$(scripts/fetch-models.sh bunny00.off fandisk.off elephant.off ChineseDragon-10kv.off b9_training.ply | tail -1)
       tmp=$(mktemp -d)
       python3 scripts/fidelity_table.py build/bin "$models" "$tmp"
       rm -rf "$tmp" ;;
-    *) echo "unknown benchmark '$w' (io, analysis, amg, render, bake, sample, cluster, batch, fidelity)" >&2; exit 2 ;;
+    *) echo "unknown benchmark '$w' (io, analysis, amg, render, bake, sample, cluster, batch, fidelity, big)" >&2; exit 2 ;;
   esac
   echo
 done

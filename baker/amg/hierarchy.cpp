@@ -255,36 +255,42 @@ std::vector<std::uint32_t> breadth_first_order(const SparseMatrix& a, std::size_
   return order;
 }
 
-// Q A Q^T: row r of the result is row order[r] of A, columns renumbered and sorted.
+// Q A Q^T: row r of the result is row order[r] of A, columns renumbered and sorted. Written
+// straight into the matrix (no intermediate arrays: at 10M points they were ~1 GB).
 SparseMatrix permute_symmetric(const SparseMatrix& a, const std::vector<std::uint32_t>& order) {
   const std::size_t n = order.size();
   std::vector<std::int32_t> inverse(n);
   for (std::size_t r = 0; r < n; ++r) inverse[order[r]] = static_cast<std::int32_t>(r);
-  std::vector<std::int32_t> outer(n + 1, 0), inner;
-  std::vector<double> values;
-  inner.reserve(static_cast<std::size_t>(a.nonZeros()));
-  values.reserve(static_cast<std::size_t>(a.nonZeros()));
+  SparseMatrix out(a.rows(), a.cols());
+  out.resizeNonZeros(a.nonZeros());
+  std::int32_t* outer = out.outerIndexPtr();
+  outer[0] = 0;
   std::vector<std::pair<std::int32_t, double>> row;
   for (std::size_t r = 0; r < n; ++r) {
     row.clear();
     for (SparseMatrix::InnerIterator it(a, static_cast<Eigen::Index>(order[r])); it; ++it)
       row.push_back({inverse[static_cast<std::size_t>(it.col())], it.value()});
     std::sort(row.begin(), row.end());
-    for (const auto& e : row) inner.push_back(e.first), values.push_back(e.second);
-    outer[r + 1] = static_cast<std::int32_t>(values.size());
+    for (std::size_t e = 0; e < row.size(); ++e) {
+      out.innerIndexPtr()[outer[r] + static_cast<std::int32_t>(e)] = row[e].first;
+      out.valuePtr()[outer[r] + static_cast<std::int32_t>(e)] = row[e].second;
+    }
+    outer[r + 1] = outer[r] + static_cast<std::int32_t>(row.size());
   }
-  return from_rows(a.rows(), a.cols(), outer, inner, values);
+  return out;
 }
 
-}  // namespace
-
-AmgHierarchy build_hierarchy(const SparseMatrix& a0, const AmgOptions& options) {
+// build_hierarchy's levels from A, renumbered into breadth-first order; `a0` is freed once
+// renumbered when the caller gives it up (`release`), so two copies of the finest matrix never
+// live through the coarsening.
+AmgHierarchy build_levels(const SparseMatrix& a0, SparseMatrix* release, const AmgOptions& options) {
   AmgHierarchy h;
   const auto n = static_cast<std::size_t>(a0.rows());
   h.levels.push_back({n, 0.0, 1.0});
   // The input is symmetric with zero row sums by contract (stiffness.h); it is only renumbered.
   h.fine_order = breadth_first_order(a0, h.components, h.isolated);
   SparseMatrix a = permute_symmetric(a0, h.fine_order);
+  if (release) *release = SparseMatrix();
   double theta = options.theta;
   while (static_cast<int>(h.levels.size()) < options.max_levels && h.levels.back().size > options.stop_size) {
     // Start from the threshold that suited the level above: neighbouring levels behave alike.
@@ -303,6 +309,12 @@ AmgHierarchy build_hierarchy(const SparseMatrix& a0, const AmgOptions& options) 
   }
   return h;
 }
+
+}  // namespace
+
+AmgHierarchy build_hierarchy(const SparseMatrix& a, const AmgOptions& options) { return build_levels(a, nullptr, options); }
+
+AmgHierarchy build_hierarchy(SparseMatrix&& a, const AmgOptions& options) { return build_levels(a, &a, options); }
 
 std::size_t level_by_index(const AmgHierarchy& h, long long k) {
   const auto count = static_cast<long long>(h.level_count());

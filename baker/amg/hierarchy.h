@@ -52,6 +52,9 @@ struct AmgHierarchy {
 // Stops at stop_size functions, at max_levels, or when coarsening stalls (ratio < 1.1, e.g. only
 // disconnected parts are left). Deterministic: no randomness, no dependence on thread count.
 AmgHierarchy build_hierarchy(const SparseMatrix& a, const AmgOptions& options = {});
+// The same, freeing `a` as soon as it is renumbered (for a large set the finest matrix is the
+// biggest one; a is left empty).
+AmgHierarchy build_hierarchy(SparseMatrix&& a, const AmgOptions& options = {});
 
 // Level by its number: k >= 0 counts from the finest (0 = the points themselves), k < 0 back from
 // the coarsest L = level_count() - 1 (k = -5 is the paper's "L-5"). Throws std::out_of_range.

@@ -23,9 +23,16 @@ class StepTimer {
   std::vector<StepTime>& out_;
 };
 
+// Frees a per-point array now (clear() would keep its capacity).
+template <class T>
+void release(std::vector<T>& v) {
+  std::vector<T>().swap(v);
+}
+
 }  // namespace
 
-SurfaceAnalysis analyze_surface(const PointSet& points, const AnalysisOptions& options) {
+SurfaceAnalysis analyze_surface(const PointSet& points, const AnalysisOptions& options, AnalysisKeep keep) {
+  const bool lean = keep == AnalysisKeep::kStiffnessAndNormals;
   SurfaceAnalysis a;
   AnalysisReport& r = a.report;
   r.points = points.size();
@@ -46,11 +53,18 @@ SurfaceAnalysis analyze_surface(const PointSet& points, const AnalysisOptions& o
   // 4. Local Delaunay fans (paper 2.2).
   a.fans = timer.run("fans", [&] { return compute_fans(points.positions, a.neighborhoods, a.frames, &r.fans); });
   r.mean_fan_size = points.size() ? double(a.fans.triangles.size()) / double(points.size()) : 0.0;
+  if (lean) {
+    // The stiffness matrix reads only the fans and the classifier value.
+    release(a.neighborhoods.offsets), release(a.neighborhoods.indices), release(a.neighborhoods.distances);
+    release(a.frames.eigenvalues), release(a.frames.e0), release(a.frames.e1);
+    release(a.frames.centroid_offset), release(a.frames.radius), release(a.classifier.variation);
+  }
   // 5. Stiffness matrix (eqs. 5-7).
   a.stiffness = timer.run("stiffness", [&] {
     return assemble_stiffness(points.positions, a.fans, a.classifier.value, &r.stiffness);
   });
   r.nonzeros = static_cast<std::size_t>(a.stiffness.nonZeros());
+  if (lean) release(a.fans.offsets), release(a.fans.triangles), release(a.classifier.value);
   return a;
 }
 

@@ -44,9 +44,18 @@ struct SurfaceAnalysis {
   AnalysisReport report;
 };
 
+// What analyze_surface returns: every intermediate (the analyze command writes them), or only the
+// stiffness matrix and the oriented normals (frames.normal), for the bake. The lean form frees
+// each per-point array as soon as no later step reads it: the neighbourhoods (k x 8 bytes a
+// point, 400 at k = 50) after the fans, the frames and the classifier after the stiffness matrix,
+// so they are gone before the matrix is assembled and while the AMG hierarchy is built.
+enum class AnalysisKeep { kAll, kStiffnessAndNormals };
+
 // Runs stages 1-3 on a point set (normals, when present, orient the frames). A set with fewer
-// points than k uses all the others as neighbours; an empty set gives empty results.
-SurfaceAnalysis analyze_surface(const PointSet& points, const AnalysisOptions& options = {});
+// points than k uses all the others as neighbours; an empty set gives empty results. The report
+// is filled in either form.
+SurfaceAnalysis analyze_surface(const PointSet& points, const AnalysisOptions& options = {},
+                                AnalysisKeep keep = AnalysisKeep::kAll);
 
 // Debug colour of a classifier value, as the paper's figure 1b: red where C = 1/alpha (flat),
 // through yellow, green and cyan to blue at C <= 1/(100 alpha) (creases), on a log scale.

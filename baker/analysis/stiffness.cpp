@@ -83,15 +83,18 @@ SparseMatrix assemble_stiffness(const std::vector<Vec3f>& positions, const Fans&
     }
   }
   for (std::size_t i = 0; i < n; ++i) outer[i + 1] += outer[i];
-  std::vector<std::int32_t> inner;
-  std::vector<double> values;
-  inner.reserve(static_cast<std::size_t>(outer[n]));
-  values.reserve(static_cast<std::size_t>(outer[n]));
+  // Straight into the matrix, each block freed once copied (no intermediate arrays: the peak of
+  // this step is the blocks and At, not three copies of the entries).
+  SparseMatrix at(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+  at.resizeNonZeros(static_cast<Eigen::Index>(outer[n]));
+  std::copy(outer.begin(), outer.end(), at.outerIndexPtr());
+  std::vector<std::int32_t>().swap(outer);
+  std::int32_t* inner = at.innerIndexPtr();
+  double* values = at.valuePtr();
   for (auto& blk : blocks) {
-    for (const Entry& e : blk) inner.push_back(static_cast<std::int32_t>(e.col)), values.push_back(e.value);
+    for (const Entry& e : blk) *inner++ = static_cast<std::int32_t>(e.col), *values++ = e.value;
     std::vector<Entry>().swap(blk);
   }
-  const SparseMatrix at = from_rows(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n), outer, inner, values);
 
   // 2. Eqs. 6-7: A_ij = (At_ij + At_ji) / 2, A_ii = -sum_j A_ij (exactly symmetric, rows sum to 0).
   SymmetrizeReport sym;

@@ -8,6 +8,7 @@
 #include <sys/mman.h>
 
 #include <cstdint>
+#include <cstddef>
 #include <cstdlib>
 #include <fstream>
 #include <string>
@@ -47,5 +48,26 @@ inline std::size_t process_memory(const char* key) {
     if (line.rfind(key, 0) == 0) return std::strtoull(line.c_str() + 6, nullptr, 10) * 1024;
   return 0;
 }
+
+// The memory a new allocation of this process can count on, bytes, and where the figure comes
+// from: the least of /proc/meminfo's MemAvailable, the memory cgroup's limit less its usage
+// (page cache that can be dropped, inactive_file, counted as free; cgroup v2 memory.max or v1
+// memory.limit_in_bytes, from this process' cgroup up to the hierarchy's root) and the variable
+// QF_MEMORY_LIMIT (bytes, or with a K, M, G or T suffix, powers of 1024), which lets a farm
+// reserve memory for other jobs and tests trigger the check cheaply. `source` names the winner:
+// "MemAvailable", "cgroup limit" or "QF_MEMORY_LIMIT". SIZE_MAX (source "unknown") when none can
+// be read. Throws std::invalid_argument for a malformed QF_MEMORY_LIMIT.
+struct MemoryBudget {
+  std::size_t bytes = SIZE_MAX;
+  std::string source = "unknown";
+};
+MemoryBudget available_memory();
+
+// "123", "512K", "64M", "2G", "1T" (case-insensitive, an optional trailing B or iB) -> bytes.
+// Throws std::invalid_argument naming `text` for anything else.
+std::size_t parse_byte_size(const std::string& text);
+
+// A byte count for messages: "812 MB", "9.6 GB" (powers of 1024).
+std::string format_bytes(double bytes);
 
 }  // namespace qf

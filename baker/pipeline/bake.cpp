@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <stdexcept>
 
 #include "amg/hierarchy_cache.h"
 #include "analysis/neighborhoods.h"
@@ -96,7 +97,8 @@ std::vector<MergedLevel> choose_merged_levels(const AmgHierarchy& h, const BakeO
 }
 
 AmgHierarchy cached_hierarchy(const PointSet& points, const AnalysisOptions& analysis, const AmgOptions& amg,
-                              const std::string& cache_dir, std::string& state, std::vector<Vec3f>* estimated_normals) {
+                              const std::string& cache_dir, std::string& state, std::vector<Vec3f>* estimated_normals,
+                              const std::function<void(const char*)>& analysed) {
   const std::string key = hierarchy_cache_key(points, analysis, amg);
   if (!cache_dir.empty()) {
     std::string why;
@@ -110,13 +112,38 @@ AmgHierarchy cached_hierarchy(const PointSet& points, const AnalysisOptions& ana
   } else {
     state = "off";
   }
-  const SurfaceAnalysis a = analyze_surface(points, analysis);
-  AmgHierarchy h = build_hierarchy(a.stiffness, amg);
+  // The lean analysis: its intermediates are gone before the matrix is built, and the matrix is
+  // handed over to the hierarchy, which frees it once renumbered.
+  SurfaceAnalysis a = analyze_surface(points, analysis, AnalysisKeep::kStiffnessAndNormals);
   std::vector<Vec3f> normals;
-  if (!points.has_normals()) normals = a.frames.normal;
+  if (!points.has_normals()) normals = std::move(a.frames.normal);
+  SparseMatrix stiffness = std::move(a.stiffness);
+  a = SurfaceAnalysis{};
+  if (analysed) analysed("analysis");
+  AmgHierarchy h = build_hierarchy(std::move(stiffness), amg);
   if (!cache_dir.empty()) save_hierarchy(cache_dir, key, h, normals);
   if (estimated_normals) *estimated_normals = std::move(normals);
   return h;
+}
+
+std::size_t estimated_bake_bytes(std::size_t points, const AnalysisOptions& analysis) {
+  const double per_point = kBakeBytesPerPoint + kBakeBytesPerNeighbor * std::max(1, analysis.neighborhoods.k);
+  return kBakeFixedBytes + static_cast<std::size_t>(per_point * double(points));
+}
+
+void check_bake_memory(std::size_t points, const AnalysisOptions& analysis, const std::string& source_name) {
+  const std::size_t need = estimated_bake_bytes(points, analysis);
+  MemoryBudget budget;
+  try {
+    budget = available_memory();
+  } catch (const std::invalid_argument& e) {
+    throw UsageError(std::string("QF_MEMORY_LIMIT: ") + e.what());
+  }
+  if (need <= budget.bytes) return;
+  throw InputError("bake.memory", source_name, "",
+                   "its " + std::to_string(points) + " points need about " + format_bytes(double(need)) +
+                       " to bake (estimated), but only " + format_bytes(double(budget.bytes)) + " is available (" +
+                       budget.source + "); bake it on a machine with more memory, or split it");
 }
 
 BakeResult bake(const PointSet& input, const BakeOptions& o, const std::string& source_name) {
@@ -128,14 +155,23 @@ BakeResult bake(const PointSet& input, const BakeOptions& o, const std::string& 
     throw InputError("bake.too_small", source_name, "",
                      "holds " + std::to_string(input.size()) + " points; a decomposition needs at least " +
                          std::to_string(needed));
-  // 1. Complete the point set: radii from spacing where missing; normals stay as given.
-  PointSet points = input;
-  if (estimate_radii(points) && input.has_radii()) r.warnings.push_back("some radii were 0 and were estimated");
+  // 1. Fail early, with the figures, where the bake would not fit in memory (not an OOM kill).
+  check_bake_memory(input.size(), o.analysis, source_name);
+  // 2. Complete the point set: radii from spacing where missing (the set is copied only then);
+  //    normals stay as given.
+  PointSet completed;
+  const bool needs_radii = !input.has_radii() || std::find(input.radii.begin(), input.radii.end(), 0.0f) != input.radii.end();
+  if (needs_radii) {
+    completed = input;
+    if (estimate_radii(completed) && input.has_radii()) r.warnings.push_back("some radii were 0 and were estimated");
+  }
+  const PointSet& points = needs_radii ? completed : input;
   r.diagonal = points.bounds().diagonal();
   watch.lap("prepare");
-  // 2. Hierarchy (analysis + AMG), cached.
+  // 3. Hierarchy (analysis + AMG), cached.
   std::vector<Vec3f> estimated;
-  const AmgHierarchy h = cached_hierarchy(points, o.analysis, o.amg, o.cache_dir, r.cache, &estimated);
+  const AmgHierarchy h = cached_hierarchy(points, o.analysis, o.amg, o.cache_dir, r.cache, &estimated,
+                                          [&](const char* stage) { watch.lap(stage); });
   r.hierarchy_levels = h.level_count();
   r.components = h.components;
   if (h.level_count() < 2)
@@ -147,7 +183,7 @@ BakeResult bake(const PointSet& input, const BakeOptions& o, const std::string& 
   watch.lap("hierarchy");
   // Normals orient the planes and make the normal maps: the input's, else the analysis' estimate.
   const std::vector<Vec3f>& normals = points.has_normals() ? points.normals : estimated;
-  // 3. Every chosen level: basis (merged with --merge), domains, rectangles, textures, atlas, glb.
+  // 4. Every chosen level: basis (merged with --merge), domains, rectangles, textures, atlas, glb.
   std::vector<std::size_t> levels;
   std::vector<MergedLevel> bases;  // quads and edges filled only when merged
   if (o.merge && o.levels.empty()) {

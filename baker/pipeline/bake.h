@@ -3,6 +3,7 @@
 // -> textures -> atlas -> .glb.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -21,10 +22,28 @@ namespace qf {
 // The hierarchy of a point set, from the cache in `cache_dir` when the points and settings match
 // (an empty dir disables the cache), else computed and stored there. `state` says what happened:
 // "hit", "miss (<why>)" or "off". For a set without normals, `estimated_normals` (if given)
-// receives the analysis' oriented normals, from the cache too.
+// receives the analysis' oriented normals, from the cache too. `analysed`, when given, is called
+// with "analysis" between the analysis and the AMG coarsening of a miss (the bake times them apart).
 AmgHierarchy cached_hierarchy(const PointSet& points, const AnalysisOptions& analysis, const AmgOptions& amg,
                               const std::string& cache_dir, std::string& state,
-                              std::vector<Vec3f>* estimated_normals = nullptr);
+                              std::vector<Vec3f>* estimated_normals = nullptr,
+                              const std::function<void(const char*)>& analysed = nullptr);
+
+// The peak memory a bake of `points` points adds to the process that holds them, bytes: a fixed
+// part plus, per point, a part for the arrays of every stage and one per neighbour (the
+// neighbourhood lists, 8 bytes per neighbour, at their largest during the analysis). Fitted with
+// a margin to scripts/bench.sh big (peak RSS less the input set, generated and sampled shapes of
+// 1M and 10M points, default settings); the ball mode's extra neighbours are not counted.
+constexpr double kBakeBytesPerPoint = 400;
+constexpr double kBakeBytesPerNeighbor = 8;
+constexpr std::size_t kBakeFixedBytes = std::size_t{64} << 20;
+std::size_t estimated_bake_bytes(std::size_t points, const AnalysisOptions& analysis);
+
+// Throws InputError("bake.memory") naming the estimated need and the memory available
+// (core/memory.h available_memory: MemAvailable, the cgroup's limit, QF_MEMORY_LIMIT) when a bake
+// of `points` points would not fit, so that a batch fails that asset with the figures instead of
+// the kernel killing the process; UsageError for a malformed QF_MEMORY_LIMIT.
+void check_bake_memory(std::size_t points, const AnalysisOptions& analysis, const std::string& source_name);
 
 struct BakeOptions {
   AnalysisOptions analysis;
@@ -95,8 +114,9 @@ std::vector<MergedLevel> choose_merged_levels(const AmgHierarchy& h, const BakeO
                                               const std::vector<Vec3f>& normals);
 
 // Bakes the chosen levels. Throws InputError("bake.too_small") when the set cannot be decomposed
-// (fewer points than a neighbourhood needs, or no surface: every fan empty), UsageError for a
-// level number the hierarchy does not have.
+// (fewer points than a neighbourhood needs, or no surface: every fan empty), InputError
+// ("bake.memory") when it would need more memory than is available (check_bake_memory, before any
+// work), UsageError for a level number the hierarchy does not have.
 BakeResult bake(const PointSet& points, const BakeOptions& options, const std::string& source_name);
 
 }  // namespace qf
