@@ -1,5 +1,5 @@
 // Loading scenes for runtime_gl: .glb/.gltf through tinygltf (the one runtime file that includes
-// it), reference splats and meshes from the baker's readers.
+// it). References made from input files are tools/reference_scene.
 #include "runtime_gl/loader.h"
 
 #include <tiny_gltf.h>
@@ -14,8 +14,6 @@
 #include <limits>
 #include <type_traits>
 
-#include "analysis/local_frames.h"
-#include "analysis/neighborhoods.h"
 #include "core/color.h"
 #include "core/error.h"
 
@@ -618,43 +616,5 @@ ImpostorScene impostor_scene(const tinygltf::Model& m, const std::string& path, 
 }
 
 }  // namespace
-
-SplatScene splat_scene(PointSet points, const std::string& source) {
-  if (points.size() == 0) throw InputError("render.points.empty", source, "", "the point set is empty");
-  estimate_radii(points);
-  SplatScene s;
-  if (!points.has_normals()) {
-    // The baker's own estimate (same neighbourhoods, same orientation), so lighting matches.
-    const Neighborhoods nb = compute_neighborhoods(points.positions);
-    s.normals = compute_local_frames(points.positions, nb).normal;
-  } else {
-    s.normals = std::move(points.normals);
-  }
-  s.bounds = points.bounds();
-  s.positions = std::move(points.positions);
-  s.radii = std::move(points.radii);
-  s.colors = points.has_colors() ? std::move(points.colors) : std::vector<Rgb8>(s.positions.size(), kBaseColor);
-  return s;
-}
-
-MeshScene mesh_scene(const TriangleMesh& mesh, const std::string& source) {
-  MeshScene s;
-  s.positions = mesh.positions;
-  s.bounds = mesh.bounds();
-  s.colors = mesh.colors.empty() ? std::vector<Rgb8>(mesh.positions.size(), kBaseColor) : mesh.colors;
-  s.normals = mesh.normals;
-  const bool need_normals = s.normals.size() != s.positions.size();
-  if (need_normals) s.normals.assign(s.positions.size(), Vec3f{});
-  for (const Triangle& t : mesh.triangles) {
-    s.indices.insert(s.indices.end(), t.begin(), t.end());
-    if (!need_normals) continue;
-    const Vec3f n = cross(s.positions[t[1]] - s.positions[t[0]], s.positions[t[2]] - s.positions[t[0]]);  // |n| = 2 area
-    for (std::uint32_t v : t) s.normals[v] = s.normals[v] + n;
-  }
-  if (need_normals)
-    for (Vec3f& n : s.normals) n = normalized(n);
-  if (s.indices.empty()) throw InputError("render.mesh.empty", source, "", "the mesh has no triangles");
-  return s;
-}
 
 }  // namespace qf::render

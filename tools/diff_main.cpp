@@ -1,4 +1,4 @@
-// qf-diff OLD NEW: how two bakes differ (runtime_gl/diff.h), for people (text) or CI (--json).
+// qf-diff OLD NEW: how two bakes differ (tools/diff.h), for people (text) or CI (--json).
 // Exit codes: 0 identical or within the thresholds, 1 beyond them, 2 bad usage or unreadable
 // input (a comparison that could not be made is not a pass), 3 internal error.
 #include <iostream>
@@ -7,7 +7,7 @@
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/memory.h"
-#include "runtime_gl/diff.h"
+#include "tools/diff.h"
 
 #ifndef QF_VERSION
 #define QF_VERSION "0.0.0"

@@ -1,5 +1,5 @@
 // qf-diff's comparisons: byte identity, the structure of changed .glb files, and renders of both.
-#include "runtime_gl/diff.h"
+#include "tools/diff.h"
 
 #include <algorithm>
 #include <cmath>
@@ -14,7 +14,7 @@
 #include "core/error.h"
 #include "core/file_io.h"
 #include "gl/egl.h"
-#include "runtime_gl/any_scene.h"
+#include "tools/any_scene.h"
 #include "runtime_gl/camera.h"
 
 namespace qf::render {

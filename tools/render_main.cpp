@@ -15,10 +15,10 @@
 #include "core/file_io.h"
 #include "core/memory.h"
 #include "io/model_io.h"
-#include "runtime_gl/any_scene.h"
+#include "tools/any_scene.h"
 #include "runtime_gl/draw_gl11.h"
 #include "runtime_gl/egl_context.h"
-#include "runtime_gl/image_ops.h"
+#include "tools/image_ops.h"
 #include "runtime_gl/loader.h"
 
 #ifndef QF_VERSION
