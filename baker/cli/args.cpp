@@ -1,11 +1,10 @@
-// Command-line parsing and help text.
+// Command-line parsing, typed option readers, help text and the exit-code frame.
 #include "cli/args.h"
 
 #include <charconv>
-#include <filesystem>
-#include <iostream>
-#include <new>
 #include <cmath>
+#include <iostream>
+#include <limits>
 
 #include "core/error.h"
 
@@ -16,12 +15,34 @@ std::string ParsedArgs::get(const std::string& name, const std::string& fallback
   return it == values_.end() ? fallback : it->second;
 }
 
+namespace {
+
+// A whole string as a number of type T (from_chars: no sign prefix '+', no trailing text).
+template <class T>
+bool parse_number(const std::string& v, T& out) {
+  const auto r = std::from_chars(v.data(), v.data() + v.size(), out);
+  return r.ec == std::errc() && r.ptr == v.data() + v.size();
+}
+
+std::string integers_in(long long min, long long max) {
+  constexpr long long kMax = std::numeric_limits<long long>::max();
+  if (max == kMax && min == 1) return "positive integers";
+  if (max == kMax && min == std::numeric_limits<long long>::min()) return "integers";
+  return "integers in " + std::to_string(min) + ".." + std::to_string(max);
+}
+
+std::string numbers_in(double min, double max) {
+  if (max == std::numeric_limits<double>::max() && min == std::numeric_limits<double>::min()) return "positive numbers";
+  return "numbers in [" + std::to_string(min) + ", " + std::to_string(max) + "]";
+}
+
+}  // namespace
+
 long long ParsedArgs::get_int(const std::string& name, long long fallback, long long min, long long max) const {
   if (!has(name)) return fallback;
   const std::string v = get(name);
   long long out = 0;
-  const auto r = std::from_chars(v.data(), v.data() + v.size(), out);
-  if (r.ec != std::errc() || r.ptr != v.data() + v.size() || out < min || out > max)
+  if (!parse_number(v, out) || out < min || out > max)
     throw UsageError("--" + name + " expects an integer in " + std::to_string(min) + ".." + std::to_string(max) +
                      ", got '" + v + "'");
   return out;
@@ -31,10 +52,56 @@ double ParsedArgs::get_double(const std::string& name, double fallback, double m
   if (!has(name)) return fallback;
   const std::string v = get(name);
   double out = 0;
-  const auto r = std::from_chars(v.data(), v.data() + v.size(), out);
-  if (r.ec != std::errc() || r.ptr != v.data() + v.size() || !std::isfinite(out) || out < min || out > max)
+  if (!parse_number(v, out) || !std::isfinite(out) || out < min || out > max)
     throw UsageError("--" + name + " expects a number in [" + std::to_string(min) + ", " + std::to_string(max) +
                      "], got '" + v + "'");
+  return out;
+}
+
+std::string ParsedArgs::get_choice(const std::string& name, const std::vector<std::string>& choices, const std::string& fallback) const {
+  const std::string v = get(name, fallback);
+  for (const std::string& c : choices)
+    if (c == v) return v;
+  std::string all;
+  for (std::size_t i = 0; i < choices.size(); ++i) all += (i == 0 ? "" : i + 1 == choices.size() ? " or " : ", ") + choices[i];
+  throw UsageError("--" + name + " expects " + all + ", got '" + v + "'");
+}
+
+std::vector<std::string> ParsedArgs::get_list(const std::string& name) const {
+  return has(name) ? split_list(get(name)) : std::vector<std::string>{};
+}
+
+std::vector<long long> ParsedArgs::get_int_list(const std::string& name, long long min, long long max) const {
+  std::vector<long long> out;
+  for (const std::string& t : get_list(name)) {
+    long long v = 0;
+    if (!parse_number(t, v) || v < min || v > max)
+      throw UsageError("--" + name + " expects " + integers_in(min, max) + " separated by commas, got '" + t + "'");
+    out.push_back(v);
+  }
+  return out;
+}
+
+std::vector<double> ParsedArgs::get_double_list(const std::string& name, double min, double max) const {
+  std::vector<double> out;
+  for (const std::string& t : get_list(name)) {
+    double v = 0;
+    if (!parse_number(t, v) || !std::isfinite(v) || v < min || v > max)
+      throw UsageError("--" + name + " expects " + numbers_in(min, max) + " separated by commas, got '" + t + "'");
+    out.push_back(v);
+  }
+  return out;
+}
+
+std::vector<std::string> split_list(const std::string& s) {
+  std::vector<std::string> out;
+  std::size_t a = 0;
+  while (a <= s.size()) {
+    std::size_t b = s.find(',', a);
+    if (b == std::string::npos) b = s.size();
+    if (b > a) out.push_back(s.substr(a, b - a));
+    a = b + 1;
+  }
   return out;
 }
 
@@ -128,22 +195,11 @@ bool asks_for_help(const std::vector<std::string>& args) {
 int run_with_exit_codes(const std::string& program, const std::function<int()>& body, int bad_input) {
   try {
     return body();
-  } catch (const InputError& e) {
-    std::cerr << program << ": error: " << e.what() << "\n";
-    return bad_input;
-  } catch (const UsageError& e) {
-    std::cerr << program << ": " << e.what() << "\n";
-    return static_cast<int>(ExitCode::kUsage);
-  } catch (const std::filesystem::filesystem_error& e) {
-    // Output paths that cannot be written (missing folder, no permission) are a usage problem.
-    std::cerr << program << ": cannot write output: " << e.what() << "\n";
-    return static_cast<int>(ExitCode::kUsage);
-  } catch (const std::bad_alloc&) {
-    std::cerr << program << ": internal error: out of memory\n";
-    return static_cast<int>(ExitCode::kInternal);
-  } catch (const std::exception& e) {
-    std::cerr << program << ": internal error: " << e.what() << "\n";
-    return static_cast<int>(ExitCode::kInternal);
+  } catch (const std::exception&) {
+    const ErrorOutcome e = current_error_outcome();
+    const bool input = e.exit == ExitCode::kBadInput;
+    std::cerr << program << ": " << (input ? "error: " : "") << e.message << "\n";
+    return input ? bad_input : static_cast<int>(e.exit);
   }
 }
 

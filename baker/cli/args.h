@@ -1,5 +1,6 @@
-// Command-line parsing for qf-bake's subcommands: options declared once, with their defaults and
-// help text, so --help always lists every option and its default.
+// Command-line parsing for every program (qf-bake, qf-render, qf-diff; cli/program.h runs them):
+// options declared once, with their defaults and help text, so --help always lists every option
+// and its default; typed readers that name the option in their errors.
 #pragma once
 
 #include <functional>
@@ -38,6 +39,13 @@ class ParsedArgs {
   // Number options; throw UsageError naming the option when the value is not a number in range.
   long long get_int(const std::string& name, long long fallback, long long min, long long max) const;
   double get_double(const std::string& name, double fallback, double min, double max) const;
+  // One of `choices`, else UsageError "--NAME expects A, B or C, got 'X'".
+  std::string get_choice(const std::string& name, const std::vector<std::string>& choices, const std::string& fallback) const;
+  // Comma-separated lists ("a,b,,c" -> a, b, c); empty when the option is absent. Each number in
+  // [min, max], else UsageError naming the option and the item.
+  std::vector<std::string> get_list(const std::string& name) const;
+  std::vector<long long> get_int_list(const std::string& name, long long min, long long max) const;
+  std::vector<double> get_double_list(const std::string& name, double min, double max) const;
 
  private:
   friend ParsedArgs parse_args(const CommandSpec&, const std::vector<std::string>&);
@@ -55,8 +63,12 @@ std::string help_text(const CommandSpec& spec);
 // Whether `args` (after the command name) ask for help: "--help" or "-h" before any "--".
 bool asks_for_help(const std::vector<std::string>& args);
 
-// Runs an executable's body and maps its errors to the exit codes (1 bad input, 2 bad usage or an
-// unwritable output, 3 internal error), printing "PROGRAM: ..." to stderr.
+// "a,b,,c" -> {"a", "b", "c"}: the comma-separated list options.
+std::vector<std::string> split_list(const std::string& s);
+
+// Runs an executable's body and maps its errors to the exit codes (core/error.h
+// current_error_outcome: 1 bad input, 2 bad usage or an unwritable output, 3 internal error),
+// printing "PROGRAM: ..." to stderr.
 // `bad_input` is the code for an unreadable or malformed input (qf-diff gives 2: its 1 means
 // "different").
 int run_with_exit_codes(const std::string& program, const std::function<int()>& body,

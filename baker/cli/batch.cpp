@@ -9,13 +9,10 @@
 #include <thread>
 
 #include "cli/commands.h"
+#include "cli/program.h"
 #include "core/error.h"
 #include "core/file_io.h"
 #include "pipeline/batch.h"
-
-#ifndef QF_VERSION
-#define QF_VERSION "0.0.0"
-#endif
 
 namespace qf::cli {
 namespace {
@@ -129,7 +126,7 @@ int run_batch(const ParsedArgs& args) {
   o.force = args.flag("force");
   o.keep_going = args.flag("keep-going");
   o.dry_run = args.flag("dry-run");
-  o.version = QF_VERSION;
+  o.version = version();
   o.eval = args.flag("eval");
   o.eval_views = static_cast<int>(args.get_int("eval-views", o.eval_views, 1, 1000));
   o.render_exe = std::filesystem::path(std::filesystem::read_symlink("/proc/self/exe")).parent_path().string() + "/qf-render";

@@ -14,18 +14,6 @@
 
 namespace qf::cli {
 
-std::vector<std::string> split_list(const std::string& s) {
-  std::vector<std::string> out;
-  std::size_t a = 0;
-  while (a <= s.size()) {
-    std::size_t b = s.find(',', a);
-    if (b == std::string::npos) b = s.size();
-    if (b > a) out.push_back(s.substr(a, b - a));
-    a = b + 1;
-  }
-  return out;
-}
-
 OptionSpec drop_nonfinite_option() {
   return {"drop-nonfinite", 0, "", "",
           "drop points (or mesh vertices and their triangles) with NaN/Inf coordinates and report how many, "
@@ -48,9 +36,7 @@ AnalysisOptions read_analysis_options(const ParsedArgs& args) {
     o.neighborhoods.epsilon = static_cast<float>(args.get_double("epsilon", 0, 0, 1e30));
     o.classifier.epsilon = o.neighborhoods.epsilon;
   }
-  const std::string kind = args.get("classifier", "paper");
-  if (kind == "variation") o.classifier.kind = ClassifierKind::kVariation;
-  else if (kind != "paper") throw UsageError("--classifier expects paper or variation, got '" + kind + "'");
+  if (args.get_choice("classifier", {"paper", "variation"}, "paper") == "variation") o.classifier.kind = ClassifierKind::kVariation;
   if (args.has("threads")) omp_set_num_threads(static_cast<int>(args.get_int("threads", 0, 1, 1024)));
   return o;
 }
@@ -71,8 +57,7 @@ std::vector<OptionSpec> sample_option_specs() {
 SampleOptions read_sample_options(const ParsedArgs& args) {
   SampleOptions o;
   o.ldi_size = static_cast<int>(args.get_int("ldi", o.ldi_size, 2, 16000));
-  o.backend = args.get("sampler", o.backend);
-  if (o.backend != "gl" && o.backend != "cpu") throw UsageError("--sampler must be gl or cpu, got '" + o.backend + "'");
+  o.backend = args.get_choice("sampler", {"gl", "cpu"}, o.backend);
   o.per_axis_triangles = !args.flag("all-triangles");
   return o;
 }

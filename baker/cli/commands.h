@@ -1,4 +1,5 @@
-// qf-bake's subcommands. Each returns the process exit code; errors are thrown (see main.cpp).
+// qf-bake's subcommands. Each returns the process exit code; errors are thrown (cli/program.h maps
+// them to messages and exit codes).
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -10,17 +11,14 @@
 #include "clustering/clustering.h"
 #include "domains/merge.h"
 #include "cli/args.h"
+#include "cli/program.h"
 #include "io/model_io.h"
 #include "pipeline/asset.h"
 #include "sample/sample.h"
 
 namespace qf::cli {
 
-struct Command {
-  CommandSpec spec;
-  int (*run)(const ParsedArgs&);
-};
-
+// qf-bake's command table (main.cpp makes it a cli::Program).
 const std::vector<Command>& commands();
 
 int run_info(const ParsedArgs& args);
@@ -28,9 +26,6 @@ int run_convert(const ParsedArgs& args);
 int run_generate(const ParsedArgs& args);
 int run_analyze(const ParsedArgs& args);
 CommandSpec analyze_spec();
-
-// "a,b,,c" -> {"a", "b", "c"}: the comma-separated list options.
-std::vector<std::string> split_list(const std::string& s);
 
 // Shared option: --drop-nonfinite (every command that reads input files).
 OptionSpec drop_nonfinite_option();

@@ -137,21 +137,10 @@ int bake_in_child(const BatchAsset& a, const std::string& key, const BatchOption
     if (!b.sampled.backend.empty()) result["sampler"] = b.sampled.backend;
     if (o.eval) result["eval"] = evaluate_levels(a, folder, b.manifest["levels"], o);
     return 0;
-  } catch (const InputError& e) {
-    result = {{"error", {{"code", e.code()}, {"message", e.what()}}}};
-    return static_cast<int>(ExitCode::kBadInput);
-  } catch (const UsageError& e) {
-    result = {{"error", {{"code", "usage"}, {"message", e.what()}}}};
-    return static_cast<int>(ExitCode::kUsage);
-  } catch (const std::filesystem::filesystem_error& e) {
-    result = {{"error", {{"code", "output"}, {"message", std::string("cannot write output: ") + e.what()}}}};
-    return static_cast<int>(ExitCode::kUsage);
-  } catch (const std::bad_alloc&) {
-    result = {{"error", {{"code", "internal"}, {"message", "out of memory"}}}};
-    return static_cast<int>(ExitCode::kInternal);
-  } catch (const std::exception& e) {
-    result = {{"error", {{"code", "internal"}, {"message", std::string("internal error: ") + e.what()}}}};
-    return static_cast<int>(ExitCode::kInternal);
+  } catch (const std::exception&) {
+    const ErrorOutcome e = current_error_outcome();  // as the command line reports it
+    result = {{"error", {{"code", e.code}, {"message", e.message}}}};
+    return static_cast<int>(e.exit);
   }
 }
 
