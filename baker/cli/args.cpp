@@ -36,63 +36,7 @@ std::string numbers_in(double min, double max) {
   return "numbers in [" + std::to_string(min) + ", " + std::to_string(max) + "]";
 }
 
-}  // namespace
-
-long long ParsedArgs::get_int(const std::string& name, long long fallback, long long min, long long max) const {
-  if (!has(name)) return fallback;
-  const std::string v = get(name);
-  long long out = 0;
-  if (!parse_number(v, out) || out < min || out > max)
-    throw UsageError("--" + name + " expects an integer in " + std::to_string(min) + ".." + std::to_string(max) +
-                     ", got '" + v + "'");
-  return out;
-}
-
-double ParsedArgs::get_double(const std::string& name, double fallback, double min, double max) const {
-  if (!has(name)) return fallback;
-  const std::string v = get(name);
-  double out = 0;
-  if (!parse_number(v, out) || !std::isfinite(out) || out < min || out > max)
-    throw UsageError("--" + name + " expects a number in [" + std::to_string(min) + ", " + std::to_string(max) +
-                     "], got '" + v + "'");
-  return out;
-}
-
-std::string ParsedArgs::get_choice(const std::string& name, const std::vector<std::string>& choices, const std::string& fallback) const {
-  const std::string v = get(name, fallback);
-  for (const std::string& c : choices)
-    if (c == v) return v;
-  std::string all;
-  for (std::size_t i = 0; i < choices.size(); ++i) all += (i == 0 ? "" : i + 1 == choices.size() ? " or " : ", ") + choices[i];
-  throw UsageError("--" + name + " expects " + all + ", got '" + v + "'");
-}
-
-std::vector<std::string> ParsedArgs::get_list(const std::string& name) const {
-  return has(name) ? split_list(get(name)) : std::vector<std::string>{};
-}
-
-std::vector<long long> ParsedArgs::get_int_list(const std::string& name, long long min, long long max) const {
-  std::vector<long long> out;
-  for (const std::string& t : get_list(name)) {
-    long long v = 0;
-    if (!parse_number(t, v) || v < min || v > max)
-      throw UsageError("--" + name + " expects " + integers_in(min, max) + " separated by commas, got '" + t + "'");
-    out.push_back(v);
-  }
-  return out;
-}
-
-std::vector<double> ParsedArgs::get_double_list(const std::string& name, double min, double max) const {
-  std::vector<double> out;
-  for (const std::string& t : get_list(name)) {
-    double v = 0;
-    if (!parse_number(t, v) || !std::isfinite(v) || v < min || v > max)
-      throw UsageError("--" + name + " expects " + numbers_in(min, max) + " separated by commas, got '" + t + "'");
-    out.push_back(v);
-  }
-  return out;
-}
-
+// "a,b,,c" -> {"a", "b", "c"}: the comma-separated list options.
 std::vector<std::string> split_list(const std::string& s) {
   std::vector<std::string> out;
   std::size_t a = 0;
@@ -104,6 +48,74 @@ std::vector<std::string> split_list(const std::string& s) {
   }
   return out;
 }
+
+}  // namespace
+
+long long parse_int_option(const std::string& name, const std::string& v, long long min, long long max) {
+  long long out = 0;
+  if (!parse_number(v, out) || out < min || out > max)
+    throw UsageError("--" + name + " expects an integer in " + std::to_string(min) + ".." + std::to_string(max) +
+                     ", got '" + v + "'");
+  return out;
+}
+
+double parse_double_option(const std::string& name, const std::string& v, double min, double max) {
+  double out = 0;
+  if (!parse_number(v, out) || !std::isfinite(out) || out < min || out > max)
+    throw UsageError("--" + name + " expects a number in [" + std::to_string(min) + ", " + std::to_string(max) +
+                     "], got '" + v + "'");
+  return out;
+}
+
+std::vector<long long> parse_int_list_option(const std::string& name, const std::string& text, long long min, long long max) {
+  std::vector<long long> out;
+  for (const std::string& t : split_list(text)) {
+    long long v = 0;
+    if (!parse_number(t, v) || v < min || v > max)
+      throw UsageError("--" + name + " expects " + integers_in(min, max) + " separated by commas, got '" + t + "'");
+    out.push_back(v);
+  }
+  return out;
+}
+
+std::vector<double> parse_double_list_option(const std::string& name, const std::string& text, double min, double max) {
+  std::vector<double> out;
+  for (const std::string& t : split_list(text)) {
+    double v = 0;
+    if (!parse_number(t, v) || !std::isfinite(v) || v < min || v > max)
+      throw UsageError("--" + name + " expects " + numbers_in(min, max) + " separated by commas, got '" + t + "'");
+    out.push_back(v);
+  }
+  return out;
+}
+
+std::string OptionValues::get_choice(const std::string& name, const std::vector<std::string>& choices, const std::string& fallback) const {
+  const std::string v = get(name, fallback);
+  for (const std::string& c : choices)
+    if (c == v) return v;
+  std::string all;
+  for (std::size_t i = 0; i < choices.size(); ++i) all += (i == 0 ? "" : i + 1 == choices.size() ? " or " : ", ") + choices[i];
+  throw UsageError("--" + name + " expects " + all + ", got '" + v + "'");
+}
+
+long long ParsedArgs::get_int(const std::string& name, long long fallback, long long min, long long max) const {
+  return has(name) ? parse_int_option(name, get(name), min, max) : fallback;
+}
+
+double ParsedArgs::get_double(const std::string& name, double fallback, double min, double max) const {
+  return has(name) ? parse_double_option(name, get(name), min, max) : fallback;
+}
+
+std::vector<long long> ParsedArgs::get_int_list(const std::string& name, long long min, long long max) const {
+  return parse_int_list_option(name, get(name), min, max);
+}
+
+std::vector<double> ParsedArgs::get_double_list(const std::string& name, double min, double max) const {
+  return parse_double_list_option(name, get(name), min, max);
+}
+
+// "qf-bake info" / "qf-diff": how the usage and error lines name the command.
+static std::string command_line(const CommandSpec& spec) { return spec.program + (spec.name.empty() ? "" : " " + spec.name); }
 
 static const OptionSpec* find_long(const CommandSpec& spec, const std::string& name) {
   for (const OptionSpec& o : spec.options)
@@ -145,7 +157,7 @@ ParsedArgs parse_args(const CommandSpec& spec, const std::vector<std::string>& a
     } else if (a.size() == 2) {
       o = find_short(spec, a[1]);
     }
-    if (!o) throw UsageError("unknown option '" + a + "' for '" + spec.program + " " + spec.name + "' (see " + spec.program + " " + spec.name + " --help)");
+    if (!o) throw UsageError("unknown option '" + a + "' for '" + command_line(spec) + "' (see " + command_line(spec) + " --help)");
     if (o->metavar.empty()) {
       if (has_inline) throw UsageError("option --" + o->name + " takes no value");
       out.values_[o->name] = "";
@@ -159,7 +171,7 @@ ParsedArgs parse_args(const CommandSpec& spec, const std::vector<std::string>& a
     }
   }
   if (out.positional.size() < spec.min_positional || out.positional.size() > spec.max_positional)
-    throw UsageError("usage: " + spec.program + " " + spec.name + " " + spec.usage + " (see " + spec.program + " " + spec.name + " --help)");
+    throw UsageError("usage: " + command_line(spec) + " " + spec.usage + " (see " + command_line(spec) + " --help)");
   return out;
 }
 

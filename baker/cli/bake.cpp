@@ -52,7 +52,7 @@ CommandSpec bake_spec() {
   return spec;
 }
 
-AssetOptions read_asset_options(const ParsedArgs& args) {
+AssetOptions read_asset_options(const OptionValues& args) {
   AssetOptions a;
   BakeOptions& o = a.bake;
   o.analysis = read_analysis_options(args);

@@ -28,7 +28,7 @@ std::vector<OptionSpec> analysis_option_specs() {
           {"threads", 'j', "N", "all cores", "threads to use (the outputs do not depend on it)"}};
 }
 
-AnalysisOptions read_analysis_options(const ParsedArgs& args) {
+AnalysisOptions read_analysis_options(const OptionValues& args) {
   AnalysisOptions o;
   o.neighborhoods.k = static_cast<int>(args.get_int("k", o.neighborhoods.k, 3, 1000));
   o.neighborhoods.max_neighbors = static_cast<int>(args.get_int("max-neighbors", o.neighborhoods.max_neighbors, 3, 100000));
@@ -54,7 +54,7 @@ std::vector<OptionSpec> sample_option_specs() {
            "instead of each triangle only on the axis its normal is most parallel to"}};
 }
 
-SampleOptions read_sample_options(const ParsedArgs& args) {
+SampleOptions read_sample_options(const OptionValues& args) {
   SampleOptions o;
   o.ldi_size = static_cast<int>(args.get_int("ldi", o.ldi_size, 2, 16000));
   o.backend = args.get_choice("sampler", {"gl", "cpu"}, o.backend);
@@ -80,7 +80,7 @@ std::vector<OptionSpec> cache_option_specs() {
           {"no-cache", 0, "", "", "neither read nor write the hierarchy cache"}};
 }
 
-std::string read_cache_dir(const ParsedArgs& args) {
+std::string read_cache_dir(const OptionValues& args) {
   if (args.flag("no-cache")) return "";
   const char* env = std::getenv("QF_CACHE");
   const char* home = std::getenv("HOME");
@@ -93,7 +93,7 @@ std::vector<OptionSpec> merge_option_specs() {
           {"merge-angle", 0, "DEG", "10", "--merge: the two domains' planes differ by at most DEG degrees"}};
 }
 
-MergeOptions read_merge_options(const ParsedArgs& args, const DomainOptions& domains) {
+MergeOptions read_merge_options(const OptionValues& args, const DomainOptions& domains) {
   MergeOptions m;
   m.max_variation = args.get_double("merge-variation", m.max_variation, 0.0, 1.0 / 3.0);
   m.max_angle_degrees = args.get_double("merge-angle", m.max_angle_degrees, 0.0, 90.0);
