@@ -1,8 +1,8 @@
 // What a standard glTF engine sees of a file (three.js, Babylon, Godot, Unity's glTF importers):
 // primitives in world space with their metallic-roughness materials, for the engine method
 // (draw_engine.h). Any file qf-render reads becomes one: a baked .glb of any kind through the
-// glTF loader, and the references (a mesh, a point set as disc splats) as the engine would draw
-// them had they been exported as glTF.
+// glTF loader, and the references (a mesh, a point set as disc splats, tools/reference_scene.h)
+// as the engine would draw them had they been exported as glTF.
 #pragma once
 
 #include <array>
@@ -59,12 +59,5 @@ struct EngineLights {
   float directional = 3.14159265f * 0.7f;
   float ambient = 3.14159265f * 0.3f;
 };
-
-// A reference mesh as an engine draws it: vertex normals and colours (COLOR_0, linear) with a
-// rough dielectric, double-sided material (an input mesh carries no material of its own).
-EngineScene engine_scene(const MeshScene& mesh);
-// A reference point set: each splat a disc (a quad with a disc alpha texture, MASK 0.5), facing
-// its normal, in its colour, with the same material as meshes.
-EngineScene engine_scene(const SplatScene& splats);
 
 }  // namespace qf::render

@@ -1,5 +1,5 @@
 // Loading scenes for runtime_gl: .glb/.gltf through tinygltf (the one runtime file that includes
-// it), reference splats and meshes from the baker's readers.
+// it). References made from input files are tools/reference_scene.
 #include "runtime_gl/loader.h"
 
 #include <tiny_gltf.h>
@@ -14,10 +14,9 @@
 #include <limits>
 #include <type_traits>
 
-#include "analysis/local_frames.h"
-#include "analysis/neighborhoods.h"
 #include "core/color.h"
 #include "core/error.h"
+#include "core/gltf_keys.h"
 
 namespace qf::render {
 namespace {
@@ -191,8 +190,8 @@ std::vector<Vec3f> read_vec3(const AccessorReader& read, const tinygltf::Primiti
 
 PointImpostorScene point_scene(const tinygltf::Model& m, const std::string& path) {
   PointImpostorScene s;
-  s.pixel = static_cast<float>(m.extensions.at("QF_point_impostor").Get("pixelSize").GetNumberAsDouble());
-  if (!(s.pixel > 0)) fail(path, "points", "QF_point_impostor.pixelSize must be positive");
+  s.pixel = static_cast<float>(m.extensions.at(kPointExtension).Get("pixelSize").GetNumberAsDouble());
+  if (!(s.pixel > 0)) fail(path, "points", std::string(kPointExtension) + ".pixelSize must be positive");
   AccessorReader read{m, path};
   for (const tinygltf::Mesh& mesh : m.meshes)
     for (const tinygltf::Primitive& prim : mesh.primitives) {
@@ -201,7 +200,7 @@ PointImpostorScene point_scene(const tinygltf::Model& m, const std::string& path
       s.normals = read_vec3(read, prim, "NORMAL");
       s.colors = read_colors(read, prim, s.positions.size());
     }
-  if (s.positions.empty()) fail(path, "points", "has QF_point_impostor but no POINTS primitive with points");
+  if (s.positions.empty()) fail(path, "points", "has " + std::string(kPointExtension) + " but no POINTS primitive with points");
   if (!s.normals.empty() && s.normals.size() != s.positions.size()) fail(path, "points", "NORMAL and POSITION counts differ");
   if (s.normals.empty()) s.normals.assign(s.positions.size(), Vec3f{0, 0, 1});
   for (Vec3f q : s.positions) s.bounds.add(q);
@@ -210,7 +209,7 @@ PointImpostorScene point_scene(const tinygltf::Model& m, const std::string& path
 
 ClusterScene cluster_scene(const tinygltf::Model& m, const std::string& path) {
   ClusterScene s;
-  s.cell = static_cast<float>(m.nodes[0].extras.Get("cellWidth").GetNumberAsDouble());
+  s.cell = static_cast<float>(m.nodes[0].extras.Get(kCellWidthExtra).GetNumberAsDouble());
   AccessorReader read{m, path};
   for (const tinygltf::Mesh& mesh : m.meshes)
     for (const tinygltf::Primitive& prim : mesh.primitives) {
@@ -225,7 +224,7 @@ ClusterScene cluster_scene(const tinygltf::Model& m, const std::string& path) {
         s.mesh.normals.insert(s.mesh.normals.end(), nrm.begin(), nrm.end());
         s.mesh.colors.insert(s.mesh.colors.end(), col.begin(), col.end());
       } else if (prim.mode == TINYGLTF_MODE_LINE) {
-        const auto th = prim.attributes.find("_THICKNESS");
+        const auto th = prim.attributes.find(kThicknessAttribute);
         if (th == prim.attributes.end()) fail(path, "lines", "cluster LOD lines need _THICKNESS");
         const std::vector<float> t = read.floats(th->second, 1);
         if (t.size() != pos.size() || pos.size() % 2) fail(path, "lines", "_THICKNESS needs one value per line vertex");
@@ -484,11 +483,11 @@ EngineScene engine_scene(const tinygltf::Model& m, const std::string& path, cons
 std::vector<int> lod_nodes(const tinygltf::Model& m, const std::vector<int>& roots, const std::string& path, std::vector<double>& coverage) {
   if (roots.size() != 1 || roots[0] < 0 || roots[0] >= static_cast<int>(m.nodes.size())) return {};
   const tinygltf::Node& root = m.nodes[static_cast<std::size_t>(roots[0])];
-  const auto ext = root.extensions.find("MSFT_lod");
+  const auto ext = root.extensions.find(kLodExtension);
   if (ext == root.extensions.end()) return {};
   std::vector<int> nodes{roots[0]};
   for (int id : number_array<int>(ext->second, "ids", path)) nodes.push_back(id);
-  coverage = number_array<double>(root.extras, "MSFT_screencoverage", path);
+  coverage = number_array<double>(root.extras, kScreenCoverageExtra, path);
   return nodes;
 }
 
@@ -513,10 +512,10 @@ BakedScene load_baked(const std::string& path) {
     return s;
   }
   s.engine = engine_scene(m, path, roots);
-  if (m.extensions.count("QF_point_impostor")) {
+  if (m.extensions.count(kPointExtension)) {
     s.kind = BakedScene::kPoints;
     s.points = point_scene(m, path);
-  } else if (!m.nodes.empty() && m.nodes[0].extras.Has("cellWidth")) {
+  } else if (!m.nodes.empty() && m.nodes[0].extras.Has(kCellWidthExtra)) {
     s.kind = BakedScene::kCluster;
     s.cluster = cluster_scene(m, path);
   } else {
@@ -592,7 +591,7 @@ ImpostorScene impostor_scene(const tinygltf::Model& m, const std::string& path, 
 
   // 2. Items. With the extension: quad k is the next two triangles of the group of its atlas image
   //    (the writer emits one primitive per atlas image, quads in index order).
-  const auto ext_it = m.extensions.find("QF_impostor_level");
+  const auto ext_it = m.extensions.find(kImpostorExtension);
   if (ext_it != m.extensions.end()) {
     const tinygltf::Value& ext = ext_it->second;
     const std::vector<float> center = number_array<float>(ext, "center", path), normal = number_array<float>(ext, "normal", path),
@@ -602,7 +601,7 @@ ImpostorScene impostor_scene(const tinygltf::Model& m, const std::string& path, 
     s.neighbors = number_array<std::uint32_t>(ext, "neighbors", path);
     if (center.size() != quads * 3 || normal.size() != quads * 3 || rect.size() != quads * 5 || s.offsets.size() != quads + 1 ||
         s.offsets.back() != s.neighbors.size())
-      fail(path, "extension", "QF_impostor_level arrays do not match quadCount " + std::to_string(quads));
+      fail(path, "extension", std::string(kImpostorExtension) + " arrays do not match quadCount " + std::to_string(quads));
     for (std::uint32_t nb : s.neighbors)
       if (nb >= quads) fail(path, "extension", "a neighbour index is out of range");
     std::vector<std::size_t> next(groups.size(), 0);
@@ -663,43 +662,5 @@ ImpostorScene impostor_scene(const tinygltf::Model& m, const std::string& path, 
 }
 
 }  // namespace
-
-SplatScene splat_scene(PointSet points, const std::string& source) {
-  if (points.size() == 0) throw InputError("render.points.empty", source, "", "the point set is empty");
-  estimate_radii(points);
-  SplatScene s;
-  if (!points.has_normals()) {
-    // The baker's own estimate (same neighbourhoods, same orientation), so lighting matches.
-    const Neighborhoods nb = compute_neighborhoods(points.positions);
-    s.normals = compute_local_frames(points.positions, nb).normal;
-  } else {
-    s.normals = std::move(points.normals);
-  }
-  s.bounds = points.bounds();
-  s.positions = std::move(points.positions);
-  s.radii = std::move(points.radii);
-  s.colors = points.has_colors() ? std::move(points.colors) : std::vector<Rgb8>(s.positions.size(), kBaseColor);
-  return s;
-}
-
-MeshScene mesh_scene(const TriangleMesh& mesh, const std::string& source) {
-  MeshScene s;
-  s.positions = mesh.positions;
-  s.bounds = mesh.bounds();
-  s.colors = mesh.colors.empty() ? std::vector<Rgb8>(mesh.positions.size(), kBaseColor) : mesh.colors;
-  s.normals = mesh.normals;
-  const bool need_normals = s.normals.size() != s.positions.size();
-  if (need_normals) s.normals.assign(s.positions.size(), Vec3f{});
-  for (const Triangle& t : mesh.triangles) {
-    s.indices.insert(s.indices.end(), t.begin(), t.end());
-    if (!need_normals) continue;
-    const Vec3f n = cross(s.positions[t[1]] - s.positions[t[0]], s.positions[t[2]] - s.positions[t[0]]);  // |n| = 2 area
-    for (std::uint32_t v : t) s.normals[v] = s.normals[v] + n;
-  }
-  if (need_normals)
-    for (Vec3f& n : s.normals) n = normalized(n);
-  if (s.indices.empty()) throw InputError("render.mesh.empty", source, "", "the mesh has no triangles");
-  return s;
-}
 
 }  // namespace qf::render

@@ -1,5 +1,5 @@
 // Loading what runtime_gl draws: a baked .glb (tinygltf, with the QF_impostor_level extension when
-// present) and reference scenes made from an input point set or mesh.
+// present). References made from input files are tools/reference_scene.h.
 #pragma once
 
 #include <string>
@@ -32,13 +32,5 @@ struct BakedScene {
   std::vector<double> lod_coverage;
 };
 BakedScene load_baked(const std::string& path);
-
-// A reference scene of a point set: radii estimated from the spacing where missing (as the baker
-// does), normals estimated by the surface analysis where missing.
-SplatScene splat_scene(PointSet points, const std::string& source = "");
-
-// A reference scene of a triangle mesh (normals area-weighted where missing). `source` names the
-// file in errors (InputError "render.points.empty" / "render.mesh.empty"), here and in splat_scene.
-MeshScene mesh_scene(const TriangleMesh& mesh, const std::string& source = "");
 
 }  // namespace qf::render

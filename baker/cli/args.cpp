@@ -1,11 +1,10 @@
-// Command-line parsing and help text.
+// Command-line parsing, typed option readers, help text and the exit-code frame.
 #include "cli/args.h"
 
 #include <charconv>
-#include <filesystem>
-#include <iostream>
-#include <new>
 #include <cmath>
+#include <iostream>
+#include <limits>
 
 #include "core/error.h"
 
@@ -16,27 +15,107 @@ std::string ParsedArgs::get(const std::string& name, const std::string& fallback
   return it == values_.end() ? fallback : it->second;
 }
 
-long long ParsedArgs::get_int(const std::string& name, long long fallback, long long min, long long max) const {
-  if (!has(name)) return fallback;
-  const std::string v = get(name);
-  long long out = 0;
+namespace {
+
+// A whole string as a number of type T (from_chars: no sign prefix '+', no trailing text).
+template <class T>
+bool parse_number(const std::string& v, T& out) {
   const auto r = std::from_chars(v.data(), v.data() + v.size(), out);
-  if (r.ec != std::errc() || r.ptr != v.data() + v.size() || out < min || out > max)
+  return r.ec == std::errc() && r.ptr == v.data() + v.size();
+}
+
+std::string integers_in(long long min, long long max) {
+  constexpr long long kMax = std::numeric_limits<long long>::max();
+  if (max == kMax && min == 1) return "positive integers";
+  if (max == kMax && min == std::numeric_limits<long long>::min()) return "integers";
+  return "integers in " + std::to_string(min) + ".." + std::to_string(max);
+}
+
+std::string numbers_in(double min, double max) {
+  if (max == std::numeric_limits<double>::max() && min == std::numeric_limits<double>::min()) return "positive numbers";
+  return "numbers in [" + std::to_string(min) + ", " + std::to_string(max) + "]";
+}
+
+// "a,b,,c" -> {"a", "b", "c"}: the comma-separated list options.
+std::vector<std::string> split_list(const std::string& s) {
+  std::vector<std::string> out;
+  std::size_t a = 0;
+  while (a <= s.size()) {
+    std::size_t b = s.find(',', a);
+    if (b == std::string::npos) b = s.size();
+    if (b > a) out.push_back(s.substr(a, b - a));
+    a = b + 1;
+  }
+  return out;
+}
+
+}  // namespace
+
+long long parse_int_option(const std::string& name, const std::string& v, long long min, long long max) {
+  long long out = 0;
+  if (!parse_number(v, out) || out < min || out > max)
     throw UsageError("--" + name + " expects an integer in " + std::to_string(min) + ".." + std::to_string(max) +
                      ", got '" + v + "'");
   return out;
 }
 
-double ParsedArgs::get_double(const std::string& name, double fallback, double min, double max) const {
-  if (!has(name)) return fallback;
-  const std::string v = get(name);
+double parse_double_option(const std::string& name, const std::string& v, double min, double max) {
   double out = 0;
-  const auto r = std::from_chars(v.data(), v.data() + v.size(), out);
-  if (r.ec != std::errc() || r.ptr != v.data() + v.size() || !std::isfinite(out) || out < min || out > max)
+  if (!parse_number(v, out) || !std::isfinite(out) || out < min || out > max)
     throw UsageError("--" + name + " expects a number in [" + std::to_string(min) + ", " + std::to_string(max) +
                      "], got '" + v + "'");
   return out;
 }
+
+std::vector<long long> parse_int_list_option(const std::string& name, const std::string& text, long long min, long long max) {
+  std::vector<long long> out;
+  for (const std::string& t : split_list(text)) {
+    long long v = 0;
+    if (!parse_number(t, v) || v < min || v > max)
+      throw UsageError("--" + name + " expects " + integers_in(min, max) + " separated by commas, got '" + t + "'");
+    out.push_back(v);
+  }
+  return out;
+}
+
+std::vector<double> parse_double_list_option(const std::string& name, const std::string& text, double min, double max) {
+  std::vector<double> out;
+  for (const std::string& t : split_list(text)) {
+    double v = 0;
+    if (!parse_number(t, v) || !std::isfinite(v) || v < min || v > max)
+      throw UsageError("--" + name + " expects " + numbers_in(min, max) + " separated by commas, got '" + t + "'");
+    out.push_back(v);
+  }
+  return out;
+}
+
+std::string OptionValues::get_choice(const std::string& name, const std::vector<std::string>& choices, const std::string& fallback) const {
+  const std::string v = get(name, fallback);
+  for (const std::string& c : choices)
+    if (c == v) return v;
+  std::string all;
+  for (std::size_t i = 0; i < choices.size(); ++i) all += (i == 0 ? "" : i + 1 == choices.size() ? " or " : ", ") + choices[i];
+  throw UsageError("--" + name + " expects " + all + ", got '" + v + "'");
+}
+
+long long ParsedArgs::get_int(const std::string& name, long long fallback, long long min, long long max) const {
+  return has(name) ? parse_int_option(name, get(name), min, max) : fallback;
+}
+
+double ParsedArgs::get_double(const std::string& name, double fallback, double min, double max) const {
+  return has(name) ? parse_double_option(name, get(name), min, max) : fallback;
+}
+
+std::vector<long long> ParsedArgs::get_int_list(const std::string& name, long long min, long long max) const {
+  return parse_int_list_option(name, get(name), min, max);
+}
+
+std::vector<double> ParsedArgs::get_double_list(const std::string& name, double min, double max) const {
+  return parse_double_list_option(name, get(name), min, max);
+}
+
+// "qf-bake info" / "qf-diff": how the usage and error lines name the command.
+static std::string command_line(const CommandSpec& spec) { return spec.program + (spec.name.empty() ? "" : " " + spec.name); }
 
 static const OptionSpec* find_long(const CommandSpec& spec, const std::string& name) {
   for (const OptionSpec& o : spec.options)
@@ -78,7 +157,7 @@ ParsedArgs parse_args(const CommandSpec& spec, const std::vector<std::string>& a
     } else if (a.size() == 2) {
       o = find_short(spec, a[1]);
     }
-    if (!o) throw UsageError("unknown option '" + a + "' for '" + spec.program + " " + spec.name + "' (see " + spec.program + " " + spec.name + " --help)");
+    if (!o) throw UsageError("unknown option '" + a + "' for '" + command_line(spec) + "' (see " + command_line(spec) + " --help)");
     if (o->metavar.empty()) {
       if (has_inline) throw UsageError("option --" + o->name + " takes no value");
       out.values_[o->name] = "";
@@ -92,7 +171,7 @@ ParsedArgs parse_args(const CommandSpec& spec, const std::vector<std::string>& a
     }
   }
   if (out.positional.size() < spec.min_positional || out.positional.size() > spec.max_positional)
-    throw UsageError("usage: " + spec.program + " " + spec.name + " " + spec.usage + " (see " + spec.program + " " + spec.name + " --help)");
+    throw UsageError("usage: " + command_line(spec) + " " + spec.usage + " (see " + command_line(spec) + " --help)");
   return out;
 }
 
@@ -128,22 +207,11 @@ bool asks_for_help(const std::vector<std::string>& args) {
 int run_with_exit_codes(const std::string& program, const std::function<int()>& body, int bad_input) {
   try {
     return body();
-  } catch (const InputError& e) {
-    std::cerr << program << ": error: " << e.what() << "\n";
-    return bad_input;
-  } catch (const UsageError& e) {
-    std::cerr << program << ": " << e.what() << "\n";
-    return static_cast<int>(ExitCode::kUsage);
-  } catch (const std::filesystem::filesystem_error& e) {
-    // Output paths that cannot be written (missing folder, no permission) are a usage problem.
-    std::cerr << program << ": cannot write output: " << e.what() << "\n";
-    return static_cast<int>(ExitCode::kUsage);
-  } catch (const std::bad_alloc&) {
-    std::cerr << program << ": internal error: out of memory\n";
-    return static_cast<int>(ExitCode::kInternal);
-  } catch (const std::exception& e) {
-    std::cerr << program << ": internal error: " << e.what() << "\n";
-    return static_cast<int>(ExitCode::kInternal);
+  } catch (const std::exception&) {
+    const ErrorOutcome e = current_error_outcome();
+    const bool input = e.exit == ExitCode::kBadInput;
+    std::cerr << program << ": " << (input ? "error: " : "") << e.message << "\n";
+    return input ? bad_input : static_cast<int>(e.exit);
   }
 }
 

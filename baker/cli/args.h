@@ -1,5 +1,6 @@
-// Command-line parsing for qf-bake's subcommands: options declared once, with their defaults and
-// help text, so --help always lists every option and its default.
+// Command-line parsing for every program (qf-bake, qf-render, qf-diff; cli/program.h runs them):
+// options declared once, with their defaults and help text, so --help always lists every option
+// and its default; typed readers that name the option in their errors.
 #pragma once
 
 #include <functional>
@@ -29,15 +30,43 @@ struct CommandSpec {
   std::string program = "qf-bake";  // the executable, for the usage line
 };
 
-class ParsedArgs {
+// Option values by long name: a command line's (ParsedArgs) or a batch manifest's settings
+// (cli/batch.cpp). The readers of a command's options take either, so that a manifest setting
+// means exactly what the same option means on the command line, read from its JSON value.
+class OptionValues {
+ public:
+  virtual ~OptionValues() = default;
+  virtual bool has(const std::string& name) const = 0;
+  virtual bool flag(const std::string& name) const = 0;
+  virtual std::string get(const std::string& name, const std::string& fallback = "") const = 0;
+  // Number options; throw UsageError naming the option when the value is not a number in range.
+  virtual long long get_int(const std::string& name, long long fallback, long long min, long long max) const = 0;
+  virtual double get_double(const std::string& name, double fallback, double min, double max) const = 0;
+  // Lists ("a,b,,c" -> a, b, c on the command line; a JSON list in a manifest); empty when the
+  // option is absent. Each number in [min, max], else UsageError naming the option and the item.
+  virtual std::vector<long long> get_int_list(const std::string& name, long long min, long long max) const = 0;
+  virtual std::vector<double> get_double_list(const std::string& name, double min, double max) const = 0;
+  // One of `choices`, else UsageError "--NAME expects A, B or C, got 'X'".
+  std::string get_choice(const std::string& name, const std::vector<std::string>& choices, const std::string& fallback) const;
+};
+
+// The text readers of ParsedArgs, for values given as text anywhere (e.g. a manifest's string):
+// the whole text must be the number (no sign '+', no trailing characters).
+long long parse_int_option(const std::string& name, const std::string& text, long long min, long long max);
+double parse_double_option(const std::string& name, const std::string& text, double min, double max);
+std::vector<long long> parse_int_list_option(const std::string& name, const std::string& text, long long min, long long max);
+std::vector<double> parse_double_list_option(const std::string& name, const std::string& text, double min, double max);
+
+class ParsedArgs : public OptionValues {
  public:
   std::vector<std::string> positional;
-  bool has(const std::string& name) const { return values_.count(name) != 0; }
-  bool flag(const std::string& name) const { return has(name); }
-  std::string get(const std::string& name, const std::string& fallback = "") const;
-  // Number options; throw UsageError naming the option when the value is not a number in range.
-  long long get_int(const std::string& name, long long fallback, long long min, long long max) const;
-  double get_double(const std::string& name, double fallback, double min, double max) const;
+  bool has(const std::string& name) const override { return values_.count(name) != 0; }
+  bool flag(const std::string& name) const override { return has(name); }
+  std::string get(const std::string& name, const std::string& fallback = "") const override;
+  long long get_int(const std::string& name, long long fallback, long long min, long long max) const override;
+  double get_double(const std::string& name, double fallback, double min, double max) const override;
+  std::vector<long long> get_int_list(const std::string& name, long long min, long long max) const override;
+  std::vector<double> get_double_list(const std::string& name, double min, double max) const override;
 
  private:
   friend ParsedArgs parse_args(const CommandSpec&, const std::vector<std::string>&);
@@ -55,8 +84,9 @@ std::string help_text(const CommandSpec& spec);
 // Whether `args` (after the command name) ask for help: "--help" or "-h" before any "--".
 bool asks_for_help(const std::vector<std::string>& args);
 
-// Runs an executable's body and maps its errors to the exit codes (1 bad input, 2 bad usage or an
-// unwritable output, 3 internal error), printing "PROGRAM: ..." to stderr.
+// Runs an executable's body and maps its errors to the exit codes (core/error.h
+// current_error_outcome: 1 bad input, 2 bad usage or an unwritable output, 3 internal error),
+// printing "PROGRAM: ..." to stderr.
 // `bad_input` is the code for an unreadable or malformed input (qf-diff gives 2: its 1 means
 // "different").
 int run_with_exit_codes(const std::string& program, const std::function<int()>& body,

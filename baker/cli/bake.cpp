@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <limits>
 #include <ostream>
 
 #include "cli/commands.h"
@@ -51,7 +52,7 @@ CommandSpec bake_spec() {
   return spec;
 }
 
-AssetOptions read_asset_options(const ParsedArgs& args) {
+AssetOptions read_asset_options(const OptionValues& args) {
   AssetOptions a;
   BakeOptions& o = a.bake;
   o.analysis = read_analysis_options(args);
@@ -64,21 +65,11 @@ AssetOptions read_asset_options(const ParsedArgs& args) {
   o.support.margin = static_cast<float>(args.get_double("margin", o.support.margin, 0.0, 100.0));
   if (args.has("levels") && args.has("primitives")) throw UsageError("give --levels or --primitives, not both");
   if (args.has("levels")) {
-    for (const std::string& t : split_list(args.get("levels"))) {
-      try {
-        o.levels.push_back(std::stoll(t));
-      } catch (const std::exception&) {
-        throw UsageError("--levels expects integers separated by commas, got '" + t + "'");
-      }
-    }
+    o.levels = args.get_int_list("levels", std::numeric_limits<long long>::min(), std::numeric_limits<long long>::max());
   } else if (args.has("primitives")) {
     o.primitives.clear();
-    for (const std::string& t : split_list(args.get("primitives"))) {
-      char* end = nullptr;
-      const unsigned long long v = std::strtoull(t.c_str(), &end, 10);
-      if (!end || *end || v == 0) throw UsageError("--primitives expects positive integers separated by commas, got '" + t + "'");
-      o.primitives.push_back(static_cast<std::size_t>(v));
-    }
+    for (long long n : args.get_int_list("primitives", 1, std::numeric_limits<long long>::max()))
+      o.primitives.push_back(static_cast<std::size_t>(n));
   }
   o.cache_dir = read_cache_dir(args);
   o.lod_file = args.flag("lod-file");
@@ -87,9 +78,7 @@ AssetOptions read_asset_options(const ParsedArgs& args) {
   a.sample = read_sample_options(args);
   a.point_seed = static_cast<std::uint64_t>(args.get_int("point-seed", 1, 0, 1ll << 62));
   a.point_impostor = !args.flag("no-points");
-  const std::string lods = args.flag("no-mesh-lods") ? "none" : args.get("mesh-lods", "simplify");
-  if (lods != "simplify" && lods != "clustering" && lods != "none")
-    throw UsageError("--mesh-lods: expected simplify, clustering or none, got '" + lods + "'");
+  const std::string lods = args.flag("no-mesh-lods") ? "none" : args.get_choice("mesh-lods", {"simplify", "clustering", "none"}, "simplify");
   a.mesh_lods = lods == "simplify" ? AssetOptions::MeshLods::kSimplify
                 : lods == "clustering" ? AssetOptions::MeshLods::kClustering
                                        : AssetOptions::MeshLods::kNone;

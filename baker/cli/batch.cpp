@@ -9,13 +9,10 @@
 #include <thread>
 
 #include "cli/commands.h"
+#include "cli/program.h"
 #include "core/error.h"
 #include "core/file_io.h"
 #include "pipeline/batch.h"
-
-#ifndef QF_VERSION
-#define QF_VERSION "0.0.0"
-#endif
 
 namespace qf::cli {
 namespace {
@@ -25,39 +22,95 @@ bool batch_level_option(const std::string& name) {
   return name == "output" || name == "quiet" || name == "threads" || name == "cache" || name == "no-cache";
 }
 
-// A manifest setting as the bake's command-line option.
-std::string setting_text(const nlohmann::json& v) {
-  if (v.is_string()) return v.get<std::string>();
-  if (!v.is_array()) return v.dump();
-  std::string s;
-  for (const nlohmann::json& x : v) s += (s.empty() ? "" : ",") + (x.is_string() ? x.get<std::string>() : x.dump());
-  return s;
-}
-
-// Reads every asset's settings with the bake command's own option readers, so that a manifest
-// means exactly what the same options on `qf-bake bake` mean. Errors name the manifest entry.
-void read_settings(BatchManifest& m, const std::string& cache_dir) {
-  const CommandSpec spec = bake_spec();
-  for (BatchAsset& a : m.assets) {
-    const std::string where = "assets[" + std::to_string(a.index) + "] (" + a.name + ")";
-    std::vector<std::string> argv{a.path};
-    for (const auto& [name, value] : a.settings.items()) {
+// A manifest asset's settings (the defaults overlaid by its own) as option values: the bake
+// command's table of options (bake_spec) names what may be set, and read_asset_options reads
+// them as it reads the command line, each from its JSON value (numbers as numbers, lists as
+// lists, switches as booleans; a string is read as the same text on the command line would be).
+class ManifestSettings : public OptionValues {
+ public:
+  // Throws InputError("batch.setting") naming the manifest and the asset for a setting that is
+  // no bake option, is the batch's own, or has the wrong kind of value (a switch needs a boolean).
+  ManifestSettings(const nlohmann::json& settings, const CommandSpec& spec, const std::string& manifest, const std::string& where)
+      : s_(settings) {
+    for (const auto& [name, value] : s_.items()) {
       const OptionSpec* option = nullptr;
       for (const OptionSpec& o : spec.options)
         if (o.name == name) option = &o;
       if (!option || batch_level_option(name))
-        throw InputError("batch.setting", m.path, where, "'" + name + "' is not a bake option a manifest can set (see qf-bake bake --help; "
-                                                         "output, threads, cache and quiet are the batch's own)");
-      if (option->metavar.empty()) {
-        if (!value.is_boolean()) throw InputError("batch.setting", m.path, where, "'" + name + "' is a switch: expected true or false");
-        if (value.get<bool>()) argv.push_back("--" + name);
-      } else {
-        if (value.is_boolean()) throw InputError("batch.setting", m.path, where, "'" + name + "' expects " + option->metavar + ", not a boolean");
-        argv.push_back("--" + name + "=" + setting_text(value));
-      }
+        throw InputError("batch.setting", manifest, where, "'" + name + "' is not a bake option a manifest can set (see qf-bake bake --help; "
+                                                           "output, threads, cache and quiet are the batch's own)");
+      if (option->metavar.empty() && !value.is_boolean())
+        throw InputError("batch.setting", manifest, where, "'" + name + "' is a switch: expected true or false");
+      if (!option->metavar.empty() && value.is_boolean())
+        throw InputError("batch.setting", manifest, where, "'" + name + "' expects " + option->metavar + ", not a boolean");
     }
+  }
+  bool has(const std::string& name) const override { return s_.contains(name) && !(s_[name].is_boolean() && !s_[name].get<bool>()); }
+  bool flag(const std::string& name) const override { return has(name); }
+  std::string get(const std::string& name, const std::string& fallback) const override {
+    if (!has(name)) return fallback;
+    const nlohmann::json& v = s_[name];
+    return v.is_string() ? v.get<std::string>() : v.dump();  // a number where text is expected: named as written
+  }
+  long long get_int(const std::string& name, long long fallback, long long min, long long max) const override {
+    if (!has(name)) return fallback;
+    return integer(name, s_[name], min, max);
+  }
+  double get_double(const std::string& name, double fallback, double min, double max) const override {
+    if (!has(name)) return fallback;
+    return number(name, s_[name], min, max);
+  }
+  std::vector<long long> get_int_list(const std::string& name, long long min, long long max) const override {
+    std::vector<long long> out;
+    if (!has(name)) return out;
+    const nlohmann::json& v = s_[name];
+    if (v.is_string()) return parse_int_list_option(name, v.get<std::string>(), min, max);
+    for (const nlohmann::json& x : v.is_array() ? v : nlohmann::json::array({v})) {
+      if (x.is_string()) for (long long n : parse_int_list_option(name, x.get<std::string>(), min, max)) out.push_back(n);
+      else out.push_back(integer(name, x, min, max, /*in_list=*/true));
+    }
+    return out;
+  }
+  std::vector<double> get_double_list(const std::string& name, double min, double max) const override {
+    std::vector<double> out;
+    if (!has(name)) return out;
+    const nlohmann::json& v = s_[name];
+    if (v.is_string()) return parse_double_list_option(name, v.get<std::string>(), min, max);
+    for (const nlohmann::json& x : v.is_array() ? v : nlohmann::json::array({v})) {
+      if (x.is_string()) for (double n : parse_double_list_option(name, x.get<std::string>(), min, max)) out.push_back(n);
+      else out.push_back(number(name, x, min, max, /*in_list=*/true));
+    }
+    return out;
+  }
+
+ private:
+  // A JSON number in range is read as it is; anything else gets the command line's message for
+  // the same value written out (the text readers reject it as they would on the command line).
+  static long long integer(const std::string& name, const nlohmann::json& v, long long min, long long max, bool in_list = false) {
+    if (v.is_string()) return parse_int_option(name, v.get<std::string>(), min, max);
+    if (v.is_number_integer() && !(v.is_number_unsigned() && v.get<unsigned long long>() > static_cast<unsigned long long>(max)) &&
+        v.get<long long>() >= min && v.get<long long>() <= max)
+      return v.get<long long>();
+    if (in_list) parse_int_list_option(name, v.dump(), min, max);  // throws, with the list's message
+    return parse_int_option(name, v.dump(), min, max);              // throws
+  }
+  static double number(const std::string& name, const nlohmann::json& v, double min, double max, bool in_list = false) {
+    if (v.is_string()) return parse_double_option(name, v.get<std::string>(), min, max);
+    if (v.is_number() && v.get<double>() >= min && v.get<double>() <= max) return v.get<double>();
+    if (in_list) parse_double_list_option(name, v.dump(), min, max);  // throws, with the list's message
+    return parse_double_option(name, v.dump(), min, max);              // throws
+  }
+  const nlohmann::json& s_;
+};
+
+// Reads every asset's settings into its bake options with the bake command's own readers.
+// Errors name the manifest entry.
+void read_settings(BatchManifest& m, const std::string& cache_dir) {
+  const CommandSpec spec = bake_spec();
+  for (BatchAsset& a : m.assets) {
+    const std::string where = "assets[" + std::to_string(a.index) + "] (" + a.name + ")";
     try {
-      a.options = read_asset_options(parse_args(spec, argv));
+      a.options = read_asset_options(ManifestSettings(a.settings, spec, m.path, where));
     } catch (const UsageError& e) {
       throw InputError("batch.setting", m.path, where, e.what());
     }
@@ -129,7 +182,7 @@ int run_batch(const ParsedArgs& args) {
   o.force = args.flag("force");
   o.keep_going = args.flag("keep-going");
   o.dry_run = args.flag("dry-run");
-  o.version = QF_VERSION;
+  o.version = version();
   o.eval = args.flag("eval");
   o.eval_views = static_cast<int>(args.get_int("eval-views", o.eval_views, 1, 1000));
   o.render_exe = std::filesystem::path(std::filesystem::read_symlink("/proc/self/exe")).parent_path().string() + "/qf-render";

@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <limits>
 #include <cstdio>
 #include <filesystem>
 #include <ostream>
@@ -41,21 +42,13 @@ int run_cluster(const ParsedArgs& args) {
   if (!args.has("output")) throw UsageError("cluster needs -o OUTDIR (see qf-bake cluster --help)");
   const std::string outdir = args.get("output");
   ClusterOptions o;
-  const std::string shape = args.get("shape", "cube"), assign = args.get("assign", "nearest");
-  if (shape != "cube" && shape != "sphere") throw UsageError("--shape must be cube or sphere, got '" + shape + "'");
-  if (assign != "nearest" && assign != "heaviest") throw UsageError("--assign must be nearest or heaviest, got '" + assign + "'");
+  const std::string shape = args.get_choice("shape", {"cube", "sphere"}, "cube");
+  const std::string assign = args.get_choice("assign", {"nearest", "heaviest"}, "nearest");
   o.shape = shape == "cube" ? ClusterOptions::Shape::kCube : ClusterOptions::Shape::kSphere;
   o.assign = assign == "nearest" ? ClusterOptions::Assign::kNearest : ClusterOptions::Assign::kHeaviest;
   o.uniform = args.flag("uniform");
-  std::vector<double> cells;
-  if (args.has("cells")) {
-    for (const std::string& t : split_list(args.get("cells"))) {
-      char* end = nullptr;
-      const double v = std::strtod(t.c_str(), &end);
-      if (!end || *end || !(v > 0)) throw UsageError("--cells expects positive numbers separated by commas, got '" + t + "'");
-      cells.push_back(v);
-    }
-  }
+  // Cell widths in model units: positive (the smallest positive double is the bound, 0 excluded).
+  std::vector<double> cells = args.get_double_list("cells", std::numeric_limits<double>::min(), std::numeric_limits<double>::max());
   ReadOptions ro;
   ro.drop_nonfinite = args.flag("drop-nonfinite");
   ReadReport report;

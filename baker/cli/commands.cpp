@@ -14,18 +14,6 @@
 
 namespace qf::cli {
 
-std::vector<std::string> split_list(const std::string& s) {
-  std::vector<std::string> out;
-  std::size_t a = 0;
-  while (a <= s.size()) {
-    std::size_t b = s.find(',', a);
-    if (b == std::string::npos) b = s.size();
-    if (b > a) out.push_back(s.substr(a, b - a));
-    a = b + 1;
-  }
-  return out;
-}
-
 OptionSpec drop_nonfinite_option() {
   return {"drop-nonfinite", 0, "", "",
           "drop points (or mesh vertices and their triangles) with NaN/Inf coordinates and report how many, "
@@ -40,7 +28,7 @@ std::vector<OptionSpec> analysis_option_specs() {
           {"threads", 'j', "N", "all cores", "threads to use (the outputs do not depend on it)"}};
 }
 
-AnalysisOptions read_analysis_options(const ParsedArgs& args) {
+AnalysisOptions read_analysis_options(const OptionValues& args) {
   AnalysisOptions o;
   o.neighborhoods.k = static_cast<int>(args.get_int("k", o.neighborhoods.k, 3, 1000));
   o.neighborhoods.max_neighbors = static_cast<int>(args.get_int("max-neighbors", o.neighborhoods.max_neighbors, 3, 100000));
@@ -48,9 +36,7 @@ AnalysisOptions read_analysis_options(const ParsedArgs& args) {
     o.neighborhoods.epsilon = static_cast<float>(args.get_double("epsilon", 0, 0, 1e30));
     o.classifier.epsilon = o.neighborhoods.epsilon;
   }
-  const std::string kind = args.get("classifier", "paper");
-  if (kind == "variation") o.classifier.kind = ClassifierKind::kVariation;
-  else if (kind != "paper") throw UsageError("--classifier expects paper or variation, got '" + kind + "'");
+  if (args.get_choice("classifier", {"paper", "variation"}, "paper") == "variation") o.classifier.kind = ClassifierKind::kVariation;
   if (args.has("threads")) omp_set_num_threads(static_cast<int>(args.get_int("threads", 0, 1, 1024)));
   return o;
 }
@@ -68,11 +54,10 @@ std::vector<OptionSpec> sample_option_specs() {
            "instead of each triangle only on the axis its normal is most parallel to"}};
 }
 
-SampleOptions read_sample_options(const ParsedArgs& args) {
+SampleOptions read_sample_options(const OptionValues& args) {
   SampleOptions o;
   o.ldi_size = static_cast<int>(args.get_int("ldi", o.ldi_size, 2, 16000));
-  o.backend = args.get("sampler", o.backend);
-  if (o.backend != "gl" && o.backend != "cpu") throw UsageError("--sampler must be gl or cpu, got '" + o.backend + "'");
+  o.backend = args.get_choice("sampler", {"gl", "cpu"}, o.backend);
   o.per_axis_triangles = !args.flag("all-triangles");
   return o;
 }
@@ -96,7 +81,7 @@ std::vector<OptionSpec> cache_option_specs() {
           {"no-cache", 0, "", "", "neither read nor write the hierarchy cache"}};
 }
 
-std::string read_cache_dir(const ParsedArgs& args) {
+std::string read_cache_dir(const OptionValues& args) {
   if (args.flag("no-cache")) return "";
   const char* env = std::getenv("QF_CACHE");
   const char* home = std::getenv("HOME");
@@ -109,7 +94,7 @@ std::vector<OptionSpec> merge_option_specs() {
           {"merge-angle", 0, "DEG", "10", "--merge: the two domains' planes differ by at most DEG degrees"}};
 }
 
-MergeOptions read_merge_options(const ParsedArgs& args, const DomainOptions& domains) {
+MergeOptions read_merge_options(const OptionValues& args, const DomainOptions& domains) {
   MergeOptions m;
   m.max_variation = args.get_double("merge-variation", m.max_variation, 0.0, 1.0 / 3.0);
   m.max_angle_degrees = args.get_double("merge-angle", m.max_angle_degrees, 0.0, 90.0);

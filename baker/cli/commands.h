@@ -1,4 +1,5 @@
-// qf-bake's subcommands. Each returns the process exit code; errors are thrown (see main.cpp).
+// qf-bake's subcommands. Each returns the process exit code; errors are thrown (cli/program.h maps
+// them to messages and exit codes).
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -10,17 +11,14 @@
 #include "clustering/clustering.h"
 #include "domains/merge.h"
 #include "cli/args.h"
+#include "cli/program.h"
 #include "io/model_io.h"
 #include "pipeline/asset.h"
 #include "sample/sample.h"
 
 namespace qf::cli {
 
-struct Command {
-  CommandSpec spec;
-  int (*run)(const ParsedArgs&);
-};
-
+// qf-bake's command table (main.cpp makes it a cli::Program).
 const std::vector<Command>& commands();
 
 int run_info(const ParsedArgs& args);
@@ -29,21 +27,18 @@ int run_generate(const ParsedArgs& args);
 int run_analyze(const ParsedArgs& args);
 CommandSpec analyze_spec();
 
-// "a,b,,c" -> {"a", "b", "c"}: the comma-separated list options.
-std::vector<std::string> split_list(const std::string& s);
-
 // Shared option: --drop-nonfinite (every command that reads input files).
 OptionSpec drop_nonfinite_option();
 
 // Shared by the commands that run the surface analysis: -k, --epsilon, --max-neighbors,
 // --classifier, --threads; and reading them into options (UsageError on bad values).
 std::vector<OptionSpec> analysis_option_specs();
-AnalysisOptions read_analysis_options(const ParsedArgs& args);
+AnalysisOptions read_analysis_options(const OptionValues& args);
 
 // Mesh sampling options (every command that takes a point set also takes a mesh): --ldi,
 // --sampler, --per-axis-triangles; and reading them (UsageError on bad values).
 std::vector<OptionSpec> sample_option_specs();
-SampleOptions read_sample_options(const ParsedArgs& args);
+SampleOptions read_sample_options(const OptionValues& args);
 
 // Reads a point set for the analysis; a mesh is sampled into one by depth peeling (its figures in
 // `sampled`, when given; sampled->backend stays empty for point-set inputs; the mesh itself in
@@ -54,16 +49,16 @@ PointSet load_points(const std::string& path, const ParsedArgs& args, const std:
 
 // Shared by decompose and bake: --cache/--no-cache, and --merge with its two thresholds.
 std::vector<OptionSpec> cache_option_specs();
-std::string read_cache_dir(const ParsedArgs& args);  // "" when the cache is off
+std::string read_cache_dir(const OptionValues& args);  // "" when the cache is off
 std::vector<OptionSpec> merge_option_specs();
-MergeOptions read_merge_options(const ParsedArgs& args, const DomainOptions& domains);
+MergeOptions read_merge_options(const OptionValues& args, const DomainOptions& domains);
 
 CommandSpec decompose_spec();
 int run_decompose(const ParsedArgs& args);
 CommandSpec bake_spec();
 int run_bake(const ParsedArgs& args);
 // The bake's options (bake_spec) as the pipeline's; UsageError on bad values. Shared with batch.
-AssetOptions read_asset_options(const ParsedArgs& args);
+AssetOptions read_asset_options(const OptionValues& args);
 CommandSpec batch_spec();
 int run_batch(const ParsedArgs& args);
 CommandSpec merge_reports_spec();

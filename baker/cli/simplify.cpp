@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 
 #include "cli/commands.h"
 #include "core/error.h"
@@ -33,15 +34,9 @@ int run_simplify(const ParsedArgs& args) {
   const std::string& in = args.positional[0];
   if (!args.has("output")) throw UsageError("simplify needs -o OUTDIR (see qf-bake simplify --help)");
   if (!args.has("triangles")) throw UsageError("simplify needs --triangles N,N,... (see qf-bake simplify --help)");
-  const std::string normals = args.get("normals", "smooth");
-  if (normals != "smooth" && normals != "flat") throw UsageError("--normals must be smooth or flat, got '" + normals + "'");
+  const std::string normals = args.get_choice("normals", {"smooth", "flat"}, "smooth");
   std::vector<std::size_t> budgets;
-  for (const std::string& t : split_list(args.get("triangles"))) {
-    char* end = nullptr;
-    const long long v = std::strtoll(t.c_str(), &end, 10);
-    if (!end || *end || v < 1) throw UsageError("--triangles expects positive integers separated by commas, got '" + t + "'");
-    budgets.push_back(static_cast<std::size_t>(v));
-  }
+  for (long long n : args.get_int_list("triangles", 1, std::numeric_limits<long long>::max())) budgets.push_back(static_cast<std::size_t>(n));
   ReadOptions ro;
   ro.drop_nonfinite = args.flag("drop-nonfinite");
   const Model model = read_model(in, ro, nullptr);

@@ -1,5 +1,9 @@
-// Error message formatting.
+// Error message formatting, and the one mapping of errors to exit codes.
 #include "core/error.h"
+
+#include <exception>
+#include <filesystem>
+#include <new>
 
 namespace qf {
 
@@ -17,6 +21,23 @@ InputError::InputError(std::string code, std::string file, std::string where, st
       file_(std::move(file)),
       where_(std::move(where)),
       detail_(std::move(detail)) {}
+
+ErrorOutcome current_error_outcome() {
+  try {
+    throw;
+  } catch (const InputError& e) {
+    return {ExitCode::kBadInput, e.code(), e.what()};
+  } catch (const UsageError& e) {
+    return {ExitCode::kUsage, "usage", e.what()};
+  } catch (const std::filesystem::filesystem_error& e) {
+    // Output paths that cannot be written (missing folder, no permission) are a usage problem.
+    return {ExitCode::kUsage, "output", std::string("cannot write output: ") + e.what()};
+  } catch (const std::bad_alloc&) {
+    return {ExitCode::kInternal, "internal", "internal error: out of memory"};
+  } catch (const std::exception& e) {
+    return {ExitCode::kInternal, "internal", std::string("internal error: ") + e.what()};
+  }
+}
 
 std::string at_byte(unsigned long long offset) { return "byte " + std::to_string(offset); }
 std::string at_line(unsigned long long line) { return "line " + std::to_string(line); }

@@ -29,6 +29,18 @@ class UsageError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// How a failure is reported, the same way by every program (cli/program.h) and in batch reports
+// (pipeline/batch): the exit code, a stable code (the InputError's, else "usage", "output" for an
+// output that cannot be written, "internal") and the message. Call it inside a catch block: it
+// classifies the exception being handled (a bad input file is kBadInput; a bad command line or an
+// unwritable output path kUsage; anything else, out of memory included, kInternal).
+struct ErrorOutcome {
+  ExitCode exit = ExitCode::kInternal;
+  std::string code;
+  std::string message;  // InputError: "FILE: WHERE: DETAIL [code]"; internal: "internal error: ..."
+};
+ErrorOutcome current_error_outcome();
+
 // "byte N" / "line N" helpers for InputError's `where`.
 std::string at_byte(unsigned long long offset);
 std::string at_line(unsigned long long line);

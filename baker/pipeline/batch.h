@@ -21,13 +21,23 @@
 
 namespace qf {
 
+// An asset's state in a batch run. The report names it (asset_status_name): "pending" (never in a
+// finished report), "baked", "up to date", "failed", "skipped" (not started after a failure),
+// "would bake" (--dry-run).
+enum class AssetStatus { kPending, kBaked, kUpToDate, kFailed, kSkipped, kWouldBake };
+inline constexpr std::size_t kAssetStatusCount = 6;
+const char* asset_status_name(AssetStatus s);
+// The status a report names; kPending for a name that is none.
+AssetStatus asset_status_from_name(const std::string& name);
+
 struct BatchAsset {
   std::size_t index = 0;    // position in the manifest's list
   std::string name;         // its folder under the batch output (unique)
   std::string input;        // as the manifest writes it (named in the asset's manifest and report)
   std::string path;         // resolved against the manifest's folder
   nlohmann::json settings;  // the manifest's defaults overlaid by the asset's own: bake option -> value
-  AssetOptions options;     // `settings` read (filled by the caller: the command line's readers)
+                            // (part of the asset's key, as written)
+  AssetOptions options;     // `settings` read (filled by the caller, with the bake command's readers)
 };
 
 struct BatchManifest {

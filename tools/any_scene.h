@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "runtime_gl/draw_gl11.h"
-#include "runtime_gl/image_ops.h"
+#include "tools/image_ops.h"
 #include "runtime_gl/loader.h"
 
 namespace qf::render {

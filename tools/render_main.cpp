@@ -11,19 +11,15 @@
 #include <thread>
 
 #include "cli/args.h"
+#include "cli/program.h"
 #include "core/error.h"
 #include "core/file_io.h"
-#include "core/memory.h"
 #include "io/model_io.h"
-#include "runtime_gl/any_scene.h"
+#include "tools/any_scene.h"
 #include "runtime_gl/draw_gl11.h"
 #include "runtime_gl/egl_context.h"
-#include "runtime_gl/image_ops.h"
+#include "tools/image_ops.h"
 #include "runtime_gl/loader.h"
-
-#ifndef QF_VERSION
-#define QF_VERSION "0.0.0"
-#endif
 
 namespace qf::render {
 namespace {
@@ -94,11 +90,7 @@ DrawSettings read_draw_settings(const ParsedArgs& a) {
   s.lighting = !a.flag("no-lighting");
   s.depth_offset = static_cast<float>(a.get_double("depth-offset", 0, 0, 1e30));
   if (a.has("normalize")) s.normalize = static_cast<float>(a.get_double("normalize", 0, 0, 1));
-  if (a.has("alpha-mode")) {
-    const std::string m = a.get("alpha-mode");
-    if (m != "OPAQUE" && m != "MASK" && m != "BLEND") throw UsageError("--alpha-mode: expected OPAQUE, MASK or BLEND, got '" + m + "'");
-    s.alpha_mode = m;
-  }
+  if (a.has("alpha-mode")) s.alpha_mode = a.get_choice("alpha-mode", {"OPAQUE", "MASK", "BLEND"}, "");
   s.alpha_cutoff = static_cast<float>(a.get_double("alpha-cutoff", -1, 0, 1));
   return s;
 }
@@ -450,55 +442,24 @@ int run_view(const ParsedArgs& a) {
   return 0;
 }
 
-// --- dispatch -----------------------------------------------------------------------------------
-
-struct Command {
-  const CommandSpec& (*spec)();
-  int (*run)(const ParsedArgs&);
-};
-const std::vector<Command>& commands() {
-  static const std::vector<Command> c{{render_spec, run_render}, {eval_spec, run_eval}, {view_spec, run_view}};
-  return c;
-}
-
-void print_overview(std::ostream& out) {
-  out << "qf-render " QF_VERSION " - the GL 1.1 renderer of quasiflat's baked levels (headless through EGL)\n\n"
-         "usage: qf-render FILE -o OUT.png [options]   render (see qf-render render --help)\n"
-         "       qf-render COMMAND [arguments] [options]\n"
-         "       qf-render COMMAND --help\n\ncommands:\n";
-  for (const Command& c : commands()) {
-    std::string name = "  " + c.spec().name;
-    name.resize(10, ' ');
-    out << name << c.spec().summary << "\n";
-  }
-  out << "\nexit codes: 0 ok, 1 bad input, 2 bad usage, 3 internal error (including no GL context).\n";
-}
-
-int dispatch(std::vector<std::string> argv) {
-  if (argv.empty() || argv[0] == "--help" || argv[0] == "-h") {
-    print_overview(argv.empty() ? std::cerr : std::cout);
-    return argv.empty() ? 2 : 0;
-  }
-  if (argv[0] == "--version" || argv[0] == "-V") return std::cout << "qf-render " QF_VERSION "\n", 0;
-  bool named = false;
-  for (const Command& c : commands()) named = named || c.spec().name == argv[0];
-  if (!named) argv.insert(argv.begin(), "render");  // qf-render FILE -o OUT.png
-  for (const Command& c : commands()) {
-    if (c.spec().name != argv[0]) continue;
-    const std::vector<std::string> rest(argv.begin() + 1, argv.end());
-    if (cli::asks_for_help(rest)) return std::cout << cli::help_text(c.spec()), 0;
-    return c.run(cli::parse_args(c.spec(), rest));
-  }
-  return 2;
-}
-
 }  // namespace
 }  // namespace qf::render
 
 int main(int argc, char** argv) {
-  std::ios::sync_with_stdio(false);
-  // Also llvmpipe's per-frame scene memory: without it, page-fault storms (gl-notes.md 5.3).
-  qf::keep_freed_memory();
-  const std::vector<std::string> args(argv + 1, argv + argc);
-  return qf::cli::run_with_exit_codes("qf-render", [&] { return qf::render::dispatch(args); });
+  qf::cli::Program p;
+  p.name = "qf-render";
+  p.title = "the GL 1.1 renderer of quasiflat's baked levels (headless through EGL)";
+  p.usage =
+      "usage: qf-render FILE -o OUT.png [options]   render (see qf-render render --help)\n"
+      "       qf-render COMMAND [arguments] [options]\n"
+      "       qf-render COMMAND --help\n";
+  p.exit_codes = "exit codes: 0 ok, 1 bad input, 2 bad usage, 3 internal error (including no GL context).\n";
+  p.commands = {{qf::render::render_spec(), qf::render::run_render},
+                {qf::render::eval_spec(), qf::render::run_eval},
+                {qf::render::view_spec(), qf::render::run_view}};
+  p.name_column = 10;
+  // qf-render FILE -o OUT.png: any first argument that names no command is the file to render.
+  p.implicit_command = "render";
+  p.implicit_for = [](const std::string&) { return true; };
+  return qf::cli::run_program(p, argc, argv);
 }

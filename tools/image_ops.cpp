@@ -1,6 +1,6 @@
 // Image files and metrics on OpenImageIO (see image_ops.h). The arithmetic of the metrics is done
 // with ImageBufAlgo on float images; thresholds are steep clamps (c >= t  <=>  clamp((c - t) * 1e6 + 1, 0, 1)).
-#include "runtime_gl/image_ops.h"
+#include "tools/image_ops.h"
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imagebuf.h>

@@ -1,11 +1,12 @@
 // Loading any drawable file, and the paired renders of the fidelity metrics.
-#include "runtime_gl/any_scene.h"
+#include "tools/any_scene.h"
 
 #include <algorithm>
 
 #include "core/error.h"
 #include "core/file_io.h"
 #include "io/model_io.h"
+#include "tools/reference_scene.h"
 
 namespace qf::render {
 

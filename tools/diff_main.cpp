@@ -1,17 +1,13 @@
-// qf-diff OLD NEW: how two bakes differ (runtime_gl/diff.h), for people (text) or CI (--json).
+// qf-diff OLD NEW: how two bakes differ (tools/diff.h), for people (text) or CI (--json).
 // Exit codes: 0 identical or within the thresholds, 1 beyond them, 2 bad usage or unreadable
 // input (a comparison that could not be made is not a pass), 3 internal error.
 #include <iostream>
 
 #include "cli/args.h"
+#include "cli/program.h"
 #include "core/error.h"
 #include "core/file_io.h"
-#include "core/memory.h"
-#include "runtime_gl/diff.h"
-
-#ifndef QF_VERSION
-#define QF_VERSION "0.0.0"
-#endif
+#include "tools/diff.h"
 
 namespace {
 
@@ -43,11 +39,7 @@ qf::cli::CommandSpec diff_spec() {
   return s;
 }
 
-int run(const std::vector<std::string>& argv) {
-  const qf::cli::CommandSpec spec = diff_spec();
-  if (qf::cli::asks_for_help(argv)) return std::cout << qf::cli::help_text(spec), 0;
-  if (argv.size() == 1 && argv[0] == "--version") return std::cout << "qf-diff " QF_VERSION "\n", 0;
-  const qf::cli::ParsedArgs args = qf::cli::parse_args(spec, argv);
+int run(const qf::cli::ParsedArgs& args) {
   qf::render::DiffOptions o;
   o.thresholds.min_psnr = args.get_double("min-psnr", o.thresholds.min_psnr, 0, 1000);
   o.thresholds.max_changed = args.get_double("max-changed", o.thresholds.max_changed, 0, 1);
@@ -66,9 +58,10 @@ int run(const std::vector<std::string>& argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::ios::sync_with_stdio(false);
-  qf::keep_freed_memory();
-  const std::vector<std::string> args(argv + 1, argv + argc);
+  qf::cli::Program p;
+  p.name = "qf-diff";
+  p.commands = {{diff_spec(), run}};  // no command word: OLD NEW [options]
   // Exit 1 means "different": an input that cannot be read is 2, not a difference.
-  return qf::cli::run_with_exit_codes("qf-diff", [&] { return run(args); }, static_cast<int>(qf::ExitCode::kUsage));
+  p.bad_input = static_cast<int>(qf::ExitCode::kUsage);
+  return qf::cli::run_program(p, argc, argv);
 }

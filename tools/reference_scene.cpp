@@ -1,10 +1,14 @@
-// References as an engine draws them (see engine_scene.h).
-#include "runtime_gl/engine_scene.h"
+// Reference scenes of input point sets and meshes, for the GL 1.1 methods and as an engine draws
+// them (see reference_scene.h).
+#include "tools/reference_scene.h"
 
 #include <algorithm>
 #include <cmath>
 
+#include "analysis/local_frames.h"
+#include "analysis/neighborhoods.h"
 #include "core/color.h"
+#include "core/error.h"
 
 namespace qf::render {
 namespace {
@@ -39,6 +43,44 @@ Image disc_image() {
 }
 
 }  // namespace
+
+SplatScene splat_scene(PointSet points, const std::string& source) {
+  if (points.size() == 0) throw InputError("render.points.empty", source, "", "the point set is empty");
+  estimate_radii(points);
+  SplatScene s;
+  if (!points.has_normals()) {
+    // The baker's own estimate (same neighbourhoods, same orientation), so lighting matches.
+    const Neighborhoods nb = compute_neighborhoods(points.positions);
+    s.normals = compute_local_frames(points.positions, nb).normal;
+  } else {
+    s.normals = std::move(points.normals);
+  }
+  s.bounds = points.bounds();
+  s.positions = std::move(points.positions);
+  s.radii = std::move(points.radii);
+  s.colors = points.has_colors() ? std::move(points.colors) : std::vector<Rgb8>(s.positions.size(), kBaseColor);
+  return s;
+}
+
+MeshScene mesh_scene(const TriangleMesh& mesh, const std::string& source) {
+  MeshScene s;
+  s.positions = mesh.positions;
+  s.bounds = mesh.bounds();
+  s.colors = mesh.colors.empty() ? std::vector<Rgb8>(mesh.positions.size(), kBaseColor) : mesh.colors;
+  s.normals = mesh.normals;
+  const bool need_normals = s.normals.size() != s.positions.size();
+  if (need_normals) s.normals.assign(s.positions.size(), Vec3f{});
+  for (const Triangle& t : mesh.triangles) {
+    s.indices.insert(s.indices.end(), t.begin(), t.end());
+    if (!need_normals) continue;
+    const Vec3f n = cross(s.positions[t[1]] - s.positions[t[0]], s.positions[t[2]] - s.positions[t[0]]);  // |n| = 2 area
+    for (std::uint32_t v : t) s.normals[v] = s.normals[v] + n;
+  }
+  if (need_normals)
+    for (Vec3f& n : s.normals) n = normalized(n);
+  if (s.indices.empty()) throw InputError("render.mesh.empty", source, "", "the mesh has no triangles");
+  return s;
+}
 
 EngineScene engine_scene(const MeshScene& mesh) {
   EngineScene s;

@@ -1,4 +1,4 @@
-// Image files and image arithmetic for runtime_gl, on OpenImageIO (the one runtime file that
+// Image files and image arithmetic for qf-render and qf-diff, on OpenImageIO (the one file that
 // includes it): PNG/EXR writing, contact sheets, and the fidelity metrics of `qf-render eval`
 // (paper section 6: render original and simplification with the same camera and compare).
 #pragma once

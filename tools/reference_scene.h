@@ -1,0 +1,30 @@
+// Reference scenes: an input point set or mesh (the baker's readers' types) made ready for the
+// renderer, to compare a bake against what it was baked from. Outside runtime_gl because it needs
+// the baker: radii and normals of bare point sets are estimated by the baker's own analysis, so the
+// reference is lit as the bake was made.
+#pragma once
+
+#include <string>
+
+#include "core/types.h"
+#include "runtime_gl/engine_scene.h"
+#include "runtime_gl/scene.h"
+
+namespace qf::render {
+
+// A reference scene of a point set: radii estimated from the spacing where missing (as the baker
+// does), normals estimated by the surface analysis where missing.
+SplatScene splat_scene(PointSet points, const std::string& source = "");
+
+// A reference scene of a triangle mesh (normals area-weighted where missing). `source` names the
+// file in errors (InputError "render.points.empty" / "render.mesh.empty"), here and in splat_scene.
+MeshScene mesh_scene(const TriangleMesh& mesh, const std::string& source = "");
+
+// A reference mesh as an engine draws it: vertex normals and colours (COLOR_0, linear) with a
+// rough dielectric, double-sided material (an input mesh carries no material of its own).
+EngineScene engine_scene(const MeshScene& mesh);
+// A reference point set: each splat a disc (a quad with a disc alpha texture, MASK 0.5), facing
+// its normal, in its colour, with the same material as meshes.
+EngineScene engine_scene(const SplatScene& splats);
+
+}  // namespace qf::render
