@@ -16,6 +16,7 @@
 
 #include "core/color.h"
 #include "core/error.h"
+#include "core/gltf_keys.h"
 
 namespace qf::render {
 namespace {
@@ -189,8 +190,8 @@ std::vector<Vec3f> read_vec3(const AccessorReader& read, const tinygltf::Primiti
 
 PointImpostorScene point_scene(const tinygltf::Model& m, const std::string& path) {
   PointImpostorScene s;
-  s.pixel = static_cast<float>(m.extensions.at("QF_point_impostor").Get("pixelSize").GetNumberAsDouble());
-  if (!(s.pixel > 0)) fail(path, "points", "QF_point_impostor.pixelSize must be positive");
+  s.pixel = static_cast<float>(m.extensions.at(kPointExtension).Get("pixelSize").GetNumberAsDouble());
+  if (!(s.pixel > 0)) fail(path, "points", std::string(kPointExtension) + ".pixelSize must be positive");
   AccessorReader read{m, path};
   for (const tinygltf::Mesh& mesh : m.meshes)
     for (const tinygltf::Primitive& prim : mesh.primitives) {
@@ -199,7 +200,7 @@ PointImpostorScene point_scene(const tinygltf::Model& m, const std::string& path
       s.normals = read_vec3(read, prim, "NORMAL");
       s.colors = read_colors(read, prim, s.positions.size());
     }
-  if (s.positions.empty()) fail(path, "points", "has QF_point_impostor but no POINTS primitive with points");
+  if (s.positions.empty()) fail(path, "points", "has " + std::string(kPointExtension) + " but no POINTS primitive with points");
   if (!s.normals.empty() && s.normals.size() != s.positions.size()) fail(path, "points", "NORMAL and POSITION counts differ");
   if (s.normals.empty()) s.normals.assign(s.positions.size(), Vec3f{0, 0, 1});
   for (Vec3f q : s.positions) s.bounds.add(q);
@@ -208,7 +209,7 @@ PointImpostorScene point_scene(const tinygltf::Model& m, const std::string& path
 
 ClusterScene cluster_scene(const tinygltf::Model& m, const std::string& path) {
   ClusterScene s;
-  s.cell = static_cast<float>(m.nodes[0].extras.Get("cellWidth").GetNumberAsDouble());
+  s.cell = static_cast<float>(m.nodes[0].extras.Get(kCellWidthExtra).GetNumberAsDouble());
   AccessorReader read{m, path};
   for (const tinygltf::Mesh& mesh : m.meshes)
     for (const tinygltf::Primitive& prim : mesh.primitives) {
@@ -223,7 +224,7 @@ ClusterScene cluster_scene(const tinygltf::Model& m, const std::string& path) {
         s.mesh.normals.insert(s.mesh.normals.end(), nrm.begin(), nrm.end());
         s.mesh.colors.insert(s.mesh.colors.end(), col.begin(), col.end());
       } else if (prim.mode == TINYGLTF_MODE_LINE) {
-        const auto th = prim.attributes.find("_THICKNESS");
+        const auto th = prim.attributes.find(kThicknessAttribute);
         if (th == prim.attributes.end()) fail(path, "lines", "cluster LOD lines need _THICKNESS");
         const std::vector<float> t = read.floats(th->second, 1);
         if (t.size() != pos.size() || pos.size() % 2) fail(path, "lines", "_THICKNESS needs one value per line vertex");
@@ -441,11 +442,11 @@ EngineScene engine_scene(const tinygltf::Model& m, const std::string& path, cons
 std::vector<int> lod_nodes(const tinygltf::Model& m, const std::vector<int>& roots, const std::string& path, std::vector<double>& coverage) {
   if (roots.size() != 1 || roots[0] < 0 || roots[0] >= static_cast<int>(m.nodes.size())) return {};
   const tinygltf::Node& root = m.nodes[static_cast<std::size_t>(roots[0])];
-  const auto ext = root.extensions.find("MSFT_lod");
+  const auto ext = root.extensions.find(kLodExtension);
   if (ext == root.extensions.end()) return {};
   std::vector<int> nodes{roots[0]};
   for (int id : number_array<int>(ext->second, "ids", path)) nodes.push_back(id);
-  coverage = number_array<double>(root.extras, "MSFT_screencoverage", path);
+  coverage = number_array<double>(root.extras, kScreenCoverageExtra, path);
   return nodes;
 }
 
@@ -470,10 +471,10 @@ BakedScene load_baked(const std::string& path) {
     return s;
   }
   s.engine = engine_scene(m, path, roots);
-  if (m.extensions.count("QF_point_impostor")) {
+  if (m.extensions.count(kPointExtension)) {
     s.kind = BakedScene::kPoints;
     s.points = point_scene(m, path);
-  } else if (!m.nodes.empty() && m.nodes[0].extras.Has("cellWidth")) {
+  } else if (!m.nodes.empty() && m.nodes[0].extras.Has(kCellWidthExtra)) {
     s.kind = BakedScene::kCluster;
     s.cluster = cluster_scene(m, path);
   } else {
@@ -545,7 +546,7 @@ ImpostorScene impostor_scene(const tinygltf::Model& m, const std::string& path, 
 
   // 2. Items. With the extension: quad k is the next two triangles of the group of its atlas image
   //    (the writer emits one primitive per atlas image, quads in index order).
-  const auto ext_it = m.extensions.find("QF_impostor_level");
+  const auto ext_it = m.extensions.find(kImpostorExtension);
   if (ext_it != m.extensions.end()) {
     const tinygltf::Value& ext = ext_it->second;
     const std::vector<float> center = number_array<float>(ext, "center", path), normal = number_array<float>(ext, "normal", path),
@@ -555,7 +556,7 @@ ImpostorScene impostor_scene(const tinygltf::Model& m, const std::string& path, 
     s.neighbors = number_array<std::uint32_t>(ext, "neighbors", path);
     if (center.size() != quads * 3 || normal.size() != quads * 3 || rect.size() != quads * 5 || s.offsets.size() != quads + 1 ||
         s.offsets.back() != s.neighbors.size())
-      fail(path, "extension", "QF_impostor_level arrays do not match quadCount " + std::to_string(quads));
+      fail(path, "extension", std::string(kImpostorExtension) + " arrays do not match quadCount " + std::to_string(quads));
     for (std::uint32_t nb : s.neighbors)
       if (nb >= quads) fail(path, "extension", "a neighbour index is out of range");
     std::vector<std::size_t> next(groups.size(), 0);

@@ -1,5 +1,5 @@
 // Point neighbourhoods (paper 2.1): k nearest neighbours, optionally widened to the feature-size
-// ball B_eps(x), found with PCL's kd-tree and stored flat. This header is PCL-free; PCL stays
+// ball B_eps(x), found with FLANN's kd-tree and stored flat. This header is FLANN-free; FLANN stays
 // inside neighborhoods.cpp.
 #pragma once
 

@@ -373,7 +373,7 @@ std::vector<std::uint8_t> encode_cluster_glb(const LodMesh& lod, const GltfOptio
     prim.attributes["POSITION"] = add_floats(m, pos, 3, TINYGLTF_TYPE_VEC3, true);
     if (normals) prim.attributes["NORMAL"] = add_floats(m, *normals, 3, TINYGLTF_TYPE_VEC3, false);
     if (coloured) prim.attributes["COLOR_0"] = add_colors(m, col);
-    if (thickness) prim.attributes["_THICKNESS"] = add_floats(m, *thickness, 1, TINYGLTF_TYPE_SCALAR, false);
+    if (thickness) prim.attributes[kThicknessAttribute] = add_floats(m, *thickness, 1, TINYGLTF_TYPE_SCALAR, false);
     mesh.primitives.push_back(prim);
   };
   // Triangles: smooth normals, area-weighted over the LOD's own triangles.
@@ -408,7 +408,7 @@ std::vector<std::uint8_t> encode_cluster_glb(const LodMesh& lod, const GltfOptio
   add_primitive(TINYGLTF_MODE_LINE, ev, nullptr, &et);
   add_primitive(TINYGLTF_MODE_POINTS, lod.points, nullptr, nullptr);
   if (mesh.primitives.empty()) throw std::invalid_argument("encode_cluster_glb: an empty LOD");
-  add_single_node_scene(m, mesh).extras = Value(Value::Object{{"cellWidth", Value(canonical_double(lod.cell))}});
+  add_single_node_scene(m, mesh).extras = Value(Value::Object{{kCellWidthExtra, Value(canonical_double(lod.cell))}});
   if (draco && !tv.empty()) {  // no uncompressed fallback: readers without Draco must refuse the file
     m.extensionsUsed.push_back("KHR_draco_mesh_compression");
     m.extensionsRequired.push_back("KHR_draco_mesh_compression");
@@ -462,9 +462,9 @@ std::vector<std::uint8_t> encode_lod_glb(const std::vector<const ImpostorLevel*>
     Value::Array ids, coverage;
     for (std::size_t i = 1; i < nodes.size(); ++i) ids.push_back(Value(nodes[i]));
     for (double c : screen_coverage) coverage.push_back(Value(c));
-    root.extensions["MSFT_lod"] = Value(Value::Object{{"ids", Value(ids)}});
-    root.extras = Value(Value::Object{{"MSFT_screencoverage", Value(coverage)}});
-    m.extensionsUsed.push_back("MSFT_lod");
+    root.extensions[kLodExtension] = Value(Value::Object{{"ids", Value(ids)}});
+    root.extras = Value(Value::Object{{kScreenCoverageExtra, Value(coverage)}});
+    m.extensionsUsed.push_back(kLodExtension);
   }
   tinygltf::Scene scene;
   scene.nodes.push_back(nodes[0]);

@@ -1,6 +1,7 @@
 // One impostor level as a binary glTF 2.0 file (.glb): the domain primitives as textured quads,
 // the atlas (colour + Psi as alpha, and normal maps) embedded as PNG, and the custom extension
-// QF_impostor_level with what a custom runtime needs (gltf-notes.md; schemas/).
+// QF_impostor_level with what a custom runtime needs (gltf-notes.md; schemas/; its name and the
+// other keys readers share in core/gltf_keys.h).
 #pragma once
 
 #include <array>
@@ -9,12 +10,11 @@
 #include <vector>
 
 #include "clustering/clustering.h"
+#include "core/gltf_keys.h"
 #include "primitives/atlas.h"
 #include "primitives/support.h"
 
 namespace qf {
-
-constexpr const char* kImpostorExtension = "QF_impostor_level";
 
 // What a level's .glb holds. quads[k] is drawn with atlas.tiles[k], over half_u[k] x half_v[k]
 // (the texture's extent: whole texels, so a little over the support rectangle).
@@ -61,7 +61,6 @@ std::vector<std::uint8_t> encode_lod_glb(const std::vector<const ImpostorLevel*>
 // thinning) and the root extension QF_point_impostor: the LDI pixel side s, the point count N0,
 // the seed, and the distance at which a runtime switches to the mesh on a reference screen
 // (N = N0 (s Z0 / d)^2 points at distance d, Z0 = H / (2 tan(fov / 2)); all N0 at d = s Z0).
-constexpr const char* kPointExtension = "QF_point_impostor";
 struct PointImpostorInfo {
   float pixel = 0;         // s, model units
   std::uint64_t seed = 1;  // of the permutation
