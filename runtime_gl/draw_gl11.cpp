@@ -93,6 +93,38 @@ float median_half_diagonal(const ImpostorScene& s) {
   return h[h.size() / 2];
 }
 
+// One pass's state block (blend_order.h Pass): colour and depth masks, depth test, the view
+// (offset for the depth-offset pass), blending, the alpha test, and the colour the texels are
+// multiplied by (the premultiplied passes' strength a, on all four channels).
+void set_pass_state(Pass pass, const Mat4& view, float alpha_ref, float strength) {
+  const bool color = pass != Pass::kLock && pass != Pass::kDepthOffset;
+  const bool depth_test = pass != Pass::kDarkenHard && pass != Pass::kDarkenSoft && pass != Pass::kAddNoDepth;
+  const bool depth_write = pass == Pass::kLock || pass == Pass::kDepthOffset || pass == Pass::kOpaque;
+  glColorMask(color, color, color, color);
+  glDepthMask(depth_write ? GL_TRUE : GL_FALSE);
+  if (depth_test) glEnable(GL_DEPTH_TEST);
+  else glDisable(GL_DEPTH_TEST);
+  glLoadMatrixf(view.data());
+  // Blending. Premultiplied texels times (a, a, a, a): colour and coverage both scale by a.
+  switch (pass) {
+    case Pass::kColor:
+    case Pass::kAddNoDepth: glEnable(GL_BLEND), glBlendFunc(GL_ONE, GL_ONE); break;
+    case Pass::kDarkenHard: glEnable(GL_BLEND), glBlendFunc(GL_ZERO, GL_ZERO); break;
+    case Pass::kDarkenSoft: glEnable(GL_BLEND), glBlendFunc(GL_ZERO, GL_ONE_MINUS_SRC_ALPHA); break;
+    default: glDisable(GL_BLEND); break;
+  }
+  // Alpha test.
+  glEnable(GL_ALPHA_TEST);
+  switch (pass) {
+    case Pass::kLock: glAlphaFunc(GL_GREATER, alpha_ref); break;
+    case Pass::kDepthOffset:
+    case Pass::kDarkenHard: glAlphaFunc(GL_GREATER, 0.0f); break;
+    case Pass::kOpaque: glAlphaFunc(GL_GREATER, alpha_ref); break;
+    default: glDisable(GL_ALPHA_TEST); break;
+  }
+  glColor4f(strength, strength, strength, strength);
+}
+
 }  // namespace
 
 struct Renderer::Impl {
@@ -418,33 +450,7 @@ void Renderer::Impl::draw_impostor(const Camera& c, const DrawSettings& s, DrawS
     if (static_cast<int>(op.pass) != bound_pass) {
       ++stats.state_changes;
       bound_pass = static_cast<int>(op.pass);
-      const bool color = op.pass != Pass::kLock && op.pass != Pass::kDepthOffset;
-      const bool depth_test = op.pass != Pass::kDarkenHard && op.pass != Pass::kDarkenSoft && op.pass != Pass::kAddNoDepth;
-      const bool depth_write = op.pass == Pass::kLock || op.pass == Pass::kDepthOffset || op.pass == Pass::kOpaque;
-      glColorMask(color, color, color, color);
-      glDepthMask(depth_write ? GL_TRUE : GL_FALSE);
-      if (depth_test) glEnable(GL_DEPTH_TEST);
-      else glDisable(GL_DEPTH_TEST);
-      glLoadMatrixf(op.pass == Pass::kDepthOffset ? view_offset.data() : c.view().data());
-      // Blending. Premultiplied texels times (a, a, a, a): colour and coverage both scale by a.
-      switch (op.pass) {
-        case Pass::kColor:
-        case Pass::kAddNoDepth: glEnable(GL_BLEND), glBlendFunc(GL_ONE, GL_ONE); break;
-        case Pass::kDarkenHard: glEnable(GL_BLEND), glBlendFunc(GL_ZERO, GL_ZERO); break;
-        case Pass::kDarkenSoft: glEnable(GL_BLEND), glBlendFunc(GL_ZERO, GL_ONE_MINUS_SRC_ALPHA); break;
-        default: glDisable(GL_BLEND); break;
-      }
-      // Alpha test.
-      glEnable(GL_ALPHA_TEST);
-      switch (op.pass) {
-        case Pass::kLock: glAlphaFunc(GL_GREATER, alpha_ref); break;
-        case Pass::kDepthOffset:
-        case Pass::kDarkenHard: glAlphaFunc(GL_GREATER, 0.0f); break;
-        case Pass::kOpaque: glAlphaFunc(GL_GREATER, alpha_ref); break;
-        default: glDisable(GL_ALPHA_TEST); break;
-      }
-      if (premult) glColor4f(a, a, a, a);
-      else glColor4f(1, 1, 1, 1);
+      set_pass_state(op.pass, op.pass == Pass::kDepthOffset ? view_offset : c.view(), alpha_ref, premult ? a : 1.0f);
     }
     const Item& it = sc.items[op.item];
     const GLuint tex = (premult ? premultiplied : straight)[it.texture];

@@ -27,6 +27,60 @@ std::optional<Type> parse_type(std::string_view s) {
   return std::nullopt;
 }
 
+// "format FORMAT 1.0".
+Format format_line(io::Tokenizer& tok, const std::string& path, const std::string& where) {
+  const std::string_view f = tok.next(), version = tok.next();
+  Format format;
+  if (f == "ascii") format = Format::kAscii;
+  else if (f == "binary_little_endian") format = Format::kBinaryLE;
+  else if (f == "binary_big_endian") format = Format::kBinaryBE;
+  else
+    throw InputError("ply.header.format", path, where,
+                     "unknown format " + quote_token(f) +
+                         ", expected ascii, binary_little_endian or binary_big_endian");
+  if (version != "1.0")
+    throw InputError("ply.header.format", path, where, "unsupported version " + quote_token(version) + ", expected 1.0");
+  return format;
+}
+
+// "element NAME COUNT".
+Element element_line(io::Tokenizer& tok, const std::string& path, const std::string& where, std::size_t line_no) {
+  Element e;
+  e.name = std::string(tok.next());
+  long long count = -1;
+  if (e.name.empty() || !io::parse_int64(tok.next(), count) || count < 0)
+    throw InputError("ply.header.syntax", path, where, "expected 'element NAME COUNT' with COUNT >= 0");
+  e.count = static_cast<std::uint64_t>(count);
+  e.header_line = line_no;
+  return e;
+}
+
+// "property TYPE NAME" or "property list COUNT_TYPE TYPE NAME".
+Property property_line(io::Tokenizer& tok, const std::string& path, const std::string& where) {
+  Property prop;
+  std::string_view t = tok.next();
+  if (t == "list") {
+    prop.is_list = true;
+    const std::string_view ct = tok.next();
+    const auto count_type = parse_type(ct);
+    if (!count_type)
+      throw InputError("ply.header.property_type", path, where, "unsupported list count type " + quote_token(ct));
+    if (!is_integer_type(*count_type))
+      throw InputError("ply.header.property_type", path, where, "list count type must be an integer type, not " + quote_token(ct));
+    prop.count_type = *count_type;
+    t = tok.next();
+  }
+  const auto type = parse_type(t);
+  if (!type)
+    throw InputError("ply.header.property_type", path, where,
+                     "unsupported property type " + quote_token(t) +
+                         ", expected one of char uchar short ushort int uint float double (or int8..float64)");
+  prop.type = *type;
+  prop.name = std::string(tok.next());
+  if (prop.name.empty()) throw InputError("ply.header.syntax", path, where, "property without a name");
+  return prop;
+}
+
 }  // namespace
 
 Dest vertex_dest(const std::string& n) {
@@ -130,51 +184,14 @@ Header parse_header(ByteView bytes, const std::string& path) {
         h.comments.emplace_back(text);
       }
     } else if (key == "format") {
-      const std::string_view f = tok.next(), version = tok.next();
-      if (f == "ascii") h.format = Format::kAscii;
-      else if (f == "binary_little_endian") h.format = Format::kBinaryLE;
-      else if (f == "binary_big_endian") h.format = Format::kBinaryBE;
-      else
-        throw InputError("ply.header.format", path, where,
-                         "unknown format " + quote_token(f) +
-                             ", expected ascii, binary_little_endian or binary_big_endian");
-      if (version != "1.0")
-        throw InputError("ply.header.format", path, where, "unsupported version " + quote_token(version) + ", expected 1.0");
+      h.format = format_line(tok, path, where);
       have_format = true;
     } else if (key == "element") {
-      Element e;
-      e.name = std::string(tok.next());
-      long long count = -1;
-      if (e.name.empty() || !io::parse_int64(tok.next(), count) || count < 0)
-        throw InputError("ply.header.syntax", path, where, "expected 'element NAME COUNT' with COUNT >= 0");
-      e.count = static_cast<std::uint64_t>(count);
-      e.header_line = line_no;
-      h.elements.push_back(std::move(e));
+      h.elements.push_back(element_line(tok, path, where, line_no));
     } else if (key == "property") {
       if (h.elements.empty())
         throw InputError("ply.header.syntax", path, where, "'property' before any 'element' line");
-      Property prop;
-      std::string_view t = tok.next();
-      if (t == "list") {
-        prop.is_list = true;
-        const std::string_view ct = tok.next();
-        const auto count_type = parse_type(ct);
-        if (!count_type)
-          throw InputError("ply.header.property_type", path, where, "unsupported list count type " + quote_token(ct));
-        if (!is_integer_type(*count_type))
-          throw InputError("ply.header.property_type", path, where, "list count type must be an integer type, not " + quote_token(ct));
-        prop.count_type = *count_type;
-        t = tok.next();
-      }
-      const auto type = parse_type(t);
-      if (!type)
-        throw InputError("ply.header.property_type", path, where,
-                         "unsupported property type " + quote_token(t) +
-                             ", expected one of char uchar short ushort int uint float double (or int8..float64)");
-      prop.type = *type;
-      prop.name = std::string(tok.next());
-      if (prop.name.empty()) throw InputError("ply.header.syntax", path, where, "property without a name");
-      h.elements.back().props.push_back(std::move(prop));
+      h.elements.back().props.push_back(property_line(tok, path, where));
     } else if (key == "end_header") {
       done = true;
     } else {

@@ -156,45 +156,53 @@ class BinaryBody {
 
   void read_element(const Element& e, bool is_vertex, bool is_face, Sink& s, const Type* dest_types) {
     const bool fixed = std::none_of(e.props.begin(), e.props.end(), [](const Property& p) { return p.is_list; });
+    if (fixed) read_fixed(e, is_vertex, s, dest_types);
+    else read_with_lists(e, is_vertex, is_face, s, dest_types);
+  }
+
+  std::size_t position() const { return pos_; }
+
+ private:
+  // Fixed-size records: check the whole element fits once, then decode without bounds checks.
+  void read_fixed(const Element& e, bool is_vertex, Sink& s, const Type* dest_types) {
     std::size_t stride = 0;
-    for (const Property& p : e.props) stride += p.is_list ? 0 : type_size(p.type);
-    // Fixed-size records: check the whole element fits once, then decode without bounds checks.
-    if (fixed) {
-      const std::size_t available = end_ - pos_;
-      if (stride != 0 && e.count > available / stride)
-        throw InputError("ply.body.truncated", path_, at_byte(pos_),
-                         "file ends inside element '" + e.name + "': " + std::to_string(e.count) + " records of " +
-                             std::to_string(stride) + " bytes need " + std::to_string(e.count * stride) +
-                             " bytes, only " + std::to_string(available) + " remain (file size " +
-                             std::to_string(end_) + ")");
-      if (!is_vertex) {
-        pos_ += static_cast<std::size_t>(e.count) * stride;
-        return;
-      }
-      // Decode a block of records column by column: the type switch stays outside the inner
-      // loops, which keeps the reader near memory speed (foundation issue: >= 300 MB/s).
-      constexpr std::size_t kBlock = 512;
-      std::vector<double> columns(11 * kBlock);
-      for (std::uint64_t b0 = 0; b0 < e.count; b0 += kBlock) {
-        const std::size_t m = static_cast<std::size_t>(std::min<std::uint64_t>(kBlock, e.count - b0));
-        const std::uint8_t* base = data_ + pos_ + static_cast<std::size_t>(b0) * stride;
-        std::size_t offset = 0;
-        for (const Property& p : e.props) {
-          if (p.dest != Dest::kSkip) decode_column(base + offset, stride, m, p.type, swap_, &columns[int(p.dest) * kBlock]);
-          offset += type_size(p.type);
-        }
-        for (std::size_t j = 0; j < m; ++j) {
-          VertexValues vv;
-          for (const Property& p : e.props)
-            if (p.dest != Dest::kSkip) vv.v[int(p.dest)] = columns[int(p.dest) * kBlock + j];
-          const std::size_t record = pos_ + static_cast<std::size_t>(b0 + j) * stride;
-          store_vertex(s, vv, dest_types, static_cast<std::size_t>(b0 + j), [&] { return at_byte(record); });
-        }
-      }
+    for (const Property& p : e.props) stride += type_size(p.type);
+    const std::size_t available = end_ - pos_;
+    if (stride != 0 && e.count > available / stride)
+      throw InputError("ply.body.truncated", path_, at_byte(pos_),
+                       "file ends inside element '" + e.name + "': " + std::to_string(e.count) + " records of " +
+                           std::to_string(stride) + " bytes need " + std::to_string(e.count * stride) +
+                           " bytes, only " + std::to_string(available) + " remain (file size " +
+                           std::to_string(end_) + ")");
+    if (!is_vertex) {
       pos_ += static_cast<std::size_t>(e.count) * stride;
       return;
     }
-    // Records with lists: walk value by value.
+    // Decode a block of records column by column: the type switch stays outside the inner
+    // loops, which keeps the reader near memory speed (foundation issue: >= 300 MB/s).
+    constexpr std::size_t kBlock = 512;
+    std::vector<double> columns(11 * kBlock);
+    for (std::uint64_t b0 = 0; b0 < e.count; b0 += kBlock) {
+      const std::size_t m = static_cast<std::size_t>(std::min<std::uint64_t>(kBlock, e.count - b0));
+      const std::uint8_t* base = data_ + pos_ + static_cast<std::size_t>(b0) * stride;
+      std::size_t offset = 0;
+      for (const Property& p : e.props) {
+        if (p.dest != Dest::kSkip) decode_column(base + offset, stride, m, p.type, swap_, &columns[int(p.dest) * kBlock]);
+        offset += type_size(p.type);
+      }
+      for (std::size_t j = 0; j < m; ++j) {
+        VertexValues vv;
+        for (const Property& p : e.props)
+          if (p.dest != Dest::kSkip) vv.v[int(p.dest)] = columns[int(p.dest) * kBlock + j];
+        const std::size_t record = pos_ + static_cast<std::size_t>(b0 + j) * stride;
+        store_vertex(s, vv, dest_types, static_cast<std::size_t>(b0 + j), [&] { return at_byte(record); });
+      }
+    }
+    pos_ += static_cast<std::size_t>(e.count) * stride;
+  }
+
+  // Records with lists: walk value by value.
+  void read_with_lists(const Element& e, bool is_vertex, bool is_face, Sink& s, const Type* dest_types) {
     std::vector<long long> indices;
     for (std::uint64_t i = 0; i < e.count; ++i) {
       const std::size_t record = pos_;
@@ -234,9 +242,6 @@ class BinaryBody {
     }
   }
 
-  std::size_t position() const { return pos_; }
-
- private:
   double read_checked(Type t, const Element& e, std::uint64_t i) {
     if (type_size(t) > end_ - pos_)
       throw InputError("ply.body.truncated", path_, at_byte(end_),
@@ -361,85 +366,79 @@ Model read_ply(const std::string& path, const ReadOptions& options, ReadReport* 
   return decode_ply(file.bytes(), path, options, report);
 }
 
-Model decode_ply(ByteView bytes, const std::string& path, const ReadOptions& options, ReadReport* report) {
-  if (bytes.empty()) throw InputError("ply.header.magic", path, "", "file is empty, expected a PLY header");
-  Header h = parse_header(bytes, path);
+namespace {
 
-  // 1. Find the vertex and face elements and map their properties.
+// What the body is read into: the vertex and face elements (face null when it carries no
+// indices) and, per vertex destination, whether a property lands there and its type.
+struct BodyLayout {
   Element* vertex = nullptr;
   Element* face = nullptr;
-  for (Element& e : h.elements) {
-    if (e.name == "vertex" && !vertex) vertex = &e;
-    if (e.name == "face" && !face) face = &e;
-  }
-  if (!vertex) throw InputError("ply.header.no_vertex", path, "", "no 'element vertex' in the header");
   Type dest_types[11] = {};
   bool seen[11] = {};
-  for (Property& p : vertex->props) {
+};
+
+// Step 1: finds the vertex and face elements and maps their properties.
+BodyLayout map_elements(Header& h, const std::string& path) {
+  BodyLayout l;
+  for (Element& e : h.elements) {
+    if (e.name == "vertex" && !l.vertex) l.vertex = &e;
+    if (e.name == "face" && !l.face) l.face = &e;
+  }
+  if (!l.vertex) throw InputError("ply.header.no_vertex", path, "", "no 'element vertex' in the header");
+  for (Property& p : l.vertex->props) {
     p.dest = vertex_dest(p.name);
     if (p.dest == Dest::kSkip) continue;
     if (p.is_list)
-      throw InputError("ply.header.property_type", path, at_line(vertex->header_line),
+      throw InputError("ply.header.property_type", path, at_line(l.vertex->header_line),
                        "vertex property '" + p.name + "' is a list, expected a scalar");
-    seen[int(p.dest)] = true;
-    dest_types[int(p.dest)] = p.type;
+    l.seen[int(p.dest)] = true;
+    l.dest_types[int(p.dest)] = p.type;
   }
-  if (!seen[int(Dest::kX)] || !seen[int(Dest::kY)] || !seen[int(Dest::kZ)])
-    throw InputError("ply.header.no_xyz", path, at_line(vertex->header_line),
+  if (!l.seen[int(Dest::kX)] || !l.seen[int(Dest::kY)] || !l.seen[int(Dest::kZ)])
+    throw InputError("ply.header.no_xyz", path, at_line(l.vertex->header_line),
                      "vertex element lacks one of the properties x, y, z");
-  if (face) {
-    for (Property& p : face->props)
+  if (l.face) {
+    for (Property& p : l.face->props)
       if (p.is_list && (p.name == "vertex_indices" || p.name == "vertex_index")) {
         if (!is_integer_type(p.type))
-          throw InputError("ply.header.property_type", path, at_line(face->header_line),
+          throw InputError("ply.header.property_type", path, at_line(l.face->header_line),
                            "face list '" + p.name + "' has non-integer type, expected an integer type");
         p.is_face_indices = true;
         break;
       }
-    if (std::none_of(face->props.begin(), face->props.end(), [](const Property& p) { return p.is_face_indices; }))
-      face = nullptr;  // a face element without indices carries nothing we use
+    if (std::none_of(l.face->props.begin(), l.face->props.end(), [](const Property& p) { return p.is_face_indices; }))
+      l.face = nullptr;  // a face element without indices carries nothing we use
   }
+  return l;
+}
 
-  io::NonFiniteFilter nonfinite(path, options);
-  Sink sink{path, nonfinite, {}, {}, {}, {}, false, false, false, vertex->count, {}, 0};
-  sink.want_normals = seen[int(Dest::kNX)] && seen[int(Dest::kNY)] && seen[int(Dest::kNZ)];
-  sink.want_colors = seen[int(Dest::kRed)] && seen[int(Dest::kGreen)] && seen[int(Dest::kBlue)];
-  sink.want_radii = seen[int(Dest::kRadius)];
-  const std::size_t reserve = static_cast<std::size_t>(std::min<std::uint64_t>(vertex->count, bytes.size()));
-  sink.positions.reserve(reserve);
-  if (sink.want_normals) sink.normals.reserve(reserve);
-  if (sink.want_colors) sink.colors.reserve(reserve);
-  if (sink.want_radii) sink.radii.reserve(reserve);
-
-  // 2. Read every element in file order (unknown ones are walked over).
+// Step 2: every element in file order (unknown ones are walked over), ascii or binary.
+void read_body(ByteView bytes, const Header& h, const BodyLayout& l, Sink& sink, const std::string& path) {
   if (h.format == Format::kAscii) {
     AsciiBody body(bytes, h, path);
-    for (const Element& e : h.elements) body.read_element(e, &e == vertex, &e == face, sink, dest_types);
+    for (const Element& e : h.elements) body.read_element(e, &e == l.vertex, &e == l.face, sink, l.dest_types);
     body.expect_end();
-  } else {
-    const bool little_host = [] {
-      const std::uint16_t one = 1;
-      std::uint8_t b;
-      std::memcpy(&b, &one, 1);
-      return b == 1;
-    }();
-    const bool swap = (h.format == Format::kBinaryLE) != little_host;
-    BinaryBody body(bytes, h.body_offset, swap, path);
-    for (const Element& e : h.elements) body.read_element(e, &e == vertex, &e == face, sink, dest_types);
-    if (body.position() != bytes.size())
-      throw InputError("ply.body.trailing", path, at_byte(body.position()),
-                       std::to_string(bytes.size() - body.position()) +
-                           " bytes after the last element; the header's counts do not match the body");
+    return;
   }
+  const bool little_host = [] {
+    const std::uint16_t one = 1;
+    std::uint8_t b;
+    std::memcpy(&b, &one, 1);
+    return b == 1;
+  }();
+  const bool swap = (h.format == Format::kBinaryLE) != little_host;
+  BinaryBody body(bytes, h.body_offset, swap, path);
+  for (const Element& e : h.elements) body.read_element(e, &e == l.vertex, &e == l.face, sink, l.dest_types);
+  if (body.position() != bytes.size())
+    throw InputError("ply.body.trailing", path, at_byte(body.position()),
+                     std::to_string(bytes.size() - body.position()) +
+                         " bytes after the last element; the header's counts do not match the body");
+}
 
-  if (report) {
-    report->format = h.format == Format::kAscii       ? "ply (ascii)"
-                     : h.format == Format::kBinaryLE ? "ply (binary_little_endian)"
-                                                      : "ply (binary_big_endian)";
-    report->polygons_triangulated += sink.polygons_triangulated;
-  }
+// Step 3: what was read, as a mesh (when there are faces) or a point set.
+Model to_model(Sink& sink, Header& h, bool mesh, io::NonFiniteFilter& nonfinite, ReadReport* report) {
   Model m;
-  if (face) {
+  if (mesh) {
     m.is_mesh = true;
     m.mesh.positions = std::move(sink.positions);
     m.mesh.normals = std::move(sink.normals);
@@ -456,6 +455,32 @@ Model decode_ply(ByteView bytes, const std::string& path, const ReadOptions& opt
     nonfinite.apply(m.points, report);
   }
   return m;
+}
+
+}  // namespace
+
+Model decode_ply(ByteView bytes, const std::string& path, const ReadOptions& options, ReadReport* report) {
+  if (bytes.empty()) throw InputError("ply.header.magic", path, "", "file is empty, expected a PLY header");
+  Header h = parse_header(bytes, path);
+  const BodyLayout l = map_elements(h, path);
+  io::NonFiniteFilter nonfinite(path, options);
+  Sink sink{path, nonfinite, {}, {}, {}, {}, false, false, false, l.vertex->count, {}, 0};
+  sink.want_normals = l.seen[int(Dest::kNX)] && l.seen[int(Dest::kNY)] && l.seen[int(Dest::kNZ)];
+  sink.want_colors = l.seen[int(Dest::kRed)] && l.seen[int(Dest::kGreen)] && l.seen[int(Dest::kBlue)];
+  sink.want_radii = l.seen[int(Dest::kRadius)];
+  const std::size_t reserve = static_cast<std::size_t>(std::min<std::uint64_t>(l.vertex->count, bytes.size()));
+  sink.positions.reserve(reserve);
+  if (sink.want_normals) sink.normals.reserve(reserve);
+  if (sink.want_colors) sink.colors.reserve(reserve);
+  if (sink.want_radii) sink.radii.reserve(reserve);
+  read_body(bytes, h, l, sink, path);
+  if (report) {
+    report->format = h.format == Format::kAscii       ? "ply (ascii)"
+                     : h.format == Format::kBinaryLE ? "ply (binary_little_endian)"
+                                                      : "ply (binary_big_endian)";
+    report->polygons_triangulated += sink.polygons_triangulated;
+  }
+  return to_model(sink, h, l.face != nullptr, nonfinite, report);
 }
 
 }  // namespace qf

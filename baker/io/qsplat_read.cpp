@@ -145,6 +145,42 @@ class FragmentDecoder {
   std::vector<Group> stack_;
 };
 
+// A comment fragment's text, one comment per line (zero padding dropped, §1.4).
+void read_comment(const std::uint8_t* h, std::int32_t len, PointSet& out) {
+  std::string text(reinterpret_cast<const char*>(h + 20), static_cast<std::size_t>(len - 20));
+  while (!text.empty() && text.back() == '\0') text.pop_back();  // zero padding (§1.4)
+  std::size_t a = 0;
+  while (a < text.size()) {
+    std::size_t b = text.find('\n', a);
+    if (b == std::string::npos) b = text.size();
+    out.comments.push_back(text.substr(a, b - a));
+    a = b + 1;
+  }
+}
+
+// A data fragment (its header checked: length, leaves, options) decoded into `out`; returns 1,
+// the fragments it counts.
+std::size_t read_data_fragment(ByteView bytes, std::size_t pos, std::int32_t len, std::int32_t leaves, std::uint32_t options,
+                               const std::string& path, PointSet& out, bool& any_color) {
+  if (len < qsplat::kHeaderBytes)
+    throw InputError("qsplat.fragment_length", path, at_byte(pos + 8), "data fragment shorter than its 40-byte header");
+  if (leaves < 0) throw InputError("qsplat.leaf_count", path, at_byte(pos + 12), "negative leaf count " + std::to_string(leaves));
+  const bool colored = (options & qsplat::kOptionColor) != 0;
+  any_color = any_color || colored;
+  const std::size_t node_size = colored ? 6 : 4;
+  // Each leaf needs its own record, so the header cannot claim more leaves than records fit.
+  if (static_cast<std::size_t>(leaves) > (static_cast<std::size_t>(len) - qsplat::kHeaderBytes) / node_size + 1)
+    throw InputError("qsplat.leaf_count", path, at_byte(pos + 12),
+                     "header claims " + std::to_string(leaves) + " leaves, more than the fragment's " +
+                         std::to_string(len) + " bytes can hold");
+  FragmentDecoder dec(bytes, pos, pos + static_cast<std::size_t>(len), path, out, colored);
+  const std::size_t found = dec.decode(leaves);
+  if (found != static_cast<std::size_t>(leaves))
+    throw InputError("qsplat.leaf_count", path, at_byte(pos + 12),
+                     "header says " + std::to_string(leaves) + " leaves, the tree holds " + std::to_string(found));
+  return 1;
+}
+
 }  // namespace
 
 PointSet read_qsplat(const std::string& path, const ReadOptions& /*options*/, ReadReport* report) {
@@ -188,35 +224,8 @@ PointSet decode_qsplat(ByteView bytes, const std::string& path, ReadReport* repo
     }
     if (options & ~(qsplat::kOptionColor | qsplat::kOptionComment))
       throw InputError("qsplat.options", path, at_byte(pos + 16), "unknown option bits " + std::to_string(options) + ", expected 0..3");
-    if (comment) {
-      std::string text(reinterpret_cast<const char*>(h + 20), static_cast<std::size_t>(len - 20));
-      while (!text.empty() && text.back() == '\0') text.pop_back();  // zero padding (§1.4)
-      std::size_t a = 0;
-      while (a < text.size()) {
-        std::size_t b = text.find('\n', a);
-        if (b == std::string::npos) b = text.size();
-        out.comments.push_back(text.substr(a, b - a));
-        a = b + 1;
-      }
-    } else {
-      if (len < qsplat::kHeaderBytes)
-        throw InputError("qsplat.fragment_length", path, at_byte(pos + 8), "data fragment shorter than its 40-byte header");
-      if (leaves < 0) throw InputError("qsplat.leaf_count", path, at_byte(pos + 12), "negative leaf count " + std::to_string(leaves));
-      const bool colored = (options & qsplat::kOptionColor) != 0;
-      any_color = any_color || colored;
-      const std::size_t node_size = colored ? 6 : 4;
-      // Each leaf needs its own record, so the header cannot claim more leaves than records fit.
-      if (static_cast<std::size_t>(leaves) > (static_cast<std::size_t>(len) - qsplat::kHeaderBytes) / node_size + 1)
-        throw InputError("qsplat.leaf_count", path, at_byte(pos + 12),
-                         "header claims " + std::to_string(leaves) + " leaves, more than the fragment's " +
-                             std::to_string(len) + " bytes can hold");
-      FragmentDecoder dec(bytes, pos, pos + static_cast<std::size_t>(len), path, out, colored);
-      const std::size_t found = dec.decode(leaves);
-      if (found != static_cast<std::size_t>(leaves))
-        throw InputError("qsplat.leaf_count", path, at_byte(pos + 12),
-                         "header says " + std::to_string(leaves) + " leaves, the tree holds " + std::to_string(found));
-      ++fragments;
-    }
+    if (comment) read_comment(h, len, out);
+    else fragments += read_data_fragment(bytes, pos, len, leaves, options, path, out, any_color);
     pos += static_cast<std::size_t>(len);
   }
   if (!any_color) out.colors.clear();
