@@ -62,53 +62,59 @@ class FragmentDecoder {
     // §2.4: the first group has an offset iff the fragment has more leaves than root children.
     open_group(start_ + qsplat::kHeaderBytes, k0, header_leaves > k0, root_center, root_radius, node_size);
     std::size_t leaves = 0, interior = 0;
-    const auto& spheres = qsplat::sphere_table();
-    const auto& normals = qsplat::normal_table();
     while (!stack_.empty()) {
       Group& g = stack_.back();
       if (g.left == 0) {
         stack_.pop_back();
         continue;
       }
-      const std::size_t rec = g.rec;
-      g.rec += node_size;
-      --g.left;
-      const std::uint8_t* p = d_ + rec;
-      const unsigned w0 = (unsigned(p[0]) << 8) | p[1];
-      const unsigned w1 = (unsigned(p[2]) << 8) | p[3];
-      const unsigned sphere = w0 >> 3, cc = w0 & 3, grand = (w0 >> 2) & 1;
-      if (sphere >= static_cast<unsigned>(qsplat::kSphereEntries))
-        fail("qsplat.sphere_index", rec, "sphere index " + std::to_string(sphere) + " is invalid, expected 0.." +
-                                             std::to_string(qsplat::kSphereEntries - 1));
-      float c[3], r;
-      qsplat::decode_sphere(spheres[sphere], g.center, g.radius, c, r);
-      if (cc == 0) {
-        if (grand) fail("qsplat.node", rec, "leaf record with the has-grandchildren flag set");
-        out_.positions.push_back({c[0], c[1], c[2]});
-        out_.radii.push_back(r);
-        out_.normals.push_back(normals[w1 >> 2]);
-        // Uncoloured fragments get white (QSplat's default); the caller drops colours if no fragment had any.
-        out_.colors.push_back(colored_ ? qsplat::decode_color(static_cast<std::uint16_t>((p[4] << 8) | p[5]))
-                                       : Rgb8{255, 255, 255});
-        if (++leaves > static_cast<std::size_t>(header_leaves))
-          fail("qsplat.leaf_count", rec, "tree holds more leaves than the header's " + std::to_string(header_leaves));
-        continue;
-      }
-      if (!g.has_offset)
-        fail("qsplat.node", rec, "interior record in a group whose parent was marked as having no grandchildren");
-      // Every interior node has at least two children, so there are fewer interior nodes than
-      // leaves; this also bounds the work on a file whose offsets make groups overlap.
-      if (++interior > static_cast<std::size_t>(header_leaves))
-        fail("qsplat.leaf_count", rec, "tree holds more interior nodes than the header's " + std::to_string(header_leaves) + " leaves allow");
-      const int count = static_cast<int>(cc) + 1;
-      const std::size_t child = g.next_child;
-      g.next_child += (grand ? 4 : 0) + node_size * static_cast<std::size_t>(count);
-      open_group(child, count, grand != 0, c, r, node_size);  // may reallocate stack_: g is not used after
+      read_record(g, header_leaves, node_size, leaves, interior);  // may reallocate stack_: g is not used after
     }
     return leaves;
   }
 
  private:
+  // The next record of group g: a leaf becomes a point; an interior node opens its children's
+  // group. Counts both against the header's leaves.
+  void read_record(Group& g, std::int32_t header_leaves, std::size_t node_size, std::size_t& leaves, std::size_t& interior) {
+    const auto& spheres = qsplat::sphere_table();
+    const auto& normals = qsplat::normal_table();
+    const std::size_t rec = g.rec;
+    g.rec += node_size;
+    --g.left;
+    const std::uint8_t* p = d_ + rec;
+    const unsigned w0 = (unsigned(p[0]) << 8) | p[1];
+    const unsigned w1 = (unsigned(p[2]) << 8) | p[3];
+    const unsigned sphere = w0 >> 3, cc = w0 & 3, grand = (w0 >> 2) & 1;
+    if (sphere >= static_cast<unsigned>(qsplat::kSphereEntries))
+      fail("qsplat.sphere_index", rec, "sphere index " + std::to_string(sphere) + " is invalid, expected 0.." +
+                                           std::to_string(qsplat::kSphereEntries - 1));
+    float c[3], r;
+    qsplat::decode_sphere(spheres[sphere], g.center, g.radius, c, r);
+    if (cc == 0) {
+      if (grand) fail("qsplat.node", rec, "leaf record with the has-grandchildren flag set");
+      out_.positions.push_back({c[0], c[1], c[2]});
+      out_.radii.push_back(r);
+      out_.normals.push_back(normals[w1 >> 2]);
+      // Uncoloured fragments get white (QSplat's default); the caller drops colours if no fragment had any.
+      out_.colors.push_back(colored_ ? qsplat::decode_color(static_cast<std::uint16_t>((p[4] << 8) | p[5]))
+                                     : Rgb8{255, 255, 255});
+      if (++leaves > static_cast<std::size_t>(header_leaves))
+        fail("qsplat.leaf_count", rec, "tree holds more leaves than the header's " + std::to_string(header_leaves));
+      return;
+    }
+    if (!g.has_offset)
+      fail("qsplat.node", rec, "interior record in a group whose parent was marked as having no grandchildren");
+    // Every interior node has at least two children, so there are fewer interior nodes than
+    // leaves; this also bounds the work on a file whose offsets make groups overlap.
+    if (++interior > static_cast<std::size_t>(header_leaves))
+      fail("qsplat.leaf_count", rec, "tree holds more interior nodes than the header's " + std::to_string(header_leaves) + " leaves allow");
+    const int count = static_cast<int>(cc) + 1;
+    const std::size_t child = g.next_child;
+    g.next_child += (grand ? 4 : 0) + node_size * static_cast<std::size_t>(count);
+    open_group(child, count, grand != 0, c, r, node_size);  // may reallocate stack_: g is not used after
+  }
+
   // Checks a group's bytes and pushes it; its child offset (if any) must point forward into the fragment.
   void open_group(std::size_t at, int count, bool has_offset, const float center[3], float radius, std::size_t node_size) {
     Group g{at, count, 0, has_offset, {center[0], center[1], center[2]}, radius};
