@@ -6,6 +6,7 @@
 #include "runtime_gl/draw_gl11.h"
 
 #include "runtime_gl/draw_engine.h"
+#include "runtime_gl/mip_chain.h"
 
 #include <GL/gl.h>
 #include <GL/glext.h>
@@ -29,37 +30,6 @@ bool normalizing(const DrawSettings& s) { return normalize_threshold(s) > 0; }
 constexpr float kNormalizeHeadroom = 0.5f;
 
 namespace {
-
-// Mip chain by 2x2 box filtering (GL 1.1 has no mipmap generation). With `premultiply` the texels
-// are premultiplied by alpha first, which additive blending needs and which filters correctly.
-std::vector<Image> mip_chain(const Image& base, bool premultiply) {
-  std::vector<Image> chain{base};
-  if (premultiply)
-    for (std::size_t i = 0; i < chain[0].rgba.size(); i += 4)
-      for (int c = 0; c < 3; ++c)
-        chain[0].rgba[i + c] = static_cast<std::uint8_t>((chain[0].rgba[i + c] * chain[0].rgba[i + 3] + 127) / 255);
-  while (chain.back().width > 1 || chain.back().height > 1) {
-    const Image& a = chain.back();
-    Image b;
-    b.width = std::max(1, a.width / 2);
-    b.height = std::max(1, a.height / 2);
-    b.rgba.resize(static_cast<std::size_t>(b.width) * static_cast<std::size_t>(b.height) * 4);
-    for (int y = 0; y < b.height; ++y)
-      for (int x = 0; x < b.width; ++x)
-        for (int c = 0; c < 4; ++c) {
-          int sum = 0;
-          for (int dy = 0; dy < 2; ++dy)
-            for (int dx = 0; dx < 2; ++dx) {
-              const int sx = std::min(a.width - 1, 2 * x + dx), sy = std::min(a.height - 1, 2 * y + dy);
-              sum += a.rgba[(static_cast<std::size_t>(sy) * static_cast<std::size_t>(a.width) + static_cast<std::size_t>(sx)) * 4 + c];
-            }
-          b.rgba[(static_cast<std::size_t>(y) * static_cast<std::size_t>(b.width) + static_cast<std::size_t>(x)) * 4 + c] =
-              static_cast<std::uint8_t>((sum + 2) / 4);
-        }
-    chain.push_back(std::move(b));
-  }
-  return chain;
-}
 
 GLuint upload_texture(const Image& image, bool premultiply) {
   GLuint t = 0;
@@ -121,6 +91,38 @@ float median_half_diagonal(const ImpostorScene& s) {
   if (h.empty()) return 0;
   std::nth_element(h.begin(), h.begin() + static_cast<std::ptrdiff_t>(h.size() / 2), h.end());
   return h[h.size() / 2];
+}
+
+// One pass's state block (blend_order.h Pass): colour and depth masks, depth test, the view
+// (offset for the depth-offset pass), blending, the alpha test, and the colour the texels are
+// multiplied by (the premultiplied passes' strength a, on all four channels).
+void set_pass_state(Pass pass, const Mat4& view, float alpha_ref, float strength) {
+  const bool color = pass != Pass::kLock && pass != Pass::kDepthOffset;
+  const bool depth_test = pass != Pass::kDarkenHard && pass != Pass::kDarkenSoft && pass != Pass::kAddNoDepth;
+  const bool depth_write = pass == Pass::kLock || pass == Pass::kDepthOffset || pass == Pass::kOpaque;
+  glColorMask(color, color, color, color);
+  glDepthMask(depth_write ? GL_TRUE : GL_FALSE);
+  if (depth_test) glEnable(GL_DEPTH_TEST);
+  else glDisable(GL_DEPTH_TEST);
+  glLoadMatrixf(view.data());
+  // Blending. Premultiplied texels times (a, a, a, a): colour and coverage both scale by a.
+  switch (pass) {
+    case Pass::kColor:
+    case Pass::kAddNoDepth: glEnable(GL_BLEND), glBlendFunc(GL_ONE, GL_ONE); break;
+    case Pass::kDarkenHard: glEnable(GL_BLEND), glBlendFunc(GL_ZERO, GL_ZERO); break;
+    case Pass::kDarkenSoft: glEnable(GL_BLEND), glBlendFunc(GL_ZERO, GL_ONE_MINUS_SRC_ALPHA); break;
+    default: glDisable(GL_BLEND); break;
+  }
+  // Alpha test.
+  glEnable(GL_ALPHA_TEST);
+  switch (pass) {
+    case Pass::kLock: glAlphaFunc(GL_GREATER, alpha_ref); break;
+    case Pass::kDepthOffset:
+    case Pass::kDarkenHard: glAlphaFunc(GL_GREATER, 0.0f); break;
+    case Pass::kOpaque: glAlphaFunc(GL_GREATER, alpha_ref); break;
+    default: glDisable(GL_ALPHA_TEST); break;
+  }
+  glColor4f(strength, strength, strength, strength);
 }
 
 }  // namespace
@@ -448,33 +450,7 @@ void Renderer::Impl::draw_impostor(const Camera& c, const DrawSettings& s, DrawS
     if (static_cast<int>(op.pass) != bound_pass) {
       ++stats.state_changes;
       bound_pass = static_cast<int>(op.pass);
-      const bool color = op.pass != Pass::kLock && op.pass != Pass::kDepthOffset;
-      const bool depth_test = op.pass != Pass::kDarkenHard && op.pass != Pass::kDarkenSoft && op.pass != Pass::kAddNoDepth;
-      const bool depth_write = op.pass == Pass::kLock || op.pass == Pass::kDepthOffset || op.pass == Pass::kOpaque;
-      glColorMask(color, color, color, color);
-      glDepthMask(depth_write ? GL_TRUE : GL_FALSE);
-      if (depth_test) glEnable(GL_DEPTH_TEST);
-      else glDisable(GL_DEPTH_TEST);
-      glLoadMatrixf(op.pass == Pass::kDepthOffset ? view_offset.data() : c.view().data());
-      // Blending. Premultiplied texels times (a, a, a, a): colour and coverage both scale by a.
-      switch (op.pass) {
-        case Pass::kColor:
-        case Pass::kAddNoDepth: glEnable(GL_BLEND), glBlendFunc(GL_ONE, GL_ONE); break;
-        case Pass::kDarkenHard: glEnable(GL_BLEND), glBlendFunc(GL_ZERO, GL_ZERO); break;
-        case Pass::kDarkenSoft: glEnable(GL_BLEND), glBlendFunc(GL_ZERO, GL_ONE_MINUS_SRC_ALPHA); break;
-        default: glDisable(GL_BLEND); break;
-      }
-      // Alpha test.
-      glEnable(GL_ALPHA_TEST);
-      switch (op.pass) {
-        case Pass::kLock: glAlphaFunc(GL_GREATER, alpha_ref); break;
-        case Pass::kDepthOffset:
-        case Pass::kDarkenHard: glAlphaFunc(GL_GREATER, 0.0f); break;
-        case Pass::kOpaque: glAlphaFunc(GL_GREATER, alpha_ref); break;
-        default: glDisable(GL_ALPHA_TEST); break;
-      }
-      if (premult) glColor4f(a, a, a, a);
-      else glColor4f(1, 1, 1, 1);
+      set_pass_state(op.pass, op.pass == Pass::kDepthOffset ? view_offset : c.view(), alpha_ref, premult ? a : 1.0f);
     }
     const Item& it = sc.items[op.item];
     const GLuint tex = (premult ? premultiplied : straight)[it.texture];

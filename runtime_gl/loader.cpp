@@ -1,6 +1,8 @@
-// Loading scenes for runtime_gl: .glb/.gltf through tinygltf (the one runtime file that includes
-// it). References made from input files are tools/reference_scene.
+// Loading scenes for runtime_gl: .glb/.gltf through tinygltf (with engine_loader.cpp, which reads
+// the engine's view of a file, the runtime files that include it; shared accessors in
+// gltf_read.h). References made from input files are tools/reference_scene.
 #include "runtime_gl/loader.h"
+#include "runtime_gl/gltf_read.h"
 
 #include <tiny_gltf.h>
 
@@ -21,102 +23,7 @@
 namespace qf::render {
 namespace {
 
-[[noreturn]] void fail(const std::string& path, const std::string& code, const std::string& detail) {
-  throw InputError("render.gltf." + code, path, "", detail);
-}
-
-// Reads an accessor as floats (`components` per element) or as indices, honouring byteStride.
-struct AccessorReader {
-  const tinygltf::Model& m;
-  const std::string& path;
-
-  // The accessor `index` names, or a clear error when it names none.
-  const tinygltf::Accessor& accessor(int index) const {
-    if (index < 0 || index >= static_cast<int>(m.accessors.size()))
-      fail(path, "accessor", "accessor " + std::to_string(index) + " does not exist (" + std::to_string(m.accessors.size()) + " accessors)");
-    return m.accessors[static_cast<std::size_t>(index)];
-  }
-
-  const unsigned char* base(const tinygltf::Accessor& a, std::size_t elem_size, std::size_t& stride) const {
-    if (a.bufferView < 0 || a.bufferView >= static_cast<int>(m.bufferViews.size())) fail(path, "accessor", "accessor without a valid bufferView");
-    const tinygltf::BufferView& v = m.bufferViews[static_cast<std::size_t>(a.bufferView)];
-    if (v.buffer < 0 || v.buffer >= static_cast<int>(m.buffers.size()))
-      fail(path, "accessor", "bufferView " + std::to_string(a.bufferView) + " names buffer " + std::to_string(v.buffer) + ", which does not exist");
-    const tinygltf::Buffer& b = m.buffers[static_cast<std::size_t>(v.buffer)];
-    stride = v.byteStride ? v.byteStride : elem_size;
-    // In this order so that no product wraps: a count the buffer cannot hold fails before it is multiplied.
-    const std::size_t start = a.byteOffset + v.byteOffset;
-    if (start > b.data.size() || (a.count && ((a.count - 1) > (b.data.size() - start) / std::max<std::size_t>(stride, 1) ||
-                                              (a.count - 1) * stride + elem_size > b.data.size() - start)))
-      fail(path, "accessor", "accessor reaches past the end of its buffer");
-    return b.data.data() + v.byteOffset + a.byteOffset;
-  }
-
-  std::vector<float> floats(int index, int components) const {
-    const tinygltf::Accessor& a = accessor(index);
-    if (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || tinygltf::GetNumComponentsInType(a.type) != components)
-      fail(path, "accessor", "expected a float accessor with " + std::to_string(components) + " components");
-    std::size_t stride = 0;
-    const unsigned char* p = base(a, sizeof(float) * static_cast<std::size_t>(components), stride);
-    std::vector<float> out(a.count * static_cast<std::size_t>(components));
-    for (std::size_t i = 0; i < a.count; ++i)
-      std::memcpy(&out[i * static_cast<std::size_t>(components)], p + i * stride, sizeof(float) * static_cast<std::size_t>(components));
-    return out;
-  }
-
-  std::vector<std::uint32_t> indices(int index) const {
-    const tinygltf::Accessor& a = accessor(index);
-    const int size = tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(a.componentType));
-    if (a.type != TINYGLTF_TYPE_SCALAR || (size != 1 && size != 2 && size != 4)) fail(path, "accessor", "bad index accessor");
-    std::size_t stride = 0;
-    const unsigned char* p = base(a, static_cast<std::size_t>(size), stride);
-    std::vector<std::uint32_t> out(a.count);
-    for (std::size_t i = 0; i < a.count; ++i) {
-      std::uint32_t v = 0;
-      std::memcpy(&v, p + i * stride, static_cast<std::size_t>(size));  // little-endian host
-      out[i] = v;
-    }
-    return out;
-  }
-};
-
-// A number of an extension as the integer type T (int or uint32_t, exact in a double), or a clear
-// error when T cannot hold it: casting an out-of-range or NaN double is undefined (found by the glb
-// fuzz target).
-template <class T>
-T to_integer(double d, const std::string& path, const char* key) {
-  static_assert(std::is_integral_v<T> && sizeof(T) <= 4, "bounds must be exact in a double");
-  if (!(d >= static_cast<double>(std::numeric_limits<T>::lowest()) && d <= static_cast<double>(std::numeric_limits<T>::max())))
-    fail(path, "extension", std::string(key) + ": " + std::to_string(d) + " is out of range");
-  return static_cast<T>(d);
-}
-
-template <class T>
-std::vector<T> number_array(const tinygltf::Value& ext, const char* key, const std::string& path) {
-  std::vector<T> out;
-  if (!ext.Has(key)) return out;
-  const tinygltf::Value& a = ext.Get(key);
-  for (std::size_t i = 0; i < a.ArrayLen(); ++i) {
-    const double d = a.Get(static_cast<int>(i)).GetNumberAsDouble();
-    if constexpr (std::is_integral_v<T>) out.push_back(to_integer<T>(d, path, key));
-    else out.push_back(static_cast<T>(d));
-  }
-  return out;
-}
-
-Image to_image(const tinygltf::Image& img, const std::string& path) {
-  if (img.bits != 8 || (img.component != 3 && img.component != 4) || img.width <= 0 || img.height <= 0)
-    fail(path, "image", "image '" + img.name + "' is not an 8-bit RGB or RGBA image");
-  Image out;
-  out.width = img.width;
-  out.height = img.height;
-  const std::size_t n = static_cast<std::size_t>(img.width) * static_cast<std::size_t>(img.height);
-  out.rgba.resize(n * 4);
-  for (std::size_t i = 0; i < n; ++i)
-    for (int c = 0; c < 4; ++c)
-      out.rgba[i * 4 + c] = c < img.component ? img.image[i * static_cast<std::size_t>(img.component) + c] : 255;
-  return out;
-}
+using namespace gltf;
 
 // A 1x1 white texture for materials without a base colour texture.
 Image white_image() { return Image{1, 1, {255, 255, 255, 255}}; }
@@ -246,236 +153,6 @@ ClusterScene cluster_scene(const tinygltf::Model& m, const std::string& path) {
 // The impostor level of the file (or of its mesh `only_mesh` alone, >= 0).
 ImpostorScene impostor_scene(const tinygltf::Model& m, const std::string& path, int only_mesh = -1);
 
-// --- the engine's view of a file ---------------------------------------------------------------
-
-// A vertex attribute as floats, `components` per vertex: FLOAT, or normalized UNSIGNED_BYTE /
-// UNSIGNED_SHORT (glTF 2.0 3.7.2.1 allows these for COLOR_n and TEXCOORD_n). VEC3 colours get
-// alpha 1 when `components` is 4.
-std::vector<float> attribute_floats(const AccessorReader& read, int index, int components) {
-  const tinygltf::Accessor& a = read.accessor(index);
-  const int have = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(a.type));
-  if (a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT && have == components) return read.floats(index, components);
-  const int size = a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ? 1 : a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 2 : 0;
-  const bool colour_rgb = components == 4 && have == 3;
-  if (!(have == components || colour_rgb) || (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && (size == 0 || !a.normalized)))
-    fail(read.path, "accessor", "accessor " + std::to_string(index) + ": expected " + std::to_string(components) +
-                                    " float or normalized unsigned components");
-  const std::size_t elem = static_cast<std::size_t>(have) * (size ? static_cast<std::size_t>(size) : 4);
-  std::size_t stride = 0;
-  const unsigned char* p = read.base(a, elem, stride);
-  std::vector<float> out;
-  out.reserve(a.count * static_cast<std::size_t>(components));
-  for (std::size_t i = 0; i < a.count; ++i) {
-    for (int c = 0; c < have; ++c) {
-      const unsigned char* q = p + i * stride + static_cast<std::size_t>(c) * (size ? static_cast<std::size_t>(size) : 4);
-      float v = 0;
-      if (size == 1) v = *q / 255.0f;
-      else if (size == 2) {
-        std::uint16_t u = 0;
-        std::memcpy(&u, q, 2);
-        v = u / 65535.0f;
-      } else {
-        std::memcpy(&v, q, 4);
-      }
-      out.push_back(v);
-    }
-    if (colour_rgb) out.push_back(1.0f);
-  }
-  return out;
-}
-
-using Mat4d = std::array<double, 16>;  // column-major, as glTF stores node matrices
-
-Mat4d multiply(const Mat4d& a, const Mat4d& b) {
-  Mat4d r{};
-  for (int c = 0; c < 4; ++c)
-    for (int rr = 0; rr < 4; ++rr)
-      for (int k = 0; k < 4; ++k) r[static_cast<std::size_t>(c * 4 + rr)] += a[static_cast<std::size_t>(k * 4 + rr)] * b[static_cast<std::size_t>(c * 4 + k)];
-  return r;
-}
-
-// A node's local transform: its matrix, else T * R * S (glTF 2.0 3.5.3).
-Mat4d local_transform(const tinygltf::Node& n) {
-  Mat4d m{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-  if (n.matrix.size() == 16) {
-    std::copy(n.matrix.begin(), n.matrix.end(), m.begin());
-    return m;
-  }
-  const double x = n.rotation.size() == 4 ? n.rotation[0] : 0, y = n.rotation.size() == 4 ? n.rotation[1] : 0,
-               z = n.rotation.size() == 4 ? n.rotation[2] : 0, w = n.rotation.size() == 4 ? n.rotation[3] : 1;
-  const double sx = n.scale.size() == 3 ? n.scale[0] : 1, sy = n.scale.size() == 3 ? n.scale[1] : 1, sz = n.scale.size() == 3 ? n.scale[2] : 1;
-  const Mat4d r{1 - 2 * (y * y + z * z), 2 * (x * y + z * w), 2 * (x * z - y * w), 0,
-                2 * (x * y - z * w), 1 - 2 * (x * x + z * z), 2 * (y * z + x * w), 0,
-                2 * (x * z + y * w), 2 * (y * z - x * w), 1 - 2 * (x * x + y * y), 0,
-                0, 0, 0, 1};
-  for (int k = 0; k < 4; ++k) {
-    m[static_cast<std::size_t>(k)] = r[static_cast<std::size_t>(k)] * sx;
-    m[static_cast<std::size_t>(4 + k)] = r[static_cast<std::size_t>(4 + k)] * sy;
-    m[static_cast<std::size_t>(8 + k)] = r[static_cast<std::size_t>(8 + k)] * sz;
-  }
-  if (n.translation.size() == 3) m[12] = n.translation[0], m[13] = n.translation[1], m[14] = n.translation[2];
-  return m;
-}
-
-EngineMaterial engine_material(const tinygltf::Model& m, int index, int& uv_set) {
-  EngineMaterial out;  // glTF's default material
-  uv_set = 0;
-  if (index < 0 || index >= static_cast<int>(m.materials.size())) return out;
-  const tinygltf::Material& mat = m.materials[static_cast<std::size_t>(index)];
-  const tinygltf::PbrMetallicRoughness& pbr = mat.pbrMetallicRoughness;
-  for (std::size_t c = 0; c < 4 && c < pbr.baseColorFactor.size(); ++c) out.base_color[c] = static_cast<float>(pbr.baseColorFactor[c]);
-  auto image_of = [&](int texture) {
-    if (texture < 0 || texture >= static_cast<int>(m.textures.size())) return -1;
-    const int src = m.textures[static_cast<std::size_t>(texture)].source;
-    return src >= 0 && src < static_cast<int>(m.images.size()) ? src : -1;
-  };
-  auto wraps_of = [&](int texture, int& s, int& t) {
-    if (texture < 0 || texture >= static_cast<int>(m.textures.size())) return;
-    const int sampler = m.textures[static_cast<std::size_t>(texture)].sampler;
-    if (sampler < 0 || sampler >= static_cast<int>(m.samplers.size())) return;
-    s = m.samplers[static_cast<std::size_t>(sampler)].wrapS;
-    t = m.samplers[static_cast<std::size_t>(sampler)].wrapT;
-  };
-  out.base_texture = image_of(pbr.baseColorTexture.index);
-  if (out.base_texture >= 0) uv_set = pbr.baseColorTexture.texCoord;
-  wraps_of(pbr.baseColorTexture.index, out.base_wrap_s, out.base_wrap_t);
-  wraps_of(mat.normalTexture.index, out.normal_wrap_s, out.normal_wrap_t);
-  // KHR_texture_transform of the base colour texture (three.js applies it): uv' = T R S uv.
-  const auto tt = pbr.baseColorTexture.extensions.find("KHR_texture_transform");
-  if (tt != pbr.baseColorTexture.extensions.end() && tt->second.IsObject()) {
-    const tinygltf::Value& e = tt->second;
-    auto num = [](const tinygltf::Value& v, int i, double fallback) {
-      return v.IsArray() && static_cast<std::size_t>(i) < v.ArrayLen() && v.Get(i).IsNumber() ? v.Get(i).GetNumberAsDouble() : fallback;
-    };
-    const double r = e.Get("rotation").IsNumber() ? e.Get("rotation").GetNumberAsDouble() : 0.0;
-    const double sx = num(e.Get("scale"), 0, 1), sy = num(e.Get("scale"), 1, 1);
-    out.uv_transform = {static_cast<float>(std::cos(r) * sx), static_cast<float>(std::sin(r) * sy),
-                        static_cast<float>(num(e.Get("offset"), 0, 0)), static_cast<float>(-std::sin(r) * sx),
-                        static_cast<float>(std::cos(r) * sy), static_cast<float>(num(e.Get("offset"), 1, 0))};
-    if (e.Get("texCoord").IsInt()) uv_set = e.Get("texCoord").GetNumberAsInt();
-  }
-  out.metallic = static_cast<float>(pbr.metallicFactor);
-  out.roughness = static_cast<float>(pbr.roughnessFactor);
-  out.normal_texture = image_of(mat.normalTexture.index);
-  out.normal_scale = static_cast<float>(mat.normalTexture.scale);
-  out.alpha = mat.alphaMode == "MASK" ? EngineMaterial::Alpha::kMask : mat.alphaMode == "BLEND" ? EngineMaterial::Alpha::kBlend : EngineMaterial::Alpha::kOpaque;
-  out.alpha_cutoff = static_cast<float>(mat.alphaCutoff);
-  out.double_sided = mat.doubleSided;
-  return out;
-}
-
-// One primitive of a mesh, placed by `world`.
-EnginePrimitive engine_primitive(const AccessorReader& read, const tinygltf::Primitive& prim, const Mat4d& world) {
-  EnginePrimitive p;
-  if (prim.mode == TINYGLTF_MODE_LINE) p.mode = EnginePrimitive::Mode::kLines;
-  else if (prim.mode == TINYGLTF_MODE_POINTS) p.mode = EnginePrimitive::Mode::kPoints;
-  int uv_set = 0;
-  p.material = engine_material(read.m, prim.material, uv_set);
-  auto attribute = [&](const std::string& name, int components) {
-    const auto it = prim.attributes.find(name);
-    return it == prim.attributes.end() ? std::vector<float>() : attribute_floats(read, it->second, components);
-  };
-  p.positions = attribute("POSITION", 3);
-  const std::size_t n = p.positions.size() / 3;
-  p.normals = attribute("NORMAL", 3);
-  p.tangents = attribute("TANGENT", 4);
-  p.uvs = attribute("TEXCOORD_" + std::to_string(uv_set), 2);
-  p.colors = attribute("COLOR_0", 4);
-  if ((!p.normals.empty() && p.normals.size() != n * 3) || (!p.tangents.empty() && p.tangents.size() != n * 4) ||
-      (!p.uvs.empty() && p.uvs.size() != n * 2) || (!p.colors.empty() && p.colors.size() != n * 4))
-    fail(read.path, "mesh", "a primitive's attributes differ in count from POSITION");
-  const std::array<float, 6>& k = p.material.uv_transform;
-  for (std::size_t v = 0; v + 1 < p.uvs.size(); v += 2) {
-    const float u0 = p.uvs[v], v0 = p.uvs[v + 1];
-    p.uvs[v] = k[0] * u0 + k[1] * v0 + k[2];
-    p.uvs[v + 1] = k[3] * u0 + k[4] * v0 + k[5];
-  }
-  if (prim.indices >= 0) {
-    p.indices = read.indices(prim.indices);
-    for (std::uint32_t i : p.indices)
-      if (i >= n) fail(read.path, "mesh", "index " + std::to_string(i) + " out of range (" + std::to_string(n) + " vertices)");
-  } else {
-    for (std::uint32_t i = 0; i < n; ++i) p.indices.push_back(i);
-  }
-  // Strips and fans as triangle lists (every other strip triangle turned back to the first's winding).
-  if (prim.mode == TINYGLTF_MODE_TRIANGLE_STRIP || prim.mode == TINYGLTF_MODE_TRIANGLE_FAN) {
-    std::vector<std::uint32_t> list;
-    for (std::size_t i = 0; i + 2 < p.indices.size(); ++i) {
-      const std::size_t f = prim.mode == TINYGLTF_MODE_TRIANGLE_FAN ? 0 : i;
-      if (prim.mode == TINYGLTF_MODE_TRIANGLE_FAN) list.insert(list.end(), {p.indices[f], p.indices[i + 1], p.indices[i + 2]});
-      else if (i % 2 == 0) list.insert(list.end(), {p.indices[i], p.indices[i + 1], p.indices[i + 2]});
-      else list.insert(list.end(), {p.indices[i + 1], p.indices[i], p.indices[i + 2]});
-    }
-    p.indices = std::move(list);
-  }
-  // World space: points by the matrix, normals by its inverse transpose (the cofactor matrix,
-  // normalised), tangents by the matrix; a negative determinant mirrors, so flip the winding.
-  const Mat4d& w = world;
-  auto at = [&](int r, int c) { return w[static_cast<std::size_t>(c * 4 + r)]; };
-  const double det = at(0, 0) * (at(1, 1) * at(2, 2) - at(1, 2) * at(2, 1)) - at(0, 1) * (at(1, 0) * at(2, 2) - at(1, 2) * at(2, 0)) +
-                     at(0, 2) * (at(1, 0) * at(2, 1) - at(1, 1) * at(2, 0));
-  for (std::size_t v = 0; v < n; ++v) {
-    const double x = p.positions[v * 3], y = p.positions[v * 3 + 1], z = p.positions[v * 3 + 2];
-    for (int r = 0; r < 3; ++r) p.positions[v * 3 + static_cast<std::size_t>(r)] = static_cast<float>(at(r, 0) * x + at(r, 1) * y + at(r, 2) * z + at(r, 3));
-  }
-  auto cof = [&](int r, int c) {  // cofactor of the 3x3 part
-    const int r1 = (r + 1) % 3, r2 = (r + 2) % 3, c1 = (c + 1) % 3, c2 = (c + 2) % 3;
-    return at(r1, c1) * at(r2, c2) - at(r1, c2) * at(r2, c1);
-  };
-  // Directions (xyz of every `stride` floats) through a 3x3 matrix m(r, c), renormalised.
-  auto turn = [](std::vector<float>& d, std::size_t stride, auto&& m) {
-    for (std::size_t v = 0; v + 2 < d.size(); v += stride) {
-      const Vec3f q{d[v], d[v + 1], d[v + 2]};
-      Vec3f t;
-      for (int r = 0; r < 3; ++r) t[r] = static_cast<float>(m(r, 0) * q.x + m(r, 1) * q.y + m(r, 2) * q.z);
-      t = normalized(t);
-      std::copy_n(&t.x, 3, &d[v]);
-    }
-  };
-  turn(p.normals, 3, cof);
-  turn(p.tangents, 4, at);
-  if (det < 0 && p.mode == EnginePrimitive::Mode::kTriangles)
-    for (std::size_t t = 0; t + 2 < p.indices.size(); t += 3) std::swap(p.indices[t + 1], p.indices[t + 2]);
-  return p;
-}
-
-// The root nodes of the default scene (scene 0 when none is named; none when there are no scenes).
-std::vector<int> scene_roots(const tinygltf::Model& m) {
-  const int scene = m.defaultScene >= 0 ? m.defaultScene : (m.scenes.empty() ? -1 : 0);
-  if (scene >= 0 && scene < static_cast<int>(m.scenes.size())) return m.scenes[static_cast<std::size_t>(scene)].nodes;
-  return {};
-}
-
-// The node trees under `roots`, every mesh primitive placed by its composed transform.
-EngineScene engine_scene(const tinygltf::Model& m, const std::string& path, const std::vector<int>& roots) {
-  EngineScene s;
-  for (const tinygltf::Image& img : m.images) s.images.push_back(to_image(img, path));
-  AccessorReader read{m, path};
-  std::vector<int> depth(m.nodes.size(), -1);  // on the current path: a cycle guard
-  const Mat4d identity{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-  auto visit = [&](auto&& self, int node, const Mat4d& parent, int level) -> void {
-    if (node < 0 || node >= static_cast<int>(m.nodes.size())) fail(path, "nodes", "node " + std::to_string(node) + " does not exist");
-    if (depth[static_cast<std::size_t>(node)] >= 0) fail(path, "nodes", "nodes[" + std::to_string(node) + "] is its own ancestor (a cycle)");
-    depth[static_cast<std::size_t>(node)] = level;
-    const tinygltf::Node& n = m.nodes[static_cast<std::size_t>(node)];
-    const Mat4d world = multiply(parent, local_transform(n));
-    if (n.mesh >= 0 && n.mesh < static_cast<int>(m.meshes.size()))
-      for (const tinygltf::Primitive& prim : m.meshes[static_cast<std::size_t>(n.mesh)].primitives)
-        if (prim.mode == TINYGLTF_MODE_TRIANGLES || prim.mode == TINYGLTF_MODE_TRIANGLE_STRIP ||
-            prim.mode == TINYGLTF_MODE_TRIANGLE_FAN || prim.mode == TINYGLTF_MODE_LINE || prim.mode == TINYGLTF_MODE_POINTS)
-          s.primitives.push_back(engine_primitive(read, prim, world));
-    for (int child : n.children) self(self, child, world, level + 1);
-    depth[static_cast<std::size_t>(node)] = -1;
-  };
-  for (int r : roots) visit(visit, r, identity, 0);
-  for (const EnginePrimitive& p : s.primitives) {
-    for (std::size_t v = 0; v + 2 < p.positions.size(); v += 3) s.bounds.add({p.positions[v], p.positions[v + 1], p.positions[v + 2]});
-    for (int t : {p.material.base_texture, p.material.normal_texture})
-      if (t >= static_cast<int>(s.images.size())) fail(path, "image", "a material names a missing image");
-  }
-  return s;
-}
-
 }  // namespace
 
 // A combined LOD file (`qf-bake --lod-file`): the scene's one root node lists its lower LODs
@@ -532,26 +209,17 @@ ImpostorScene load_gltf(const std::string& path) { return impostor_scene(read_gl
 
 namespace {
 
-ImpostorScene impostor_scene(const tinygltf::Model& m, const std::string& path, int only_mesh) {
-  ImpostorScene s;
-  AccessorReader read{m, path};
-  // Textures: one per glTF image, plus a white one at the end for untextured materials.
-  for (const tinygltf::Image& img : m.images) s.textures.push_back(to_image(img, path));
-  const auto white = static_cast<std::uint32_t>(s.textures.size());
-  s.textures.push_back(white_image());
-  if (!m.materials.empty()) {
-    s.alpha_mode = m.materials[0].alphaMode;
-    s.alpha_cutoff = static_cast<float>(m.materials[0].alphaCutoff);
-    s.double_sided = m.materials[0].doubleSided;
-  }
+// The triangles of one material, in file order: the first vertex of each.
+struct TriangleGroup {
+  int material;
+  std::vector<std::uint32_t> first;
+};
 
-  // 1. Every triangle primitive of every mesh, expanded to flat vertex arrays; `groups` lists the
-  //    items' triangles per material, in file order.
-  struct Group {
-    int material;
-    std::vector<std::uint32_t> first;  // first vertex of each triangle
-  };
-  std::vector<Group> groups;
+// Step 1: every triangle primitive of every mesh (or of `only_mesh` alone, >= 0), expanded to
+// flat vertex arrays in `s`; the groups list the triangles per primitive, in file order.
+std::vector<TriangleGroup> expand_triangles(const tinygltf::Model& m, const std::string& path, int only_mesh, ImpostorScene& s) {
+  AccessorReader read{m, path};
+  std::vector<TriangleGroup> groups;
   for (std::size_t mi = 0; mi < m.meshes.size(); ++mi) {
     if (only_mesh >= 0 && mi != static_cast<std::size_t>(only_mesh)) continue;
     for (const tinygltf::Primitive& prim : m.meshes[mi].primitives) {
@@ -567,7 +235,7 @@ ImpostorScene impostor_scene(const tinygltf::Model& m, const std::string& path, 
       } else {
         for (std::uint32_t i = 0; i < pos.size() / 3; ++i) idx.push_back(i);
       }
-      Group g{prim.material, {}};
+      TriangleGroup g{prim.material, {}};
       for (std::size_t t = 0; t + 2 < idx.size(); t += 3) {
         g.first.push_back(static_cast<std::uint32_t>(s.positions.size() / 3));
         for (int c = 0; c < 3; ++c) {
@@ -581,74 +249,97 @@ ImpostorScene impostor_scene(const tinygltf::Model& m, const std::string& path, 
       groups.push_back(std::move(g));
     }
   }
-  auto texture_of = [&](int material) -> std::uint32_t {
-    if (material < 0 || material >= static_cast<int>(m.materials.size())) return white;
-    const int t = m.materials[static_cast<std::size_t>(material)].pbrMetallicRoughness.baseColorTexture.index;
-    if (t < 0 || t >= static_cast<int>(m.textures.size())) return white;
-    const int src = m.textures[static_cast<std::size_t>(t)].source;
-    return src >= 0 && src < static_cast<int>(m.images.size()) ? static_cast<std::uint32_t>(src) : white;
-  };
+  return groups;
+}
 
-  // 2. Items. With the extension: quad k is the next two triangles of the group of its atlas image
-  //    (the writer emits one primitive per atlas image, quads in index order).
-  const auto ext_it = m.extensions.find(kImpostorExtension);
-  if (ext_it != m.extensions.end()) {
-    const tinygltf::Value& ext = ext_it->second;
-    const std::vector<float> center = number_array<float>(ext, "center", path), normal = number_array<float>(ext, "normal", path),
-                             rect = number_array<float>(ext, "atlasRect", path);
-    const auto quads = static_cast<std::size_t>(to_integer<std::uint32_t>(ext.Get("quadCount").GetNumberAsDouble(), path, "quadCount"));
-    s.offsets = number_array<std::uint32_t>(ext, "neighborOffsets", path);
-    s.neighbors = number_array<std::uint32_t>(ext, "neighbors", path);
-    if (center.size() != quads * 3 || normal.size() != quads * 3 || rect.size() != quads * 5 || s.offsets.size() != quads + 1 ||
-        s.offsets.back() != s.neighbors.size())
-      fail(path, "extension", std::string(kImpostorExtension) + " arrays do not match quadCount " + std::to_string(quads));
-    for (std::uint32_t nb : s.neighbors)
-      if (nb >= quads) fail(path, "extension", "a neighbour index is out of range");
-    std::vector<std::size_t> next(groups.size(), 0);
-    for (std::size_t k = 0; k < quads; ++k) {
-      const int image = to_integer<int>(rect[k * 5], path, "atlasRect");
-      std::size_t g = 0;
-      while (g < groups.size() && !(groups[g].material == image && next[g] + 2 <= groups[g].first.size())) ++g;
-      if (g == groups.size()) fail(path, "extension", "quad " + std::to_string(k) + " has no triangles in its atlas image's primitive");
+// The scene texture a material draws with: its base colour image, else `white`.
+std::uint32_t texture_of(const tinygltf::Model& m, int material, std::uint32_t white) {
+  if (material < 0 || material >= static_cast<int>(m.materials.size())) return white;
+  const int t = m.materials[static_cast<std::size_t>(material)].pbrMetallicRoughness.baseColorTexture.index;
+  if (t < 0 || t >= static_cast<int>(m.textures.size())) return white;
+  const int src = m.textures[static_cast<std::size_t>(t)].source;
+  return src >= 0 && src < static_cast<int>(m.images.size()) ? static_cast<std::uint32_t>(src) : white;
+}
+
+// Step 2 with the extension: quad k is the next two triangles of the group of its atlas image
+// (the writer emits one primitive per atlas image, quads in index order).
+void extension_items(const tinygltf::Model& m, const tinygltf::Value& ext, const std::string& path,
+                     const std::vector<TriangleGroup>& groups, std::uint32_t white, ImpostorScene& s) {
+  const std::vector<float> center = number_array<float>(ext, "center", path), normal = number_array<float>(ext, "normal", path),
+                           rect = number_array<float>(ext, "atlasRect", path);
+  const auto quads = static_cast<std::size_t>(to_integer<std::uint32_t>(ext.Get("quadCount").GetNumberAsDouble(), path, "quadCount"));
+  s.offsets = number_array<std::uint32_t>(ext, "neighborOffsets", path);
+  s.neighbors = number_array<std::uint32_t>(ext, "neighbors", path);
+  if (center.size() != quads * 3 || normal.size() != quads * 3 || rect.size() != quads * 5 || s.offsets.size() != quads + 1 ||
+      s.offsets.back() != s.neighbors.size())
+    fail(path, "extension", std::string(kImpostorExtension) + " arrays do not match quadCount " + std::to_string(quads));
+  for (std::uint32_t nb : s.neighbors)
+    if (nb >= quads) fail(path, "extension", "a neighbour index is out of range");
+  std::vector<std::size_t> next(groups.size(), 0);
+  for (std::size_t k = 0; k < quads; ++k) {
+    const int image = to_integer<int>(rect[k * 5], path, "atlasRect");
+    std::size_t g = 0;
+    while (g < groups.size() && !(groups[g].material == image && next[g] + 2 <= groups[g].first.size())) ++g;
+    if (g == groups.size()) fail(path, "extension", "quad " + std::to_string(k) + " has no triangles in its atlas image's primitive");
+    Item it;
+    it.first_vertex = groups[g].first[next[g]];
+    it.vertex_count = 6;
+    if (groups[g].first[next[g] + 1] != it.first_vertex + 3) fail(path, "extension", "quad triangles are not consecutive");
+    next[g] += 2;
+    it.texture = texture_of(m, groups[g].material, white);
+    it.center = {center[k * 3], center[k * 3 + 1], center[k * 3 + 2]};
+    it.normal = {normal[k * 3], normal[k * 3 + 1], normal[k * 3 + 2]};
+    s.items.push_back(it);
+  }
+  s.has_extension = true;
+  s.level = ext.Has("level") ? to_integer<int>(ext.Get("level").GetNumberAsDouble(), path, "level") : -1;
+  if (ext.Has("alphaRef")) s.alpha_ref = static_cast<float>(ext.Get("alphaRef").GetNumberAsDouble());
+}
+
+// Step 2 for plain glTF: consecutive triangle pairs are quads; others stand alone; each item with
+// its own centroid and area-weighted normal.
+void plain_items(const tinygltf::Model& m, const std::vector<TriangleGroup>& groups, std::uint32_t white, ImpostorScene& s) {
+  for (const TriangleGroup& g : groups) {
+    for (std::size_t t = 0; t < g.first.size();) {
+      const bool pair = t + 1 < g.first.size();
       Item it;
-      it.first_vertex = groups[g].first[next[g]];
-      it.vertex_count = 6;
-      if (groups[g].first[next[g] + 1] != it.first_vertex + 3) fail(path, "extension", "quad triangles are not consecutive");
-      next[g] += 2;
-      it.texture = texture_of(groups[g].material);
-      it.center = {center[k * 3], center[k * 3 + 1], center[k * 3 + 2]};
-      it.normal = {normal[k * 3], normal[k * 3 + 1], normal[k * 3 + 2]};
+      it.first_vertex = g.first[t];
+      it.vertex_count = pair ? 6 : 3;
+      it.texture = texture_of(m, g.material, white);
+      t += pair ? 2 : 1;
+      Vec3f sum, area;
+      for (std::uint32_t tri = 0; tri < it.vertex_count; tri += 3) {
+        Vec3f p[3];
+        for (int c = 0; c < 3; ++c) {
+          const std::size_t v = (it.first_vertex + tri + static_cast<std::uint32_t>(c)) * 3;
+          p[c] = {s.positions[v], s.positions[v + 1], s.positions[v + 2]};
+          sum = sum + p[c];
+        }
+        area = area + cross(p[1] - p[0], p[2] - p[0]);
+      }
+      it.center = sum * (1.0f / static_cast<float>(it.vertex_count));
+      it.normal = normalized(area);
       s.items.push_back(it);
     }
-    s.has_extension = true;
-    s.level = ext.Has("level") ? to_integer<int>(ext.Get("level").GetNumberAsDouble(), path, "level") : -1;
-    if (ext.Has("alphaRef")) s.alpha_ref = static_cast<float>(ext.Get("alphaRef").GetNumberAsDouble());
-  } else {
-    // Plain glTF: consecutive triangle pairs sharing an edge are quads; others stand alone.
-    for (const Group& g : groups) {
-      for (std::size_t t = 0; t < g.first.size();) {
-        const bool pair = t + 1 < g.first.size();
-        Item it;
-        it.first_vertex = g.first[t];
-        it.vertex_count = pair ? 6 : 3;
-        it.texture = texture_of(g.material);
-        t += pair ? 2 : 1;
-        Vec3f sum, area;
-        for (std::uint32_t tri = 0; tri < it.vertex_count; tri += 3) {
-          Vec3f p[3];
-          for (int c = 0; c < 3; ++c) {
-            const std::size_t v = (it.first_vertex + tri + static_cast<std::uint32_t>(c)) * 3;
-            p[c] = {s.positions[v], s.positions[v + 1], s.positions[v + 2]};
-            sum = sum + p[c];
-          }
-          area = area + cross(p[1] - p[0], p[2] - p[0]);
-        }
-        it.center = sum * (1.0f / static_cast<float>(it.vertex_count));
-        it.normal = normalized(area);
-        s.items.push_back(it);
-      }
-    }
   }
+}
+
+ImpostorScene impostor_scene(const tinygltf::Model& m, const std::string& path, int only_mesh) {
+  ImpostorScene s;
+  // Textures: one per glTF image, plus a white one at the end for untextured materials.
+  for (const tinygltf::Image& img : m.images) s.textures.push_back(to_image(img, path));
+  const auto white = static_cast<std::uint32_t>(s.textures.size());
+  s.textures.push_back(white_image());
+  if (!m.materials.empty()) {
+    s.alpha_mode = m.materials[0].alphaMode;
+    s.alpha_cutoff = static_cast<float>(m.materials[0].alphaCutoff);
+    s.double_sided = m.materials[0].doubleSided;
+  }
+  // 1. The triangles, 2. the items (the extension's quads, else triangle pairs).
+  const std::vector<TriangleGroup> groups = expand_triangles(m, path, only_mesh, s);
+  const auto ext_it = m.extensions.find(kImpostorExtension);
+  if (ext_it != m.extensions.end()) extension_items(m, ext_it->second, path, groups, white, s);
+  else plain_items(m, groups, white, s);
   // 3. One normal per item on all its vertices.
   s.normals.resize(s.positions.size());
   for (const Item& it : s.items)

@@ -301,6 +301,35 @@ void json_changes(const Json& a, const Json& b, const std::string& at, OJson& ou
   }
 }
 
+// A changed .glb the runtime draws: its structure (quads matched by domain, else what it holds),
+// its texels and its renders, into `r`. Returns whether it stays within the thresholds.
+bool drawn_glb_diff(OJson& r, const std::string& name, const std::string& pa, const std::string& pb, const Json& ja, const Json& jb,
+                    const DiffOptions& o) {
+  bool within = true;
+  const AnyScene sa = load_scene(pa), sb = load_scene(pb);
+  const std::optional<Quads> qa = impostor_quads(ja), qb = impostor_quads(jb);
+  if (qa && qb) {
+    double change = 0;
+    r["structure"] = quad_diff(*qa, *qb, sa.bounds().diagonal(), change);
+    within = within && qa->level == qb->level && change <= o.thresholds.max_quad_change;
+  } else {
+    r["structure"] = {{"old", contents(sa)}, {"new", contents(sb)}};
+    within = within && contents(sa) == contents(sb);
+  }
+  if (sa.kind == AnyScene::kImpostor && sb.kind == AnyScene::kImpostor) {
+    const double changed = texel_change(sa.impostor.textures, sb.impostor.textures, o.thresholds.pixel_tolerance);
+    r["texels"] = {{"old", texel_stats(sa.impostor.textures)}, {"new", texel_stats(sb.impostor.textures)}};
+    if (changed >= 0) r["texels"]["changed_share"] = round_to(changed, 6);
+    if (!o.render) within = within && changed >= 0 && changed <= o.thresholds.max_changed;
+  }
+  if (o.render) {
+    const ImageDiff im = image_diff(sa, sb, name, o);
+    r["images"] = im.json;
+    within = within && im.within;
+  }
+  return within;
+}
+
 OJson diff_pair(const std::string& name, const std::string& pa, const std::string& pb, const DiffOptions& o) {
   const InputFile fa(pa), fb(pb);
   OJson r{{"name", name}};
@@ -325,7 +354,6 @@ OJson diff_pair(const std::string& name, const std::string& pa, const std::strin
     r["within_thresholds"] = false;  // nothing to measure it by: any change counts
     return r;
   }
-  bool within = true;
   const Json ja = glb_json(fa.bytes(), pa), jb = glb_json(fb.bytes(), pb);
   if (needs_draco(ja) || needs_draco(jb)) {
     // runtime_gl does not decode Draco: such files are compared by their JSON, and any change counts.
@@ -336,28 +364,7 @@ OJson diff_pair(const std::string& name, const std::string& pa, const std::strin
     r["within_thresholds"] = false;
     return r;
   }
-  const AnyScene sa = load_scene(pa), sb = load_scene(pb);
-  const std::optional<Quads> qa = impostor_quads(ja), qb = impostor_quads(jb);
-  if (qa && qb) {
-    double change = 0;
-    r["structure"] = quad_diff(*qa, *qb, sa.bounds().diagonal(), change);
-    within = within && qa->level == qb->level && change <= o.thresholds.max_quad_change;
-  } else {
-    r["structure"] = {{"old", contents(sa)}, {"new", contents(sb)}};
-    within = within && contents(sa) == contents(sb);
-  }
-  if (sa.kind == AnyScene::kImpostor && sb.kind == AnyScene::kImpostor) {
-    const double changed = texel_change(sa.impostor.textures, sb.impostor.textures, o.thresholds.pixel_tolerance);
-    r["texels"] = {{"old", texel_stats(sa.impostor.textures)}, {"new", texel_stats(sb.impostor.textures)}};
-    if (changed >= 0) r["texels"]["changed_share"] = round_to(changed, 6);
-    if (!o.render) within = within && changed >= 0 && changed <= o.thresholds.max_changed;
-  }
-  if (o.render) {
-    const ImageDiff im = image_diff(sa, sb, name, o);
-    r["images"] = im.json;
-    within = within && im.within;
-  }
-  r["within_thresholds"] = within;
+  r["within_thresholds"] = drawn_glb_diff(r, name, pa, pb, ja, jb, o);
   return r;
 }
 

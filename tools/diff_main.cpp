@@ -11,13 +11,9 @@
 
 namespace {
 
+// qf-diff takes no command word: one unnamed command (cli/program.h).
 qf::cli::CommandSpec diff_spec() {
-  qf::cli::CommandSpec s;
-  s.program = "qf-diff";
-  s.name = "";
-  s.usage = "OLD NEW [options]";
-  s.summary = "compare two bakes: two .glb files or two output folders";
-  s.details =
+  return {"", "OLD NEW [options]", "compare two bakes: two .glb files or two output folders",
       "First whether they are byte-identical. If not, for each changed .glb a structural diff: level,\n"
       "quads matched by domain (added, removed), neighbour-graph edges, how the matched quads' planes\n"
       "moved and their errors changed, texel statistics (and the share of texels changed when the\n"
@@ -25,18 +21,17 @@ qf::cli::CommandSpec diff_spec() {
       "views framing both (PSNR, share of changed pixels; EXR and PNG difference images with --images).\n"
       "Folders pair their files by relative path; report.json and batch-report*.json (times) and\n"
       "hidden files are left out; added or removed files are beyond any threshold.\n"
-      "Exit status: 0 identical or within the thresholds, 1 beyond them, 2 bad usage or unreadable input.";
-  s.options = {{"json", 0, "", "", "print the report as JSON (default: text)"},
-               {"min-psnr", 0, "DB", "40", "a changed .glb passes when every view's PSNR is at least DB"},
-               {"max-changed", 0, "SHARE", "0.005", "... and at most this share of each view's pixels changed"},
-               {"pixel-tolerance", 0, "LEVELS", "2", "a pixel (texel) changed when a channel differs by more (0..255)"},
-               {"max-quad-change", 0, "SHARE", "0", "... and at most this share of a level's quads added or removed"},
-               {"views", 0, "N", "6", "canonical views per .glb"},
-               {"size", 0, "PX", "128", "image side of each view"},
-               {"images", 0, "DIR", "", "write DIR/NAME.diff.exr (float |old - new|, views stacked) and .diff.png (x4) per changed .glb"},
-               {"no-render", 0, "", "", "bytes and structure only: texel changes take the place of pixel changes"}};
-  s.min_positional = s.max_positional = 2;
-  return s;
+      "Exit status: 0 identical or within the thresholds, 1 beyond them, 2 bad usage or unreadable input.",
+      {{"json", 0, "", "", "print the report as JSON (default: text)"},
+       {"min-psnr", 0, "DB", "40", "a changed .glb passes when every view's PSNR is at least DB"},
+       {"max-changed", 0, "SHARE", "0.005", "... and at most this share of each view's pixels changed"},
+       {"pixel-tolerance", 0, "LEVELS", "2", "a pixel (texel) changed when a channel differs by more (0..255)"},
+       {"max-quad-change", 0, "SHARE", "0", "... and at most this share of a level's quads added or removed"},
+       {"views", 0, "N", "6", "canonical views per .glb"},
+       {"size", 0, "PX", "128", "image side of each view"},
+       {"images", 0, "DIR", "", "write DIR/NAME.diff.exr (float |old - new|, views stacked) and .diff.png (x4) per changed .glb"},
+       {"no-render", 0, "", "", "bytes and structure only: texel changes take the place of pixel changes"}},
+      2, 2, "qf-diff"};
 }
 
 int run(const qf::cli::ParsedArgs& args) {
@@ -58,10 +53,7 @@ int run(const qf::cli::ParsedArgs& args) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  qf::cli::Program p;
-  p.name = "qf-diff";
-  p.commands = {{diff_spec(), run}};  // no command word: OLD NEW [options]
   // Exit 1 means "different": an input that cannot be read is 2, not a difference.
-  p.bad_input = static_cast<int>(qf::ExitCode::kUsage);
-  return qf::cli::run_program(p, argc, argv);
+  const qf::cli::Program program{"qf-diff", "", "", "", {{diff_spec(), run}}, 0, "", nullptr, static_cast<int>(qf::ExitCode::kUsage)};
+  return qf::cli::run_program(program, argc, argv);
 }

@@ -97,32 +97,24 @@ DrawSettings read_draw_settings(const ParsedArgs& a) {
 
 // --- render -------------------------------------------------------------------------------------
 
-const CommandSpec& render_spec() {
-  static const CommandSpec spec = [] {
-    CommandSpec s;
-    s.program = "qf-render";
-    s.name = "render";
-    s.usage = "FILE -o OUT.png [options]   (also: qf-render FILE -o OUT.png)";
-    s.summary = "render a baked level (.glb/.gltf), a point set (as splats) or a mesh to a PNG, headless";
-    s.details =
-        "The camera orbits the centre of FILE's bounding sphere (or --frame's): azimuth about +Y from +Z,\n"
-        "elevation above the XZ plane; the default distance frames the sphere. --view i/N picks view i of\n"
-        "N spread evenly over the sphere instead. --turntable N writes a contact sheet of N views around\n"
-        "the object at the given elevation.";
-    s.options = draw_option_specs();
-    s.options.insert(s.options.begin(),
-                     {{"output", 'o', "OUT.png", "", "the PNG to write (required)"},
-                      {"azimuth", 0, "DEG", "30", "camera azimuth"},
-                      {"elevation", 0, "DEG", "20", "camera elevation"},
-                      {"distance", 0, "D", "framing the bounding sphere", "camera distance from the centre, world units"},
-                      {"view", 0, "I/N", "", "view I (0-based) of N spread over the sphere (replaces azimuth/elevation)"},
-                      {"turntable", 0, "N", "", "N views around the object in one contact sheet"},
-                      {"frame", 0, "FILE", "", "frame the camera on this file's bounding sphere (e.g. the reference)"},
-                      {"mesh", 0, "MESH", "", "point impostors: the mesh they fade to nearer than s Z0 (pixel side x focal length in pixels)"}});
-    s.min_positional = s.max_positional = 1;
-    return s;
-  }();
-  return spec;
+CommandSpec render_spec() {
+  const std::vector<OptionSpec> draw = draw_option_specs();
+  CommandSpec s{"render", "FILE -o OUT.png [options]   (also: qf-render FILE -o OUT.png)", "render a baked level (.glb/.gltf), a point set (as splats) or a mesh to a PNG, headless",
+      "The camera orbits the centre of FILE's bounding sphere (or --frame's): azimuth about +Y from +Z,\n"
+      "elevation above the XZ plane; the default distance frames the sphere. --view i/N picks view i of\n"
+      "N spread evenly over the sphere instead. --turntable N writes a contact sheet of N views around\n"
+      "the object at the given elevation.",
+      {{"output", 'o', "OUT.png", "", "the PNG to write (required)"},
+       {"azimuth", 0, "DEG", "30", "camera azimuth"},
+       {"elevation", 0, "DEG", "20", "camera elevation"},
+       {"distance", 0, "D", "framing the bounding sphere", "camera distance from the centre, world units"},
+       {"view", 0, "I/N", "", "view I (0-based) of N spread over the sphere (replaces azimuth/elevation)"},
+       {"turntable", 0, "N", "", "N views around the object in one contact sheet"},
+       {"frame", 0, "FILE", "", "frame the camera on this file's bounding sphere (e.g. the reference)"},
+       {"mesh", 0, "MESH", "", "point impostors: the mesh they fade to nearer than s Z0 (pixel side x focal length in pixels)"}},
+      1, 1, "qf-render"};
+  s.options.insert(s.options.end(), draw.begin(), draw.end());
+  return s;
 }
 
 // A combined LOD file shows one level: --lod's, else the one its screen coverages pick for
@@ -206,44 +198,36 @@ int run_render(const ParsedArgs& a) {
 
 // --- eval ---------------------------------------------------------------------------------------
 
-const CommandSpec& eval_spec() {
-  static const CommandSpec spec = [] {
-    CommandSpec s;
-    s.program = "qf-render";
-    s.name = "eval";
-    s.usage = "REFERENCE BAKED [options]";
-    s.summary = "measure an impostor against its reference (points as splats, or a mesh) from many views";
-    s.details =
-        "Renders both with the same cameras from N viewpoints spread evenly over the sphere, framing the\n"
-        "reference's bounding sphere, once with --method and once with the engine method (both the file and\n"
-        "the reference drawn as a standard PBR engine draws glTF: base colour and normal maps, lighting in\n"
-        "linear light, double-sided where the material says; three.js r187's MeshStandardMaterial). Per view and on average: PSNR over the pixels covered\n"
-        "by either image, silhouette IoU, mean absolute error, and the shares of reference pixels that are\n"
-        "holes (impostor coverage < 0.5) or see-through (0.5 <= coverage < 0.9). Coverage is measured from\n"
-        "renders over black and over white; colours are compared over --background. BAKED is a baked .glb\n"
-        "(impostor level, cluster LOD, point impostor), or another point set or mesh: a second sampling of\n"
-        "the reference's surface shows the metric's own floor (the splats' ragged edges differ).\n"
-        "REFERENCE may also be a glTF asset (textured, as an artist made it): it is then drawn, and BAKED\n"
-        "scored, by the engine method only.";
-    s.options = draw_option_specs();
-    for (OptionSpec& o : s.options) {
-      if (o.name == "size") o.default_text = "256";
-      if (o.name == "background") o.default_text = "128,128,128";
-    }
-    s.options.insert(s.options.begin(),
-                     {{"output", 'o', "REPORT.json", "", "write the report here (default: print it)"},
-                      {"views", 0, "N", "26", "number of viewpoints"},
-                      {"diff", 0, "PREFIX", "REPORT's path without .json", "write PREFIX.exr and PREFIX.png: per-view |difference| sheets (PNG x4)"},
-                      {"no-engine", 0, "", "", "skip the engine-path evaluation"},
-                      {"cameras", 0, "FILE", "", "write the views' cameras and the engine lights as JSON (for renders made elsewhere)"},
-                      {"external", 0, "DIR", "",
-                       "also score renders of BAKED made elsewhere from those cameras (e.g. three.js, scripts/three-render):\n"
-                       "DIR/view_I_black.png and view_I_white.png, against the reference drawn by the engine method,\n"
-                       "and against the engine method's own renders of BAKED (engine_vs_external)"}});
-    s.min_positional = s.max_positional = 2;
-    return s;
-  }();
-  return spec;
+CommandSpec eval_spec() {
+  std::vector<OptionSpec> draw = draw_option_specs();
+  for (OptionSpec& o : draw) {
+    if (o.name == "size") o.default_text = "256";
+    if (o.name == "background") o.default_text = "128,128,128";
+  }
+  CommandSpec s{"eval", "REFERENCE BAKED [options]", "measure an impostor against its reference (points as splats, or a mesh) from many views",
+      "Renders both with the same cameras from N viewpoints spread evenly over the sphere, framing the\n"
+      "reference's bounding sphere, once with --method and once with the engine method (both the file and\n"
+      "the reference drawn as a standard PBR engine draws glTF: base colour and normal maps, lighting in\n"
+      "linear light, double-sided where the material says; three.js r187's MeshStandardMaterial). Per view and on average: PSNR over the pixels covered\n"
+      "by either image, silhouette IoU, mean absolute error, and the shares of reference pixels that are\n"
+      "holes (impostor coverage < 0.5) or see-through (0.5 <= coverage < 0.9). Coverage is measured from\n"
+      "renders over black and over white; colours are compared over --background. BAKED is a baked .glb\n"
+      "(impostor level, cluster LOD, point impostor), or another point set or mesh: a second sampling of\n"
+      "the reference's surface shows the metric's own floor (the splats' ragged edges differ).\n"
+      "REFERENCE may also be a glTF asset (textured, as an artist made it): it is then drawn, and BAKED\n"
+      "scored, by the engine method only.",
+      {{"output", 'o', "REPORT.json", "", "write the report here (default: print it)"},
+       {"views", 0, "N", "26", "number of viewpoints"},
+       {"diff", 0, "PREFIX", "REPORT's path without .json", "write PREFIX.exr and PREFIX.png: per-view |difference| sheets (PNG x4)"},
+       {"no-engine", 0, "", "", "skip the engine-path evaluation"},
+       {"cameras", 0, "FILE", "", "write the views' cameras and the engine lights as JSON (for renders made elsewhere)"},
+       {"external", 0, "DIR", "",
+       "also score renders of BAKED made elsewhere from those cameras (e.g. three.js, scripts/three-render):\n"
+       "DIR/view_I_black.png and view_I_white.png, against the reference drawn by the engine method,\n"
+       "and against the engine method's own renders of BAKED (engine_vs_external)"}},
+      2, 2, "qf-render"};
+  s.options.insert(s.options.end(), draw.begin(), draw.end());
+  return s;
 }
 
 ordered_json metrics_json(const ViewMetrics& m) {
@@ -287,66 +271,54 @@ RenderPair external_pair(const std::string& dir, int view, int w, int h) {
   return p;
 }
 
-int run_eval(const ParsedArgs& a) {
-  const auto [w, h] = parse_size(a.get("size", "256"));
-  DrawSettings settings = read_draw_settings(a);
-  const Rgb8 background = a.has("background") ? settings.background : Rgb8{128, 128, 128};
-  const int views = static_cast<int>(a.get_int("views", 26, 1, 10000));
-  const AnyScene reference = load_scene(a.positional[0]);
-  AnyScene baked = load_scene(a.positional[1]);
-  // A glTF reference (a textured game asset) has one look: its materials as an engine draws them,
-  // so both sides are drawn and scored by the engine method alone.
-  if (reference.kind == AnyScene::kImpostor && !reference.asset)
-    throw UsageError("eval: REFERENCE must be a point set, a mesh or a glTF asset, not a baked level");
-  if (reference.kind == AnyScene::kImpostor) settings.method = Method::kEngine;
-  const Sphere sphere = bounding_sphere(reference.bounds());
-  choose_lod(baked, a, orbit_camera(sphere, sphere_direction(0, views), 0, w, h));
-
-  HeadlessContext context;
-  Renderer ref_renderer(w, h), imp_renderer(w, h);
-  reference.attach(ref_renderer);
-  baked.attach(imp_renderer);
-  DrawSettings engine = settings;
-  engine.method = Method::kEngine;
-  // The engine path: both drawn as an engine draws glTF (the reference as if exported).
-  const bool with_engine = !a.flag("no-engine") && settings.method != Method::kEngine;
-  const std::string external = a.get("external");
-
-  std::vector<ViewMetrics> main_metrics, engine_metrics, external_metrics, agreement;
+// What an eval measured: per view and method, the metrics, cameras and difference images.
+struct EvalViews {
+  std::vector<ViewMetrics> main, engine, external, agreement;  // agreement: engine method vs external renders
   std::vector<Camera> cams;
   std::vector<Image> diff_sheet;
   std::vector<float> exr_sheet;  // views stacked vertically
   ordered_json per_view = ordered_json::array();
+};
+
+// Draws both from `views` directions spread over the reference's bounding sphere and compares them:
+// with `settings`, with the engine method (unless off), and against external renders (if any).
+EvalViews measure_views(const Sphere& sphere, int views, int w, int h, Renderer& ref_renderer, Renderer& imp_renderer,
+                        const DrawSettings& settings, bool with_engine, const std::string& external, Rgb8 background) {
+  DrawSettings engine = settings;
+  engine.method = Method::kEngine;
+  EvalViews e;
   for (int i = 0; i < views; ++i) {
     const Vec3f d = sphere_direction(i, views);
     const Camera cam = orbit_camera(sphere, d, 0, w, h);
-    cams.push_back(cam);
+    e.cams.push_back(cam);
     const RenderPair ref = render_pair(ref_renderer, cam, settings);
     std::vector<float> diff;
-    main_metrics.push_back(compare_renders(ref, render_pair(imp_renderer, cam, settings), background, &diff));
+    e.main.push_back(compare_renders(ref, render_pair(imp_renderer, cam, settings), background, &diff));
     ordered_json v{{"view", i}, {"direction", {canonical_double(d.x), canonical_double(d.y), canonical_double(d.z)}}};
-    v[method_name(settings.method)] = metrics_json(main_metrics.back());
+    v[method_name(settings.method)] = metrics_json(e.main.back());
     const RenderPair engine_ref = with_engine || !external.empty() ? render_pair(ref_renderer, cam, engine) : RenderPair{};
     const RenderPair engine_baked = with_engine || !external.empty() ? render_pair(imp_renderer, cam, engine) : RenderPair{};
     if (with_engine) {
-      engine_metrics.push_back(compare_renders(engine_ref, engine_baked, background));
-      v["engine"] = metrics_json(engine_metrics.back());
+      e.engine.push_back(compare_renders(engine_ref, engine_baked, background));
+      v["engine"] = metrics_json(e.engine.back());
     }
     if (!external.empty()) {
       const RenderPair ext = external_pair(external, i, w, h);
-      external_metrics.push_back(compare_renders(engine_ref, ext, background));
-      agreement.push_back(compare_renders(engine_baked, ext, background));
-      v["external"] = metrics_json(external_metrics.back());
-      v["engine_vs_external"] = metrics_json(agreement.back());
+      e.external.push_back(compare_renders(engine_ref, ext, background));
+      e.agreement.push_back(compare_renders(engine_baked, ext, background));
+      v["external"] = metrics_json(e.external.back());
+      v["engine_vs_external"] = metrics_json(e.agreement.back());
     }
-    per_view.push_back(v);
-    diff_sheet.push_back(to_8bit(diff, w, h, 4));
-    exr_sheet.insert(exr_sheet.end(), diff.begin(), diff.end());
+    e.per_view.push_back(v);
+    e.diff_sheet.push_back(to_8bit(diff, w, h, 4));
+    e.exr_sheet.insert(e.exr_sheet.end(), diff.begin(), diff.end());
   }
-  if (a.has("cameras")) {
-    const std::string text = cameras_json(cams, settings.lights, background).dump(1) + "\n";
-    write_file_atomically(a.get("cameras"), [&](std::ostream& out) { out << text; });
-  }
+  return e;
+}
+
+// The eval report (README: qf-render eval): inputs, settings, the means and every view.
+ordered_json eval_report(const ParsedArgs& a, const AnyScene& baked, const EvalViews& e, int views, int w, int h,
+                         const DrawSettings& settings, Rgb8 background) {
   const ImpostorScene& s = baked.impostor;
   ordered_json report{{"reference", a.positional[0]}, {"baked", a.positional[1]}, {"baked_contents", baked.describe()}};
   if (baked.kind == AnyScene::kImpostor) report["level"] = s.level, report["quads"] = s.items.size();
@@ -355,14 +327,18 @@ int run_eval(const ParsedArgs& a) {
                       {"background", {background.r, background.g, background.b}},
                       {"method", method_name(settings.method)}});
   if (baked.kind == AnyScene::kImpostor) report["engine_alpha_mode"] = settings.alpha_mode ? *settings.alpha_mode : s.alpha_mode;
-  report["mean"][method_name(settings.method)] = metrics_json(mean_of(main_metrics));
-  if (with_engine) report["mean"]["engine"] = metrics_json(mean_of(engine_metrics));
-  if (!external.empty()) {
-    report["mean"]["external"] = metrics_json(mean_of(external_metrics));
-    report["mean"]["engine_vs_external"] = metrics_json(mean_of(agreement));
+  report["mean"][method_name(settings.method)] = metrics_json(mean_of(e.main));
+  if (!e.engine.empty()) report["mean"]["engine"] = metrics_json(mean_of(e.engine));
+  if (!e.external.empty()) {
+    report["mean"]["external"] = metrics_json(mean_of(e.external));
+    report["mean"]["engine_vs_external"] = metrics_json(mean_of(e.agreement));
   }
-  report["per_view"] = per_view;
+  report["per_view"] = e.per_view;
+  return report;
+}
 
+// The report (to -o, else stdout) and the difference images (--diff PREFIX, else beside -o).
+void write_eval_outputs(const ParsedArgs& a, const ordered_json& report, const EvalViews& e, int views, int w, int h) {
   const std::string text = report.dump(2) + "\n";
   std::string diff_prefix = a.get("diff");
   if (a.has("output")) {
@@ -376,39 +352,67 @@ int run_eval(const ParsedArgs& a) {
     std::cout << text;
   }
   if (!diff_prefix.empty()) {
-    save_exr(diff_prefix + ".exr", exr_sheet, w, h * views);
-    save_png(diff_prefix + ".png", contact_sheet(diff_sheet, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(views)))), {0, 0, 0}));
+    save_exr(diff_prefix + ".exr", e.exr_sheet, w, h * views);
+    save_png(diff_prefix + ".png", contact_sheet(e.diff_sheet, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(views)))), {0, 0, 0}));
   }
+}
+
+void print_eval_summary(const EvalViews& e, int views, Method method) {
   auto say = [&](const std::string& what, const std::vector<ViewMetrics>& v) {
     const ViewMetrics m = mean_of(v);
     std::cerr << "qf-render eval: " << what << ": PSNR " << m.psnr << " dB, IoU " << m.iou << ", holes " << 100 * m.holes
               << "%, see-through " << 100 * m.see_through << "%\n";
   };
-  say(std::to_string(views) + " views, " + method_name(settings.method), main_metrics);
-  if (with_engine) say("engine method", engine_metrics);
-  if (!external.empty()) say("external renders", external_metrics), say("engine method vs external renders", agreement);
+  say(std::to_string(views) + " views, " + method_name(method), e.main);
+  if (!e.engine.empty()) say("engine method", e.engine);
+  if (!e.external.empty()) say("external renders", e.external), say("engine method vs external renders", e.agreement);
+}
+
+int run_eval(const ParsedArgs& a) {
+  // 1. Options and the two scenes, framed by the reference.
+  const auto [w, h] = parse_size(a.get("size", "256"));
+  DrawSettings settings = read_draw_settings(a);
+  const Rgb8 background = a.has("background") ? settings.background : Rgb8{128, 128, 128};
+  const int views = static_cast<int>(a.get_int("views", 26, 1, 10000));
+  const AnyScene reference = load_scene(a.positional[0]);
+  AnyScene baked = load_scene(a.positional[1]);
+  // A glTF reference (a textured game asset) has one look: its materials as an engine draws them,
+  // so both sides are drawn and scored by the engine method alone.
+  if (reference.kind == AnyScene::kImpostor && !reference.asset)
+    throw UsageError("eval: REFERENCE must be a point set, a mesh or a glTF asset, not a baked level");
+  if (reference.kind == AnyScene::kImpostor) settings.method = Method::kEngine;
+  const Sphere sphere = bounding_sphere(reference.bounds());
+  choose_lod(baked, a, orbit_camera(sphere, sphere_direction(0, views), 0, w, h));
+  HeadlessContext context;
+  Renderer ref_renderer(w, h), imp_renderer(w, h);
+  reference.attach(ref_renderer);
+  baked.attach(imp_renderer);
+  // 2. Every view. The engine path: both drawn as an engine draws glTF (the reference as if exported).
+  const bool with_engine = !a.flag("no-engine") && settings.method != Method::kEngine;
+  const EvalViews e = measure_views(sphere, views, w, h, ref_renderer, imp_renderer, settings, with_engine, a.get("external"), background);
+  // 3. The outputs.
+  if (a.has("cameras")) {
+    const std::string text = cameras_json(e.cams, settings.lights, background).dump(1) + "\n";
+    write_file_atomically(a.get("cameras"), [&](std::ostream& out) { out << text; });
+  }
+  write_eval_outputs(a, eval_report(a, baked, e, views, w, h, settings, background), e, views, w, h);
+  print_eval_summary(e, views, settings.method);
   return 0;
 }
 
 // --- view (window) ------------------------------------------------------------------------------
 
-const CommandSpec& view_spec() {
-  static const CommandSpec spec = [] {
-    CommandSpec s;
-    s.program = "qf-render";
-    s.name = "view";
-    s.usage = "FILE [options]";
-    s.summary = "open a window (needs DISPLAY) and orbit FILE with the mouse";
-    s.details = "Drag with the left button to orbit, wheel to zoom, q or Esc to quit.";
-    s.options = draw_option_specs();
-    s.options.insert(s.options.begin(), {{"frames", 0, "N", "0 (until closed)", "quit after N frames (scripts and tests)"},
-                                         {"output", 'o', "OUT.png", "", "save the last frame"},
-                                         {"azimuth", 0, "DEG", "30", "initial azimuth"},
-                                         {"elevation", 0, "DEG", "20", "initial elevation"}});
-    s.min_positional = s.max_positional = 1;
-    return s;
-  }();
-  return spec;
+CommandSpec view_spec() {
+  const std::vector<OptionSpec> draw = draw_option_specs();
+  CommandSpec s{"view", "FILE [options]", "open a window (needs DISPLAY) and orbit FILE with the mouse",
+      "Drag with the left button to orbit, wheel to zoom, q or Esc to quit.",
+      {{"frames", 0, "N", "0 (until closed)", "quit after N frames (scripts and tests)"},
+       {"output", 'o', "OUT.png", "", "save the last frame"},
+       {"azimuth", 0, "DEG", "30", "initial azimuth"},
+       {"elevation", 0, "DEG", "20", "initial elevation"}},
+      1, 1, "qf-render"};
+  s.options.insert(s.options.end(), draw.begin(), draw.end());
+  return s;
 }
 
 int run_view(const ParsedArgs& a) {
@@ -445,21 +449,19 @@ int run_view(const ParsedArgs& a) {
 }  // namespace
 }  // namespace qf::render
 
+constexpr const char* kUsage =
+    "usage: qf-render FILE -o OUT.png [options]   render (see qf-render render --help)\n"
+    "       qf-render COMMAND [arguments] [options]\n"
+    "       qf-render COMMAND --help\n";
+
+// qf-render FILE -o OUT.png: any first argument that names no command is the file to render.
+bool always(const std::string&) { return true; }
+
 int main(int argc, char** argv) {
-  qf::cli::Program p;
-  p.name = "qf-render";
-  p.title = "the GL 1.1 renderer of quasiflat's baked levels (headless through EGL)";
-  p.usage =
-      "usage: qf-render FILE -o OUT.png [options]   render (see qf-render render --help)\n"
-      "       qf-render COMMAND [arguments] [options]\n"
-      "       qf-render COMMAND --help\n";
-  p.exit_codes = "exit codes: 0 ok, 1 bad input, 2 bad usage, 3 internal error (including no GL context).\n";
-  p.commands = {{qf::render::render_spec(), qf::render::run_render},
-                {qf::render::eval_spec(), qf::render::run_eval},
-                {qf::render::view_spec(), qf::render::run_view}};
-  p.name_column = 10;
-  // qf-render FILE -o OUT.png: any first argument that names no command is the file to render.
-  p.implicit_command = "render";
-  p.implicit_for = [](const std::string&) { return true; };
-  return qf::cli::run_program(p, argc, argv);
+  using namespace qf::render;
+  const qf::cli::Program program{"qf-render", "the GL 1.1 renderer of quasiflat's baked levels (headless through EGL)", kUsage,
+                                 "exit codes: 0 ok, 1 bad input, 2 bad usage, 3 internal error (including no GL context).\n",
+                                 {{render_spec(), run_render}, {eval_spec(), run_eval}, {view_spec(), run_view}},
+                                 10, "render", always};
+  return qf::cli::run_program(program, argc, argv);
 }

@@ -57,25 +57,28 @@ Graph transpose(const Graph& g, std::size_t n) {
   return t;
 }
 
-// Step 3a: Ruge-Stueben first pass with bucket lists on lambda_i = |S_i^T| (amg-notes 1.2). The
-// next C point is the most recently bucketed point of the highest bucket: deterministic.
-std::vector<std::int8_t> rs_first_pass(const Graph& s, const Graph& st, std::size_t n) {
-  std::vector<std::int8_t> state(n, kUndecided);
-  std::vector<std::int32_t> lambda(n), head, next(n, -1), prev(n, -1);
+// The undecided points bucketed by lambda_i, each bucket a doubly linked list, so that the highest
+// lambda is found in O(1) amortised as lambdas change.
+struct LambdaBuckets {
+  std::vector<std::int32_t> lambda, head, next, prev;
   std::int32_t top = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    lambda[i] = st.end(i) - st.begin(i);
-    top = std::max(top, lambda[i]);
+
+  LambdaBuckets(const Graph& st, std::size_t n) : lambda(n), next(n, -1), prev(n, -1) {
+    for (std::size_t i = 0; i < n; ++i) {
+      lambda[i] = st.end(i) - st.begin(i);
+      top = std::max(top, lambda[i]);
+    }
+    head.assign(static_cast<std::size_t>(2 * top + n + 2), -1);  // lambda can grow by F promotions
+    for (std::size_t i = n; i-- > 0;) link(static_cast<std::int32_t>(i));  // lowest index on top of each bucket
   }
-  head.assign(static_cast<std::size_t>(2 * top + n + 2), -1);  // lambda can grow by F promotions
-  auto unlink = [&](std::int32_t i) {
+  void unlink(std::int32_t i) {
     const auto ui = static_cast<std::size_t>(i);
     if (prev[ui] >= 0) next[static_cast<std::size_t>(prev[ui])] = next[ui];
     else head[static_cast<std::size_t>(lambda[ui])] = next[ui];
     if (next[ui] >= 0) prev[static_cast<std::size_t>(next[ui])] = prev[ui];
     next[ui] = prev[ui] = -1;
-  };
-  auto link = [&](std::int32_t i) {
+  }
+  void link(std::int32_t i) {
     const auto ui = static_cast<std::size_t>(i);
     const auto b = static_cast<std::size_t>(lambda[ui]);
     if (b >= head.size()) head.resize(b + 1, -1);
@@ -84,35 +87,45 @@ std::vector<std::int8_t> rs_first_pass(const Graph& s, const Graph& st, std::siz
     if (head[b] >= 0) prev[static_cast<std::size_t>(head[b])] = i;
     head[b] = i;
     top = std::max(top, lambda[ui]);
-  };
-  for (std::size_t i = n; i-- > 0;) link(static_cast<std::int32_t>(i));  // lowest index on top of each bucket
-  for (;;) {
+  }
+  // Moves i to the bucket of lambda_i + delta.
+  void change(std::int32_t i, std::int32_t delta) {
+    unlink(i);
+    lambda[static_cast<std::size_t>(i)] += delta;
+    link(i);
+  }
+  // Takes out the most recently bucketed point of the highest bucket above 0; -1 when none is left.
+  std::int32_t pop_top() {
     while (top > 0 && head[static_cast<std::size_t>(top)] < 0) --top;
-    if (top <= 0) break;
+    if (top <= 0) return -1;
     const std::int32_t i = head[static_cast<std::size_t>(top)];
     unlink(i);
+    return i;
+  }
+};
+
+// Step 3a: Ruge-Stueben first pass with bucket lists on lambda_i = |S_i^T| (amg-notes 1.2). The
+// next C point is the most recently bucketed point of the highest bucket: deterministic.
+std::vector<std::int8_t> rs_first_pass(const Graph& s, const Graph& st, std::size_t n) {
+  std::vector<std::int8_t> state(n, kUndecided);
+  LambdaBuckets buckets(st, n);
+  for (std::int32_t i; (i = buckets.pop_top()) >= 0;) {
     state[static_cast<std::size_t>(i)] = kCoarse;
     // Points that depend strongly on i become F; their other strong neighbours gain weight.
     for (std::int32_t r = st.begin(static_cast<std::size_t>(i)); r < st.end(static_cast<std::size_t>(i)); ++r) {
       const std::int32_t j = st.idx[static_cast<std::size_t>(r)];
       if (state[static_cast<std::size_t>(j)] != kUndecided) continue;
-      unlink(j);
+      buckets.unlink(j);
       state[static_cast<std::size_t>(j)] = kFine;
       for (std::int32_t q = s.begin(static_cast<std::size_t>(j)); q < s.end(static_cast<std::size_t>(j)); ++q) {
         const std::int32_t k = s.idx[static_cast<std::size_t>(q)];
-        if (state[static_cast<std::size_t>(k)] != kUndecided) continue;
-        unlink(k);
-        ++lambda[static_cast<std::size_t>(k)];
-        link(k);
+        if (state[static_cast<std::size_t>(k)] == kUndecided) buckets.change(k, +1);
       }
     }
     // i's own strong neighbours lose one reason to become C.
     for (std::int32_t r = s.begin(static_cast<std::size_t>(i)); r < s.end(static_cast<std::size_t>(i)); ++r) {
       const std::int32_t j = s.idx[static_cast<std::size_t>(r)];
-      if (state[static_cast<std::size_t>(j)] != kUndecided || lambda[static_cast<std::size_t>(j)] == 0) continue;
-      unlink(j);
-      --lambda[static_cast<std::size_t>(j)];
-      link(j);
+      if (state[static_cast<std::size_t>(j)] == kUndecided && buckets.lambda[static_cast<std::size_t>(j)] != 0) buckets.change(j, -1);
     }
   }
   // Left undecided (nobody depends on them): F if they have a strong C neighbour, else C.

@@ -19,7 +19,7 @@ CommandSpec analyze_spec() {
           {{"output", 'o', "OUT.ply", "", "output point set (.ply); required"},
            {"matrix", 0, "A.mtx", "", "also write the stiffness matrix A (Matrix Market coordinate format)"},
            drop_nonfinite_option(),
-           {"quiet", 'q', "", "", "print nothing on success"}},
+           quiet_option()},
           1, 1};
   for (OptionSpec& o : analysis_option_specs()) spec.options.push_back(o);
   for (OptionSpec& o : sample_option_specs()) spec.options.push_back(o);
@@ -28,8 +28,7 @@ CommandSpec analyze_spec() {
 
 int run_analyze(const ParsedArgs& args) {
   const std::string& in = args.positional[0];
-  if (!args.has("output")) throw UsageError("analyze needs -o OUT.ply (see qf-bake analyze --help)");
-  const std::string out = args.get("output");
+  const std::string out = args.require("output");
   if (file_extension(out) != "ply") throw UsageError("analyze writes .ply, not '" + out + "'");
   const AnalysisOptions o = read_analysis_options(args);
   const std::string kind = args.get("classifier", "paper");

@@ -129,8 +129,20 @@ static const OptionSpec* find_short(const CommandSpec& spec, char c) {
   return nullptr;
 }
 
+std::string ParsedArgs::require(const std::string& name) const {
+  if (has(name)) return get(name);
+  std::string shown = "--" + name;
+  for (const OptionSpec& o : spec_.options)
+    if (o.name == name) shown = (o.short_name ? std::string("-") + o.short_name : "--" + name) + (o.metavar.empty() ? "" : " " + o.metavar);
+  throw UsageError(spec_.name + " needs " + shown + " (see " + command_line(spec_) + " --help)");
+}
+
+OptionSpec output_option(const std::string& metavar, const std::string& help) { return {"output", 'o', metavar, "", help}; }
+OptionSpec quiet_option() { return {"quiet", 'q', "", "", "print nothing on success"}; }
+
 ParsedArgs parse_args(const CommandSpec& spec, const std::vector<std::string>& args) {
   ParsedArgs out;
+  out.spec_ = spec;
   bool options_done = false;
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& a = args[i];

@@ -67,16 +67,24 @@ class ParsedArgs : public OptionValues {
   double get_double(const std::string& name, double fallback, double min, double max) const override;
   std::vector<long long> get_int_list(const std::string& name, long long min, long long max) const override;
   std::vector<double> get_double_list(const std::string& name, double min, double max) const override;
+  // A required option's value; UsageError "COMMAND needs -o OUTDIR (see PROGRAM COMMAND --help)"
+  // when it was not given.
+  std::string require(const std::string& name) const;
 
  private:
   friend ParsedArgs parse_args(const CommandSpec&, const std::vector<std::string>&);
   std::map<std::string, std::string> values_;
+  CommandSpec spec_;  // what was parsed against, for messages
 };
 
 // Parses arguments (after the subcommand name). "--name value", "--name=value", "-o value" and
 // "--" (end of options) are understood. Throws UsageError on unknown options, missing values or
 // a wrong number of positional arguments. "--help" is handled by the caller before parsing.
 ParsedArgs parse_args(const CommandSpec& spec, const std::vector<std::string>& args);
+
+// Options many commands share, declared once: -o with its metavar and help, and -q.
+OptionSpec output_option(const std::string& metavar, const std::string& help);
+OptionSpec quiet_option();
 
 // The --help text of a command.
 std::string help_text(const CommandSpec& spec);

@@ -25,7 +25,7 @@ CommandSpec bake_spec() {
                    "as alpha, normal maps when the input has normals) in one atlas, and the QF_impostor_level\n"
                    "extension (schemas/QF_impostor_level). manifest.json lists the levels; report.json the\n"
                    "settings, times and counts. Nothing is left half-written if the bake fails.",
-                   {{"output", 'o', "OUTDIR", "", "output folder (created if needed); required"},
+                   {output_option("OUTDIR", "output folder (created if needed); required"),
                     {"primitives", 'n', "N,N,...", "1000,300,100,30", "bake the levels nearest these numbers of primitives"},
                     {"levels", 0, "K,K,...", "", "instead: these level numbers (0 = points, negative = from the coarsest)"},
                     {"tau", 0, "T", "0.05", "domain threshold"},
@@ -44,11 +44,9 @@ CommandSpec bake_spec() {
                      "(STEM_S<i>.glb at the input's triangles / 4, 16, 64, 256, 1024), clustering = seed 002's\n"
                      "vertex clustering with thick edges (STEM_C<i>.glb, cells = diagonal / 128 .. 8)"},
                     {"no-mesh-lods", 0, "", "", "the same as --mesh-lods none"},
-                    drop_nonfinite_option(),
-                    {"quiet", 'q', "", "", "print nothing on success"}},
+                    drop_nonfinite_option(), quiet_option()},
                    1, 1};
-  for (const auto& group : {merge_option_specs(), cache_option_specs(), analysis_option_specs(), sample_option_specs()})
-    spec.options.insert(spec.options.end(), group.begin(), group.end());
+  append_point_input_options(spec.options);
   return spec;
 }
 
@@ -103,8 +101,7 @@ void print_bake_summary(const AssetBake& a, const std::string& in, const std::st
 
 int run_bake(const ParsedArgs& args) {
   const std::string& in = args.positional[0];
-  if (!args.has("output")) throw UsageError("bake needs -o OUTDIR (see qf-bake bake --help)");
-  const std::string outdir = args.get("output");
+  const std::string outdir = args.require("output");
   const AssetOptions options = read_asset_options(args);
   const AssetBake a = bake_asset(in, options, in);
   write_asset(outdir, a.files, a.manifest, a.report);

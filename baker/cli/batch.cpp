@@ -211,7 +211,7 @@ CommandSpec merge_reports_spec() {
 }
 
 int run_merge_reports(const ParsedArgs& args) {
-  if (!args.has("output")) throw UsageError("merge-reports needs -o OUT.json");
+  args.require("output");
   std::vector<nlohmann::json> reports;
   for (const std::string& path : args.positional) {
     const InputFile f(path);

@@ -26,21 +26,19 @@ CommandSpec cluster_spec() {
           "LINES with a _THICKNESS attribute), to a vertex points. Every level comes from the original mesh.\n"
           "manifest.json gives each level's cell width: a runtime picks the largest cell <= X * R, with\n"
           "R = 2 D tan(fov/2) / window height (X = 5..10), and draws thick lines thickness / R pixels wide.",
-          {{"output", 'o', "OUTDIR", "", "output folder (created if needed); required"},
+          {output_option("OUTDIR", "output folder (created if needed); required"),
            {"cells", 0, "W,W,...", "diagonal/128,/64,/32,/16,/8", "cell widths in model units"},
            {"shape", 0, "cube|sphere", "cube", "cell shape"},
            {"assign", 0, "nearest|heaviest", "nearest", "a vertex inside several cells joins the nearest centre (paper 3.2.3) or the heaviest"},
            {"uniform", 0, "", "", "Rossignac-Borrel uniform grid clustering instead of floating cells (for comparison)"},
            {"draco", 0, "", "", "also write STEM_C<i>.draco.glb: triangles Draco-compressed (KHR_draco_mesh_compression, required)"},
-           drop_nonfinite_option(),
-           {"quiet", 'q', "", "", "print nothing on success"}},
+           drop_nonfinite_option(), quiet_option()},
           1, 1};
 }
 
 int run_cluster(const ParsedArgs& args) {
   const std::string& in = args.positional[0];
-  if (!args.has("output")) throw UsageError("cluster needs -o OUTDIR (see qf-bake cluster --help)");
-  const std::string outdir = args.get("output");
+  const std::string outdir = args.require("output");
   ClusterOptions o;
   const std::string shape = args.get_choice("shape", {"cube", "sphere"}, "cube");
   const std::string assign = args.get_choice("assign", {"nearest", "heaviest"}, "nearest");

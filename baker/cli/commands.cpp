@@ -88,6 +88,11 @@ std::string read_cache_dir(const OptionValues& args) {
   return args.get("cache", env && *env ? env : std::string(home ? home : ".") + "/.cache/quasiflat/amg");
 }
 
+void append_point_input_options(std::vector<OptionSpec>& options) {
+  for (const auto& group : {merge_option_specs(), cache_option_specs(), analysis_option_specs(), sample_option_specs()})
+    options.insert(options.end(), group.begin(), group.end());
+}
+
 std::vector<OptionSpec> merge_option_specs() {
   return {{"merge", 0, "", "", "merge overlapping flat domains that face the same way (thesis 3.4), biggest overlap first"},
           {"merge-variation", 0, "V", "0.01", "--merge: a domain is flat when its surface variation is at most V"},
@@ -134,7 +139,7 @@ const std::vector<Command>& commands() {
         with_sampling({{"radius-k", 0, "K", "6", "missing radii reach the K-th nearest neighbour"},
                        {"vertices", 0, "", "", "mesh inputs: the mesh's vertices (with their normals and colours when it has them) are the points, instead of sampling its surface"},
                        drop_nonfinite_option(),
-                       {"quiet", 'q', "", "", "print nothing on success"}}),
+                       quiet_option()}),
         2, 2},
        run_convert},
       {{"generate", "SHAPE -o OUT [options]", "write an analytic sample shape as a point set",
@@ -146,7 +151,7 @@ const std::vector<Command>& commands() {
          {"seed", 0, "S", "1", "random seed"},
          {"mesh", 0, "", "", "write a closed triangle mesh instead (octahedron, cube, sphere; OUT must be .ply)"},
          {"subdivisions", 0, "N", "16", "--mesh: each face split into N x N triangles"},
-         {"quiet", 'q', "", "", "print nothing on success"}},
+         quiet_option()},
         1, 1},
        run_generate},
       {analyze_spec(), run_analyze},
@@ -205,7 +210,7 @@ int run_convert(const ParsedArgs& args) {
 }
 
 int run_generate(const ParsedArgs& args) {
-  if (!args.has("output")) throw UsageError("generate needs -o OUT (see qf-bake generate --help)");
+  args.require("output");
   ShapeOptions o;
   o.points = static_cast<std::size_t>(args.get_int("points", static_cast<long long>(o.points), 1, 100000000));
   o.seed = static_cast<std::uint64_t>(args.get_int("seed", static_cast<long long>(o.seed), 0, (1ll << 62)));

@@ -51,6 +51,9 @@ PointSet load_points(const std::string& path, const ParsedArgs& args, const std:
 std::vector<OptionSpec> cache_option_specs();
 std::string read_cache_dir(const OptionValues& args);  // "" when the cache is off
 std::vector<OptionSpec> merge_option_specs();
+// What every command that analyses a point set (or samples a mesh into one) takes: the merge,
+// cache, analysis and sampling options, appended in that order (bake, decompose).
+void append_point_input_options(std::vector<OptionSpec>& options);
 MergeOptions read_merge_options(const OptionValues& args, const DomainOptions& domains);
 
 CommandSpec decompose_spec();

@@ -90,100 +90,34 @@ void write_basis_dump(const std::string& path, const SparseMatrix& psi, std::siz
   });
 }
 
-}  // namespace
-
-CommandSpec decompose_spec() {
-  CommandSpec spec{"decompose", "IN -o OUT.ply [options]",
-                   "AMG decomposition: basis functions, domains and their neighbour graph at one level",
-                   "Writes the points coloured by domain (each basis function a colour, mixed by the weights\n"
-                   "where domains overlap, as the paper's figure 5c/d), with the strongest function's index as\n"
-                   "the float property 'domain' and its weight as 'weight'. Levels are numbered from the finest:\n"
-                   "0 is the points themselves; a negative number or L-K counts back from the coarsest level L.",
-                   {{"output", 'o', "OUT.ply", "", "output point set (.ply); required"},
-                    {"level", 0, "K", "", "the level to decompose at (0 = points, -K or L-K from the coarsest)"},
-                    {"primitives", 'n', "N", "200", "instead of --level: the level with the number of basis functions nearest N"},
-                    {"tau", 0, "T", "0.05", "domain threshold: D = {x : Psi(x) > T} (paper; the thesis used 0.01)"},
-                    {"strict", 0, "", "", "strict domains: each point only in its strongest function's domain"},
-                    {"neighbor-share", 0, "S", "0.05", "domains i, j are neighbours when they share more than S of either's points"},
-                    {"prune", 0, "W", "0.001", "drop basis weights below W after each product (rows renormalised); 0 = exact"},
-                    {"summary", 0, "levels.json", "", "write a JSON summary of every level"},
-                    {"basis-dump", 0, "FILE", "", "write every point's non-zero basis weights at the chosen level (text)"},
-                    drop_nonfinite_option(),
-                    {"quiet", 'q', "", "", "print nothing on success"}},
-                   1, 1};
-  for (const auto& group : {merge_option_specs(), cache_option_specs(), analysis_option_specs(), sample_option_specs()})
-    spec.options.insert(spec.options.end(), group.begin(), group.end());
-  return spec;
+// The level --level or --primitives names (UsageError when --level names none).
+std::size_t chosen_level(const ParsedArgs& args, const AmgHierarchy& h) {
+  if (!args.has("level")) return level_by_primitives(h, static_cast<std::size_t>(args.get_int("primitives", 200, 1, 1ll << 40)));
+  const std::string text = args.get("level");
+  try {
+    return (text == "L" || text == "l") ? h.level_count() - 1 : level_by_index(h, parse_level(text));
+  } catch (const std::out_of_range& e) {
+    throw UsageError(std::string("--level: ") + e.what());
+  }
 }
 
-int run_decompose(const ParsedArgs& args) {
-  const std::string& in = args.positional[0];
-  if (!args.has("output")) throw UsageError("decompose needs -o OUT.ply (see qf-bake decompose --help)");
-  const std::string out = args.get("output");
-  if (file_extension(out) != "ply") throw UsageError("decompose writes .ply, not '" + out + "'");
-  if (args.has("level") && args.has("primitives")) throw UsageError("give --level or --primitives, not both");
-  const AnalysisOptions ao = read_analysis_options(args);
-  DomainOptions dopt;
-  dopt.tau = args.get_double("tau", dopt.tau, 0.0, 1.0);
-  dopt.strict = args.flag("strict");
-  dopt.neighbor_share = args.get_double("neighbor-share", dopt.neighbor_share, 0.0, 1.0);
-  const MergeOptions mopt = read_merge_options(args, dopt);
-  BasisOptions bopt;
-  bopt.prune = args.get_double("prune", bopt.prune, 0.0, 0.5);
+// One level's entry in the --summary file.
+nlohmann::json level_summary(const AmgHierarchy& h, std::size_t l, const SparseMatrix& psi, const DomainOptions& dopt) {
+  const Domains d = make_domains(psi, dopt);
+  return {{"level", l},
+          {"functions", h.levels[l].size},
+          {"ratio", canonical_double(static_cast<float>(h.levels[l].ratio))},
+          {"theta", canonical_double(static_cast<float>(h.levels[l].theta))},
+          {"weights_per_point", canonical_double(float(psi.nonZeros()) / float(psi.rows()))},
+          {"domain_points", size_stats(d)},
+          {"empty_domains", d.empty},
+          {"uncovered_points", d.uncovered},
+          {"shared_points", d.shared_points},
+          {"graph_edges", d.edges.size()}};
+}
 
-  ReadReport read_report;
-  const PointSet points = load_points(in, args, "decompose", read_report);
-  // The hierarchy depends only on the points and the settings: reuse it when cached.
-  const std::string cache_dir = read_cache_dir(args);
-  std::string cache_state;
-  const auto t0 = std::chrono::steady_clock::now();
-  const AmgHierarchy h = cached_hierarchy(points, ao, AmgOptions{}, cache_dir, cache_state);
-  const auto t2 = std::chrono::steady_clock::now();
-
-  std::size_t level;
-  if (args.has("level")) {
-    const std::string text = args.get("level");
-    try {
-      level = (text == "L" || text == "l") ? h.level_count() - 1 : level_by_index(h, parse_level(text));
-    } catch (const std::out_of_range& e) {
-      throw UsageError(std::string("--level: ") + e.what());
-    }
-  } else {
-    level = level_by_primitives(h, static_cast<std::size_t>(args.get_int("primitives", 200, 1, 1ll << 40)));
-  }
-
-  // Every level's basis and domains for the summary (only up to the chosen level without one).
-  const bool summary = args.has("summary");
-  const std::size_t last = summary ? h.level_count() - 1 : level;
-  nlohmann::json levels = nlohmann::json::array();
-  levels.push_back({{"level", 0}, {"functions", h.levels[0].size}});
-  SparseMatrix chosen;
-  if (level == 0) chosen = basis_at_level(h, 0);
-  double basis_seconds = 0;
-  auto tb = std::chrono::steady_clock::now();
-  for_each_basis(h, last, bopt, [&](std::size_t l, const SparseMatrix& psi) {
-    basis_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - tb).count();
-    if (l == level) chosen = psi;
-    if (summary) {
-      const Domains d = make_domains(psi, dopt);
-      levels.push_back({{"level", l},
-                        {"functions", h.levels[l].size},
-                        {"ratio", canonical_double(static_cast<float>(h.levels[l].ratio))},
-                        {"theta", canonical_double(static_cast<float>(h.levels[l].theta))},
-                        {"weights_per_point", canonical_double(float(psi.nonZeros()) / float(psi.rows()))},
-                        {"domain_points", size_stats(d)},
-                        {"empty_domains", d.empty},
-                        {"uncovered_points", d.uncovered},
-                        {"shared_points", d.shared_points},
-                        {"graph_edges", d.edges.size()}});
-    }
-    tb = std::chrono::steady_clock::now();
-  });
-  MergeReport merge_report;
-  if (args.flag("merge")) chosen = merge_domains(chosen, points.positions, mopt, &merge_report);
-  const Domains domains = make_domains(chosen, dopt);
-
-  // The debug point set: colours mixed by weight, strongest function and its weight.
+// The debug point set: colours mixed by weight, the strongest function and its weight.
+PointSet domain_point_set(const PointSet& points, const SparseMatrix& chosen, std::size_t level, const AmgHierarchy& h) {
   PointSet dbg;
   dbg.positions = points.positions;
   dbg.normals = points.normals;  // the input's only: the output must not depend on a cache hit
@@ -204,40 +138,122 @@ int run_decompose(const ParsedArgs& args) {
   dbg.scalars = {{"domain", strongest}, {"weight", weight}};
   dbg.comments = {"quasiflat decompose: level " + std::to_string(level) + " of " + std::to_string(h.level_count() - 1) +
                   ", " + std::to_string(chosen.cols()) + " basis functions"};
-  write_ply(out, dbg);
-  if (args.has("basis-dump")) write_basis_dump(args.get("basis-dump"), chosen, level);
-  if (summary) {
-    char hash[32];
-    std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(hierarchy_hash(h)));
-    nlohmann::json j;
-    j["input"] = in;
-    j["points"] = points.size();
-    j["components"] = h.components;
-    j["isolated_points"] = h.isolated;
-    j["hierarchy_hash"] = hash;
-    j["chosen_level"] = level;
-    if (args.flag("merge")) j["merged"] = {{"functions_before", merge_report.before}, {"functions_after", merge_report.after}};
-    j["levels"] = levels;
-    // Wall-clock times: the only part of the file that differs between runs.
-    j["seconds"] = {{"hierarchy", canonical_double(std::chrono::duration<float>(t2 - t0).count())},
-                    {"basis", canonical_double(static_cast<float>(basis_seconds))}};
-    write_file_atomically(args.get("summary"), [&](std::ostream& o) { o << j.dump(2) << "\n"; });
-  }
-  if (!args.flag("quiet")) {
-    std::fprintf(stderr, "qf-bake decompose: %s -> %s\n", in.c_str(), out.c_str());
-    std::fprintf(stderr, "  hierarchy: %zu levels (", h.level_count());
-    for (std::size_t l = 0; l < h.level_count(); ++l) std::fprintf(stderr, "%s%zu", l ? " " : "", h.levels[l].size);
-    std::fprintf(stderr, " functions), %zu component(s), %zu isolated point(s)\n", h.components, h.isolated);
-    std::fprintf(stderr, "  level %zu: %zu basis functions, %zu domains (%zu empty), %zu points shared, %zu uncovered, %zu graph edges\n",
-                 level, static_cast<std::size_t>(chosen.cols()), domains.count() - domains.empty, domains.empty,
-                 domains.shared_points, domains.uncovered, domains.edges.size());
-    if (args.flag("merge"))
-      std::fprintf(stderr, "  merged: %zu -> %zu basis functions (%zu merges)\n", merge_report.before, merge_report.after,
-                   merge_report.merges);
-    std::fprintf(stderr, "  cache: %s (%s)\n", cache_state.c_str(), cache_dir.empty() ? "disabled" : cache_dir.c_str());
-    std::fprintf(stderr, "  time: analysis and hierarchy %.3f s, basis %.3f s\n",
-                 std::chrono::duration<double>(t2 - t0).count(), basis_seconds);
-  }
+  return dbg;
+}
+
+// What a decompose run found and took, for the terminal.
+struct DecomposeRun {
+  std::string in, out, cache_dir, cache_state;
+  std::size_t level = 0;
+  double hierarchy_seconds = 0, basis_seconds = 0;
+};
+
+// The --summary file (schemas/levels.schema.json): the hierarchy and every level.
+void write_levels_summary(const std::string& path, const DecomposeRun& r, const AmgHierarchy& h, std::size_t points,
+                          const nlohmann::json& levels, const MergeReport* merged) {
+  char hash[32];
+  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(hierarchy_hash(h)));
+  nlohmann::json j;
+  j["input"] = r.in;
+  j["points"] = points;
+  j["components"] = h.components;
+  j["isolated_points"] = h.isolated;
+  j["hierarchy_hash"] = hash;
+  j["chosen_level"] = r.level;
+  if (merged) j["merged"] = {{"functions_before", merged->before}, {"functions_after", merged->after}};
+  j["levels"] = levels;
+  // Wall-clock times: the only part of the file that differs between runs.
+  j["seconds"] = {{"hierarchy", canonical_double(static_cast<float>(r.hierarchy_seconds))},
+                  {"basis", canonical_double(static_cast<float>(r.basis_seconds))}};
+  write_file_atomically(path, [&](std::ostream& o) { o << j.dump(2) << "\n"; });
+}
+
+void print_decompose_summary(const DecomposeRun& r, const AmgHierarchy& h, const SparseMatrix& chosen, const Domains& domains,
+                             const MergeReport* merged) {
+  std::fprintf(stderr, "qf-bake decompose: %s -> %s\n", r.in.c_str(), r.out.c_str());
+  std::fprintf(stderr, "  hierarchy: %zu levels (", h.level_count());
+  for (std::size_t l = 0; l < h.level_count(); ++l) std::fprintf(stderr, "%s%zu", l ? " " : "", h.levels[l].size);
+  std::fprintf(stderr, " functions), %zu component(s), %zu isolated point(s)\n", h.components, h.isolated);
+  std::fprintf(stderr, "  level %zu: %zu basis functions, %zu domains (%zu empty), %zu points shared, %zu uncovered, %zu graph edges\n",
+               r.level, static_cast<std::size_t>(chosen.cols()), domains.count() - domains.empty, domains.empty,
+               domains.shared_points, domains.uncovered, domains.edges.size());
+  if (merged)
+    std::fprintf(stderr, "  merged: %zu -> %zu basis functions (%zu merges)\n", merged->before, merged->after, merged->merges);
+  std::fprintf(stderr, "  cache: %s (%s)\n", r.cache_state.c_str(), r.cache_dir.empty() ? "disabled" : r.cache_dir.c_str());
+  std::fprintf(stderr, "  time: analysis and hierarchy %.3f s, basis %.3f s\n", r.hierarchy_seconds, r.basis_seconds);
+}
+
+}  // namespace
+
+CommandSpec decompose_spec() {
+  CommandSpec spec{"decompose", "IN -o OUT.ply [options]",
+                   "AMG decomposition: basis functions, domains and their neighbour graph at one level",
+                   "Writes the points coloured by domain (each basis function a colour, mixed by the weights\n"
+                   "where domains overlap, as the paper's figure 5c/d), with the strongest function's index as\n"
+                   "the float property 'domain' and its weight as 'weight'. Levels are numbered from the finest:\n"
+                   "0 is the points themselves; a negative number or L-K counts back from the coarsest level L.",
+                   {{"output", 'o', "OUT.ply", "", "output point set (.ply); required"},
+                    {"level", 0, "K", "", "the level to decompose at (0 = points, -K or L-K from the coarsest)"},
+                    {"primitives", 'n', "N", "200", "instead of --level: the level with the number of basis functions nearest N"},
+                    {"tau", 0, "T", "0.05", "domain threshold: D = {x : Psi(x) > T} (paper; the thesis used 0.01)"},
+                    {"strict", 0, "", "", "strict domains: each point only in its strongest function's domain"},
+                    {"neighbor-share", 0, "S", "0.05", "domains i, j are neighbours when they share more than S of either's points"},
+                    {"prune", 0, "W", "0.001", "drop basis weights below W after each product (rows renormalised); 0 = exact"},
+                    {"summary", 0, "levels.json", "", "write a JSON summary of every level"},
+                    {"basis-dump", 0, "FILE", "", "write every point's non-zero basis weights at the chosen level (text)"},
+                    drop_nonfinite_option(), quiet_option()},
+                   1, 1};
+  append_point_input_options(spec.options);
+  return spec;
+}
+
+int run_decompose(const ParsedArgs& args) {
+  // 1. Options.
+  DecomposeRun r;
+  r.in = args.positional[0];
+  r.out = args.require("output");
+  if (file_extension(r.out) != "ply") throw UsageError("decompose writes .ply, not '" + r.out + "'");
+  if (args.has("level") && args.has("primitives")) throw UsageError("give --level or --primitives, not both");
+  const AnalysisOptions ao = read_analysis_options(args);
+  DomainOptions dopt;
+  dopt.tau = args.get_double("tau", dopt.tau, 0.0, 1.0);
+  dopt.strict = args.flag("strict");
+  dopt.neighbor_share = args.get_double("neighbor-share", dopt.neighbor_share, 0.0, 1.0);
+  const MergeOptions mopt = read_merge_options(args, dopt);
+  BasisOptions bopt;
+  bopt.prune = args.get_double("prune", bopt.prune, 0.0, 0.5);
+
+  // 2. The hierarchy: it depends only on the points and the settings, so it is reused when cached.
+  ReadReport read_report;
+  const PointSet points = load_points(r.in, args, "decompose", read_report);
+  r.cache_dir = read_cache_dir(args);
+  const auto t0 = std::chrono::steady_clock::now();
+  const AmgHierarchy h = cached_hierarchy(points, ao, AmgOptions{}, r.cache_dir, r.cache_state);
+  r.hierarchy_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  r.level = chosen_level(args, h);
+
+  // 3. Every level's basis and domains for the summary (only up to the chosen level without one).
+  const bool summary = args.has("summary");
+  nlohmann::json levels = nlohmann::json::array();
+  levels.push_back({{"level", 0}, {"functions", h.levels[0].size}});
+  SparseMatrix chosen;
+  if (r.level == 0) chosen = basis_at_level(h, 0);
+  auto tb = std::chrono::steady_clock::now();
+  for_each_basis(h, summary ? h.level_count() - 1 : r.level, bopt, [&](std::size_t l, const SparseMatrix& psi) {
+    r.basis_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - tb).count();
+    if (l == r.level) chosen = psi;
+    if (summary) levels.push_back(level_summary(h, l, psi, dopt));
+    tb = std::chrono::steady_clock::now();
+  });
+  MergeReport merge_report;
+  if (args.flag("merge")) chosen = merge_domains(chosen, points.positions, mopt, &merge_report);
+  const Domains domains = make_domains(chosen, dopt);
+
+  // 4. The outputs.
+  write_ply(r.out, domain_point_set(points, chosen, r.level, h));
+  if (args.has("basis-dump")) write_basis_dump(args.get("basis-dump"), chosen, r.level);
+  if (summary) write_levels_summary(args.get("summary"), r, h, points.size(), levels, args.flag("merge") ? &merge_report : nullptr);
+  if (!args.flag("quiet")) print_decompose_summary(r, h, chosen, domains, args.flag("merge") ? &merge_report : nullptr);
   return 0;
 }
 

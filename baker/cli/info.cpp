@@ -30,70 +30,76 @@ std::string human_bytes(std::size_t b) {
   return s.str();
 }
 
-}  // namespace
+// What info says of a file, in both of its forms.
+struct InfoFacts {
+  std::vector<std::string> attributes;  // in a fixed order; "position" always
+  Bounds bounds;
+  std::size_t count = 0, memory = 0;
+  const std::vector<std::string>* comments = nullptr;
+};
 
-int run_info(const ParsedArgs& args) {
-  const std::string& path = args.positional[0];
-  ReadOptions ro;
-  ro.drop_nonfinite = args.flag("drop-nonfinite");
-  ReadReport report;
-  const Model m = read_model(path, ro, &report);
-
-  // Attributes in a fixed order; "position" always.
-  std::vector<std::string> attributes{"position"};
+InfoFacts info_facts(const Model& m) {
+  InfoFacts f;
+  f.attributes = {"position"};
   const bool normals = m.is_mesh ? !m.mesh.normals.empty() : m.points.has_normals();
   const bool colors = m.is_mesh ? !m.mesh.colors.empty() : m.points.has_colors();
-  if (normals) attributes.push_back("normal");
-  if (colors) attributes.push_back("color");
-  if (m.is_mesh && !m.mesh.corner_uvs.empty()) attributes.push_back("texcoord");
-  if (!m.is_mesh && m.points.has_radii()) attributes.push_back("radius");
-  const Bounds b = m.is_mesh ? m.mesh.bounds() : m.points.bounds();
-  const std::size_t count = m.is_mesh ? m.mesh.positions.size() : m.points.size();
-  const std::size_t memory = m.is_mesh ? m.mesh.memory_bytes() : m.points.memory_bytes();
-  const std::vector<std::string>& comments = m.is_mesh ? m.mesh.comments : m.points.comments;
+  if (normals) f.attributes.push_back("normal");
+  if (colors) f.attributes.push_back("color");
+  if (m.is_mesh && !m.mesh.corner_uvs.empty()) f.attributes.push_back("texcoord");
+  if (!m.is_mesh && m.points.has_radii()) f.attributes.push_back("radius");
+  f.bounds = m.is_mesh ? m.mesh.bounds() : m.points.bounds();
+  f.count = m.is_mesh ? m.mesh.positions.size() : m.points.size();
+  f.memory = m.is_mesh ? m.mesh.memory_bytes() : m.points.memory_bytes();
+  f.comments = m.is_mesh ? &m.mesh.comments : &m.points.comments;
+  return f;
+}
 
-  if (args.flag("json")) {
-    nlohmann::json j;
-    j["file"] = path;
-    j["format"] = report.format;
-    j["kind"] = m.is_mesh ? "mesh" : "points";
-    j[m.is_mesh ? "vertices" : "points"] = count;
-    if (m.is_mesh) j["triangles"] = m.mesh.triangles.size();
-    j["attributes"] = attributes;
-    if (!b.empty()) j["bounds"] = {{"min", vec_json(b.min)}, {"max", vec_json(b.max)}, {"diagonal", canonical_double(b.diagonal())}};
-    j["memory_bytes"] = memory;
-    j["comments"] = comments;
-    j["dropped_nonfinite"] = report.dropped_nonfinite;
-    if (m.is_mesh) {
-      j["dropped_triangles"] = report.dropped_triangles;
-      j["polygons_triangulated"] = report.polygons_triangulated;
-    }
-    if (report.fragments) j["fragments"] = report.fragments;
-    if (m.is_mesh) {
-      j["materials"] = m.mesh.materials.size();
-      j["textures"] = m.mesh.textures.size();
-      j["skipped_primitives"] = report.skipped_primitives;
-    }
-    j["warnings"] = report.warnings;
-    std::cout << j.dump(2) << "\n";
-    return 0;
+// --json (schemas/info.schema.json).
+void print_info_json(const std::string& path, const Model& m, const ReadReport& report, const InfoFacts& f) {
+  const Bounds& b = f.bounds;
+  nlohmann::json j;
+  j["file"] = path;
+  j["format"] = report.format;
+  j["kind"] = m.is_mesh ? "mesh" : "points";
+  j[m.is_mesh ? "vertices" : "points"] = f.count;
+  if (m.is_mesh) j["triangles"] = m.mesh.triangles.size();
+  j["attributes"] = f.attributes;
+  if (!b.empty()) j["bounds"] = {{"min", vec_json(b.min)}, {"max", vec_json(b.max)}, {"diagonal", canonical_double(b.diagonal())}};
+  j["memory_bytes"] = f.memory;
+  j["comments"] = *f.comments;
+  j["dropped_nonfinite"] = report.dropped_nonfinite;
+  if (m.is_mesh) {
+    j["dropped_triangles"] = report.dropped_triangles;
+    j["polygons_triangulated"] = report.polygons_triangulated;
   }
+  if (report.fragments) j["fragments"] = report.fragments;
+  if (m.is_mesh) {
+    j["materials"] = m.mesh.materials.size();
+    j["textures"] = m.mesh.textures.size();
+    j["skipped_primitives"] = report.skipped_primitives;
+  }
+  j["warnings"] = report.warnings;
+  std::cout << j.dump(2) << "\n";
+}
+
+void print_info_text(const std::string& path, const Model& m, const ReadReport& report, const InfoFacts& f) {
+  const Bounds& b = f.bounds;
   std::string attr_text;
-  for (const std::string& a : attributes) attr_text += (attr_text.empty() ? "" : " ") + a;
+  for (const std::string& a : f.attributes) attr_text += (attr_text.empty() ? "" : " ") + a;
   std::cout << "file:        " << path << "\n"
             << "format:      " << report.format << "\n"
             << "kind:        " << (m.is_mesh ? "triangle mesh" : "point set") << "\n";
   if (m.is_mesh)
-    std::cout << "vertices:    " << count << "\n"
+    std::cout << "vertices:    " << f.count << "\n"
               << "triangles:   " << m.mesh.triangles.size() << "\n";
   else
-    std::cout << "points:      " << count << "\n";
+    std::cout << "points:      " << f.count << "\n";
   std::cout << "attributes:  " << attr_text << "\n";
   if (!m.is_mesh && !m.points.has_radii()) std::cout << "             (radii absent: estimated from local spacing when needed)\n";
   if (!b.empty())
     std::cout << "bounds:      min " << vec_text(b.min) << "  max " << vec_text(b.max) << "\n"
               << "size:        " << vec_text(b.size()) << "  diagonal " << b.diagonal() << "\n";
-  std::cout << "memory:      " << memory << " bytes (" << human_bytes(memory) << ")\n";
+  std::cout << "memory:      " << f.memory << " bytes (" << human_bytes(f.memory) << ")\n";
   if (report.fragments) std::cout << "fragments:   " << report.fragments << "\n";
   if (report.polygons_triangulated) std::cout << "polygons:    " << report.polygons_triangulated << " split into triangles\n";
   if (report.dropped_nonfinite)
@@ -108,7 +114,20 @@ int run_info(const ParsedArgs& args) {
   }
   if (report.skipped_primitives) std::cout << "skipped:     " << report.skipped_primitives << " point or line primitives\n";
   for (const std::string& w : report.warnings) std::cout << "warning:     " << w << "\n";
-  for (const std::string& c : comments) std::cout << "comment:     " << c << "\n";
+  for (const std::string& c : *f.comments) std::cout << "comment:     " << c << "\n";
+}
+
+}  // namespace
+
+int run_info(const ParsedArgs& args) {
+  const std::string& path = args.positional[0];
+  ReadOptions ro;
+  ro.drop_nonfinite = args.flag("drop-nonfinite");
+  ReadReport report;
+  const Model m = read_model(path, ro, &report);
+  const InfoFacts f = info_facts(m);
+  if (args.flag("json")) print_info_json(path, m, report, f);
+  else print_info_text(path, m, report, f);
   return 0;
 }
 

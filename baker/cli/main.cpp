@@ -10,21 +10,17 @@ bool names_a_file(const std::string& a) { return a.find('.') != std::string::npo
 
 }  // namespace
 
+constexpr const char* kUsage =
+    "usage: qf-bake IN -o OUTDIR [options]   bake (the main job; see qf-bake bake --help)\n"
+    "       qf-bake COMMAND [arguments] [options]\n"
+    "       qf-bake COMMAND --help      options of one command, with their defaults\n"
+    "       qf-bake --version\n";
+constexpr const char* kExitCodes =
+    "exit codes: 0 ok, 1 bad input (the message names the file, the line or byte, and what was\n"
+    "expected), 2 bad usage, 3 internal error.\n";
+
 int main(int argc, char** argv) {
-  qf::cli::Program p;
-  p.name = "qf-bake";
-  p.title = "extreme simplification of point sets and meshes into textured quads";
-  p.usage =
-      "usage: qf-bake IN -o OUTDIR [options]   bake (the main job; see qf-bake bake --help)\n"
-      "       qf-bake COMMAND [arguments] [options]\n"
-      "       qf-bake COMMAND --help      options of one command, with their defaults\n"
-      "       qf-bake --version\n";
-  p.exit_codes =
-      "exit codes: 0 ok, 1 bad input (the message names the file, the line or byte, and what was\n"
-      "expected), 2 bad usage, 3 internal error.\n";
-  p.commands = qf::cli::commands();
-  p.name_column = 17;
-  p.implicit_command = "bake";
-  p.implicit_for = names_a_file;
-  return qf::cli::run_program(p, argc, argv);
+  const qf::cli::Program program{"qf-bake", "extreme simplification of point sets and meshes into textured quads", kUsage, kExitCodes,
+                                 qf::cli::commands(), 17, "bake", names_a_file};
+  return qf::cli::run_program(program, argc, argv);
 }

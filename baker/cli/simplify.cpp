@@ -22,18 +22,17 @@ CommandSpec simplify_spec() {
           "triangles with smooth normals (or none with --normals flat: engines then shade each triangle\n"
           "flat). manifest.json gives each LOD's triangles, vertices, bytes, meshoptimizer's error and the\n"
           "largest on-screen size at which that error stays under half a pixel.",
-          {{"output", 'o', "OUTDIR", "", "output folder (created if needed); required"},
+          {output_option("OUTDIR", "output folder (created if needed); required"),
            {"triangles", 't', "N,N,...", "", "triangle budgets, one LOD each; required"},
            {"normals", 0, "smooth|flat", "smooth", "vertex normals area-weighted over the LOD's triangles, or none"},
-           drop_nonfinite_option(),
-           {"quiet", 'q', "", "", "print nothing on success"}},
+           drop_nonfinite_option(), quiet_option()},
           1, 1};
 }
 
 int run_simplify(const ParsedArgs& args) {
   const std::string& in = args.positional[0];
-  if (!args.has("output")) throw UsageError("simplify needs -o OUTDIR (see qf-bake simplify --help)");
-  if (!args.has("triangles")) throw UsageError("simplify needs --triangles N,N,... (see qf-bake simplify --help)");
+  const std::string outdir = args.require("output");
+  args.require("triangles");
   const std::string normals = args.get_choice("normals", {"smooth", "flat"}, "smooth");
   std::vector<std::size_t> budgets;
   for (long long n : args.get_int_list("triangles", 1, std::numeric_limits<long long>::max())) budgets.push_back(static_cast<std::size_t>(n));
@@ -55,10 +54,10 @@ int run_simplify(const ParsedArgs& args) {
                                 {"normals", normals},
                                 {"levels", levels},
                                 {"generator", "quasiflat qf-bake simplify"}};
-  write_asset(args.get("output"), files, manifest, nullptr, "qf-simplify");
+  write_asset(outdir, files, manifest, nullptr, "qf-simplify");
   if (!args.flag("quiet")) {
     std::fprintf(stderr, "qf-bake simplify: %s (%zu triangles) -> %s, %zu LODs in %.3f s\n", in.c_str(), model.mesh.triangles.size(),
-                 args.get("output").c_str(), budgets.size(), seconds);
+                 outdir.c_str(), budgets.size(), seconds);
     for (const auto& l : levels)
       std::fprintf(stderr, "  %s: %zu triangles, error %.4g\n", l["file"].get<std::string>().c_str(), l["triangles"].get<std::size_t>(),
                    l["error"].get<double>());

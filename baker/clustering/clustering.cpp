@@ -236,37 +236,44 @@ VertexGrading grade_vertices(const TriangleMesh& mesh) {
   return g;
 }
 
-LodMesh cluster_mesh(const TriangleMesh& mesh, const VertexGrading& g, const ClusterOptions& o) {
-  if (!(o.cell > 0)) throw std::invalid_argument("cluster_mesh: the cell width must be positive");
-  std::vector<bool> used(mesh.positions.size(), false);
-  for (const Triangle& t : mesh.triangles)
-    for (std::uint32_t v : t) used[v] = true;
-  // 1. Clustering.
-  std::vector<std::uint32_t> rep;  // per cluster: its representative (centre / heaviest) vertex
-  const std::vector<std::uint32_t> cluster = o.uniform ? uniform_cells(mesh, used, g, o, rep) : floating_cells(mesh, used, g, o, rep);
-  LodMesh out;
-  out.cell = o.cell;
-  out.clusters = rep.size();
-  std::vector<Vec3f> cluster_pos(rep.size());
-  for (std::size_t c = 0; c < rep.size(); ++c) cluster_pos[c] = mesh.positions[rep[c]];
-  if (o.uniform) {  // the weighted mean of the members (plain mean where all weigh 0)
-    std::vector<double> sum(rep.size() * 4, 0.0);
-    for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
-      if (cluster[v] == kNone) continue;
-      const double w = g.weight[v] > 0 ? g.weight[v] : 1e-9;
-      double* s = &sum[cluster[v] * 4];
-      s[0] += w * mesh.positions[v].x, s[1] += w * mesh.positions[v].y, s[2] += w * mesh.positions[v].z, s[3] += w;
-    }
-    for (std::size_t c = 0; c < rep.size(); ++c)
-      cluster_pos[c] = {static_cast<float>(sum[c * 4] / sum[c * 4 + 3]), static_cast<float>(sum[c * 4 + 1] / sum[c * 4 + 3]),
-                        static_cast<float>(sum[c * 4 + 2] / sum[c * 4 + 3])};
+namespace {
+
+// A triangle whose three clusters differ (key: the clusters sorted; t: them in its winding), and a
+// triangle collapsed to the edge between two clusters (a < b).
+struct ClusterTri {
+  std::array<std::uint32_t, 3> key;
+  Triangle t;
+  std::size_t index;
+};
+struct ClusterEdge {
+  std::uint32_t a, b;
+  std::size_t triangle;
+};
+
+// The clusters' positions: the representative's (floating cells), or the weighted mean of the
+// members (uniform grid; the plain mean where all weigh 0).
+std::vector<Vec3f> cluster_positions(const TriangleMesh& mesh, const VertexGrading& g, bool uniform,
+                                     const std::vector<std::uint32_t>& cluster, const std::vector<std::uint32_t>& rep) {
+  std::vector<Vec3f> pos(rep.size());
+  for (std::size_t c = 0; c < rep.size(); ++c) pos[c] = mesh.positions[rep[c]];
+  if (!uniform) return pos;
+  std::vector<double> sum(rep.size() * 4, 0.0);
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+    if (cluster[v] == kNone) continue;
+    const double w = g.weight[v] > 0 ? g.weight[v] : 1e-9;
+    double* s = &sum[cluster[v] * 4];
+    s[0] += w * mesh.positions[v].x, s[1] += w * mesh.positions[v].y, s[2] += w * mesh.positions[v].z, s[3] += w;
   }
-  // 2. Synthesis: each triangle by its clusters.
-  struct Tri { std::array<std::uint32_t, 3> key; Triangle t; std::size_t index; };
-  struct Edge { std::uint32_t a, b; std::size_t triangle; };
-  std::vector<Tri> tris;
-  std::vector<Edge> edges;
-  std::vector<bool> point(rep.size(), false);  // clusters some triangle collapsed into
+  for (std::size_t c = 0; c < rep.size(); ++c)
+    pos[c] = {static_cast<float>(sum[c * 4] / sum[c * 4 + 3]), static_cast<float>(sum[c * 4 + 1] / sum[c * 4 + 3]),
+              static_cast<float>(sum[c * 4 + 2] / sum[c * 4 + 3])};
+  return pos;
+}
+
+// Synthesis: each triangle by its clusters, as a triangle, an edge, or a point (`point[c]`: some
+// triangle collapsed into cluster c).
+void synthesize(const TriangleMesh& mesh, const std::vector<std::uint32_t>& cluster, std::vector<ClusterTri>& tris,
+                std::vector<ClusterEdge>& edges, std::vector<bool>& point) {
   tris.reserve(mesh.triangles.size());
   for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
     const Triangle& t = mesh.triangles[i];
@@ -284,61 +291,74 @@ LodMesh cluster_mesh(const TriangleMesh& mesh, const VertexGrading& g, const Clu
       point[c[0]] = true;
     }
   }
-  // 3. Elimination: one triangle per cluster triple (the first, with its winding); edges that are
-  //    sides of a triangle, and points used by a triangle or an edge, go.
+}
+
+// Elimination: one triangle per cluster triple (the first, with its winding); edges that are sides
+// of a triangle go; `covered[c]`: cluster c is a corner of a kept triangle or an end of an edge (a
+// point there adds nothing). Edges end sorted by their cluster pair.
+void eliminate(std::vector<ClusterTri>& tris, std::vector<ClusterEdge>& edges, std::vector<bool>& covered) {
   {  // first occurrence of each cluster triple, in input order
     KeySet seen(tris.size());
     std::size_t kept = 0;
-    for (const Tri& t : tris)
+    for (const ClusterTri& t : tris)
       if (seen.insert(t.key)) tris[kept++] = t;
     tris.resize(kept);
   }
-  std::vector<bool> covered(rep.size(), false);
-  {
-    // Collapsed triangles whose edge is a side of a kept triangle add nothing: drop them before
-    // grouping (most of them, on fine levels), so only true thick edges get sorted.
-    KeySet sides(edges.empty() ? 0 : tris.size() * 3);
-    for (const Tri& t : tris)
-      for (int k = 0; k < 3; ++k) {
-        const std::uint32_t a = t.key[static_cast<std::size_t>(k)], b = t.key[static_cast<std::size_t>((k + 1) % 3)];
-        if (!edges.empty()) sides.insert({std::min(a, b), std::max(a, b), 0});
-        covered[a] = true;
-      }
-    std::size_t kept = 0;
-    for (const Edge& e : edges) {
-      covered[e.a] = covered[e.b] = true;
-      if (!sides.contains({e.a, e.b, 0})) edges[kept++] = e;
+  // Collapsed triangles whose edge is a side of a kept triangle add nothing: drop them before
+  // grouping (most of them, on fine levels), so only true thick edges get sorted.
+  KeySet sides(edges.empty() ? 0 : tris.size() * 3);
+  for (const ClusterTri& t : tris)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = t.key[static_cast<std::size_t>(k)], b = t.key[static_cast<std::size_t>((k + 1) % 3)];
+      if (!edges.empty()) sides.insert({std::min(a, b), std::max(a, b), 0});
+      covered[a] = true;
     }
-    edges.resize(kept);
+  std::size_t kept = 0;
+  for (const ClusterEdge& e : edges) {
+    covered[e.a] = covered[e.b] = true;
+    if (!sides.contains({e.a, e.b, 0})) edges[kept++] = e;
   }
-  std::stable_sort(edges.begin(), edges.end(), [](const Edge& x, const Edge& y) { return std::tie(x.a, x.b) < std::tie(y.a, y.b); });
-  // 4. Thick edges: per cluster pair, thickness D_A + D_B from the collapsed triangles' vertices.
-  std::vector<std::uint32_t> out_id(rep.size(), kNone);
-  auto id = [&](std::uint32_t c) {
+  edges.resize(kept);
+  std::stable_sort(edges.begin(), edges.end(), [](const ClusterEdge& x, const ClusterEdge& y) { return std::tie(x.a, x.b) < std::tie(y.a, y.b); });
+}
+
+// The output mesh, built cluster by cluster: a cluster gets its output vertex when first used.
+struct LodBuilder {
+  const TriangleMesh& mesh;
+  const std::vector<std::uint32_t>& cluster;
+  const std::vector<std::uint32_t>& rep;
+  const std::vector<Vec3f>& pos;
+  LodMesh& out;
+  std::vector<std::uint32_t> out_id = std::vector<std::uint32_t>(rep.size(), kNone);
+
+  std::uint32_t id(std::uint32_t c) {
     if (out_id[c] == kNone) {
       out_id[c] = static_cast<std::uint32_t>(out.positions.size());
-      out.positions.push_back(cluster_pos[c]);
+      out.positions.push_back(pos[c]);
       if (mesh.colors.size() == mesh.positions.size()) out.colors.push_back(mesh.colors[rep[c]]);
     }
     return out_id[c];
-  };
-  out.positions.reserve(rep.size());
-  if (mesh.colors.size() == mesh.positions.size()) out.colors.reserve(rep.size());
-  out.triangles.reserve(tris.size());
-  for (const Tri& t : tris) {
-    // A collapse can fold a triangle over (its cluster corners in the other winding): keep the
-    // side the original faced, or smooth normals and two-sided lighting darken it.
-    const Triangle& o3 = mesh.triangles[t.index];
-    const Vec3f before = cross(mesh.positions[o3[1]] - mesh.positions[o3[0]], mesh.positions[o3[2]] - mesh.positions[o3[0]]);
-    const Vec3f after = cross(cluster_pos[t.t[1]] - cluster_pos[t.t[0]], cluster_pos[t.t[2]] - cluster_pos[t.t[0]]);
-    if (dot(before, after) < 0) out.triangles.push_back({id(t.t[0]), id(t.t[2]), id(t.t[1])});
-    else out.triangles.push_back({id(t.t[0]), id(t.t[1]), id(t.t[2])});
   }
-  for (std::size_t i = 0; i < edges.size();) {
-    std::size_t j = i;
-    while (j < edges.size() && edges[j].a == edges[i].a && edges[j].b == edges[i].b) ++j;
-    const std::uint32_t A = edges[i].a, B = edges[i].b;
-    {
+
+  void triangles(const std::vector<ClusterTri>& tris) {
+    for (const ClusterTri& t : tris) {
+      // A collapse can fold a triangle over (its cluster corners in the other winding): keep the
+      // side the original faced, or smooth normals and two-sided lighting darken it.
+      const Triangle& o3 = mesh.triangles[t.index];
+      const Vec3f before = cross(mesh.positions[o3[1]] - mesh.positions[o3[0]], mesh.positions[o3[2]] - mesh.positions[o3[0]]);
+      const Vec3f after = cross(pos[t.t[1]] - pos[t.t[0]], pos[t.t[2]] - pos[t.t[0]]);
+      if (dot(before, after) < 0) out.triangles.push_back({id(t.t[0]), id(t.t[2]), id(t.t[1])});
+      else out.triangles.push_back({id(t.t[0]), id(t.t[1]), id(t.t[2])});
+    }
+  }
+
+  // Thick edges: per cluster pair (edges sorted by it), thickness D_A + D_B from the collapsed
+  // triangles' vertices (paper 3.3.1).
+  void thick_edges(const std::vector<ClusterEdge>& edges) {
+    for (std::size_t i = 0; i < edges.size();) {
+      std::size_t j = i;
+      while (j < edges.size() && edges[j].a == edges[i].a && edges[j].b == edges[i].b) ++j;
+      const std::uint32_t A = edges[i].a, B = edges[i].b;
       std::vector<std::uint32_t> va, vb;
       for (std::size_t k = i; k < j; ++k)
         for (std::uint32_t v : mesh.triangles[edges[k].triangle]) (cluster[v] == A ? va : vb).push_back(v);
@@ -354,14 +374,43 @@ LodMesh cluster_mesh(const TriangleMesh& mesh, const VertexGrading& g, const Clu
       for (std::uint32_t v : vb) db += line_distance(mesh.positions[v], pa, pb);
       out.edges.push_back({id(A), id(B)});
       out.thickness.push_back(static_cast<float>(da / double(va.size()) + db / double(vb.size())));
+      i = j;
     }
-    i = j;
   }
+};
+
+}  // namespace
+
+LodMesh cluster_mesh(const TriangleMesh& mesh, const VertexGrading& g, const ClusterOptions& o) {
+  if (!(o.cell > 0)) throw std::invalid_argument("cluster_mesh: the cell width must be positive");
+  std::vector<bool> used(mesh.positions.size(), false);
+  for (const Triangle& t : mesh.triangles)
+    for (std::uint32_t v : t) used[v] = true;
+  // 1. Clustering.
+  std::vector<std::uint32_t> rep;  // per cluster: its representative (centre / heaviest) vertex
+  const std::vector<std::uint32_t> cluster = o.uniform ? uniform_cells(mesh, used, g, o, rep) : floating_cells(mesh, used, g, o, rep);
+  LodMesh out;
+  out.cell = o.cell;
+  out.clusters = rep.size();
+  const std::vector<Vec3f> cluster_pos = cluster_positions(mesh, g, o.uniform, cluster, rep);
+  // 2. Synthesis, 3. elimination.
+  std::vector<ClusterTri> tris;
+  std::vector<ClusterEdge> edges;
+  std::vector<bool> point(rep.size(), false), covered(rep.size(), false);
+  synthesize(mesh, cluster, tris, edges, point);
+  eliminate(tris, edges, covered);
+  // 4. The output: triangles, thick edges, then the points no triangle or edge covers.
+  LodBuilder build{mesh, cluster, rep, cluster_pos, out};
+  out.positions.reserve(rep.size());
+  if (mesh.colors.size() == mesh.positions.size()) out.colors.reserve(rep.size());
+  out.triangles.reserve(tris.size());
+  build.triangles(tris);
+  build.thick_edges(edges);
   for (std::uint32_t c = 0; c < rep.size(); ++c)
-    if (point[c] && !covered[c]) out.points.push_back(id(c));
+    if (point[c] && !covered[c]) out.points.push_back(build.id(c));
   out.vertex_of.assign(mesh.positions.size(), kNone);
   for (std::size_t v = 0; v < mesh.positions.size(); ++v)
-    if (cluster[v] != kNone) out.vertex_of[v] = out_id[cluster[v]];
+    if (cluster[v] != kNone) out.vertex_of[v] = build.out_id[cluster[v]];
   return out;
 }
 

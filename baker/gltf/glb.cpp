@@ -140,10 +140,9 @@ tinygltf::Node& add_single_node_scene(tinygltf::Model& m, tinygltf::Mesh mesh) {
   return m.nodes.back();
 }
 
-// Adds a level's materials (one per atlas image: one draw call each in an engine), its quads as one
-// mesh and a node holding it; returns the node's index. `prefix` names the level's objects.
-int add_level(tinygltf::Model& m, const ImpostorLevel& level, const GltfOptions& options, const std::string& prefix) {
-  const Atlas& atlas = level.atlas;
+// A level's materials, one per atlas image (one draw call each in an engine); returns the first's
+// index.
+int add_level_materials(tinygltf::Model& m, const Atlas& atlas, const GltfOptions& options, const std::string& prefix) {
   const int first_material = static_cast<int>(m.materials.size());
   for (std::size_t i = 0; i < atlas.images.size(); ++i) {
     tinygltf::Material mat;
@@ -162,41 +161,51 @@ int add_level(tinygltf::Model& m, const ImpostorLevel& level, const GltfOptions&
     mat.doubleSided = true;
     m.materials.push_back(mat);
   }
+  return first_material;
+}
 
-  // The quads, grouped by atlas image into one primitive each.
+// The quads of atlas image `img` as one primitive (none when it has no quads).
+void add_level_primitive(tinygltf::Model& m, tinygltf::Mesh& mesh, const ImpostorLevel& level, std::size_t img, int material) {
+  const Atlas& atlas = level.atlas;
+  std::vector<float> pos, nrm, tan, uv;
+  std::vector<std::uint32_t> idx;
+  for (std::size_t k = 0; k < level.quads.size(); ++k) {
+    if (atlas.tiles[k].atlas != img) continue;
+    const SupportRect& q = level.quads[k];
+    const AtlasTile& t = atlas.tiles[k];
+    const auto base = static_cast<std::uint32_t>(pos.size() / 3);
+    // Corners counter-clockwise about the normal: (-u,-v), (+u,-v), (+u,+v), (-u,+v). The
+    // texture's top row (v0) is the rectangle's +v side.
+    const float su[4] = {-1, 1, 1, -1}, sv[4] = {-1, -1, 1, 1};
+    for (int c = 0; c < 4; ++c) {
+      const Vec3f p = q.center + q.axis_u * (su[c] * level.half_u[k]) + q.axis_v * (sv[c] * level.half_v[k]);
+      pos.insert(pos.end(), {p.x, p.y, p.z});
+      nrm.insert(nrm.end(), {q.normal.x, q.normal.y, q.normal.z});
+      tan.insert(tan.end(), {q.axis_u.x, q.axis_u.y, q.axis_u.z, 1.0f});  // bitangent = normal x tangent = axis_v
+      uv.insert(uv.end(), {su[c] < 0 ? t.u0 : t.u1, sv[c] < 0 ? t.v1 : t.v0});
+    }
+    idx.insert(idx.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
+  }
+  if (idx.empty()) return;
+  tinygltf::Primitive prim;
+  prim.mode = TINYGLTF_MODE_TRIANGLES;
+  prim.material = material;
+  prim.attributes["POSITION"] = add_floats(m, pos, 3, TINYGLTF_TYPE_VEC3, true);
+  prim.attributes["NORMAL"] = add_floats(m, nrm, 3, TINYGLTF_TYPE_VEC3, false);
+  prim.attributes["TANGENT"] = add_floats(m, tan, 4, TINYGLTF_TYPE_VEC4, false);
+  prim.attributes["TEXCOORD_0"] = add_floats(m, uv, 2, TINYGLTF_TYPE_VEC2, false);
+  prim.indices = add_indices(m, idx);
+  mesh.primitives.push_back(prim);
+}
+
+// Adds a level: its materials, its quads as one mesh and a node holding it; returns the node's
+// index. `prefix` names the level's objects.
+int add_level(tinygltf::Model& m, const ImpostorLevel& level, const GltfOptions& options, const std::string& prefix) {
+  const int first_material = add_level_materials(m, level.atlas, options, prefix);
   tinygltf::Mesh mesh;
   mesh.name = "impostor_level_" + std::to_string(level.level);
-  for (std::size_t img = 0; img < atlas.images.size(); ++img) {
-    std::vector<float> pos, nrm, tan, uv;
-    std::vector<std::uint32_t> idx;
-    for (std::size_t k = 0; k < level.quads.size(); ++k) {
-      if (atlas.tiles[k].atlas != img) continue;
-      const SupportRect& q = level.quads[k];
-      const AtlasTile& t = atlas.tiles[k];
-      const auto base = static_cast<std::uint32_t>(pos.size() / 3);
-      // Corners counter-clockwise about the normal: (-u,-v), (+u,-v), (+u,+v), (-u,+v). The
-      // texture's top row (v0) is the rectangle's +v side.
-      const float su[4] = {-1, 1, 1, -1}, sv[4] = {-1, -1, 1, 1};
-      for (int c = 0; c < 4; ++c) {
-        const Vec3f p = q.center + q.axis_u * (su[c] * level.half_u[k]) + q.axis_v * (sv[c] * level.half_v[k]);
-        pos.insert(pos.end(), {p.x, p.y, p.z});
-        nrm.insert(nrm.end(), {q.normal.x, q.normal.y, q.normal.z});
-        tan.insert(tan.end(), {q.axis_u.x, q.axis_u.y, q.axis_u.z, 1.0f});  // bitangent = normal x tangent = axis_v
-        uv.insert(uv.end(), {su[c] < 0 ? t.u0 : t.u1, sv[c] < 0 ? t.v1 : t.v0});
-      }
-      idx.insert(idx.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
-    }
-    if (idx.empty()) continue;
-    tinygltf::Primitive prim;
-    prim.mode = TINYGLTF_MODE_TRIANGLES;
-    prim.material = first_material + static_cast<int>(img);
-    prim.attributes["POSITION"] = add_floats(m, pos, 3, TINYGLTF_TYPE_VEC3, true);
-    prim.attributes["NORMAL"] = add_floats(m, nrm, 3, TINYGLTF_TYPE_VEC3, false);
-    prim.attributes["TANGENT"] = add_floats(m, tan, 4, TINYGLTF_TYPE_VEC4, false);
-    prim.attributes["TEXCOORD_0"] = add_floats(m, uv, 2, TINYGLTF_TYPE_VEC2, false);
-    prim.indices = add_indices(m, idx);
-    mesh.primitives.push_back(prim);
-  }
+  for (std::size_t img = 0; img < level.atlas.images.size(); ++img)
+    add_level_primitive(m, mesh, level, img, first_material + static_cast<int>(img));
   m.meshes.push_back(mesh);
   tinygltf::Node node;
   node.name = mesh.name;
@@ -348,6 +357,22 @@ void add_lod_material(tinygltf::Model& m, const std::string& name, bool coloured
   m.materials.push_back(mat);
 }
 
+// A cluster LOD's triangles as corners (vertex indices) with smooth normals, area-weighted over
+// the LOD's own triangles (xyz per corner).
+void triangle_corners(const LodMesh& lod, std::vector<std::uint32_t>& corners, std::vector<float>& normals) {
+  std::vector<Vec3f> vn(lod.positions.size());
+  for (const Triangle& t : lod.triangles) {
+    const Vec3f n = cross(lod.positions[t[1]] - lod.positions[t[0]], lod.positions[t[2]] - lod.positions[t[0]]);
+    for (std::uint32_t v : t) vn[v] = vn[v] + n;
+  }
+  for (const Triangle& t : lod.triangles)
+    for (std::uint32_t v : t) {
+      corners.push_back(v);
+      const Vec3f n = normalized(vn[v]);
+      normals.insert(normals.end(), {n.x, n.y, n.z});
+    }
+}
+
 }  // namespace
 
 std::vector<std::uint8_t> encode_cluster_glb(const LodMesh& lod, const GltfOptions& options, bool draco) {
@@ -377,19 +402,9 @@ std::vector<std::uint8_t> encode_cluster_glb(const LodMesh& lod, const GltfOptio
     mesh.primitives.push_back(prim);
   };
   // Triangles: smooth normals, area-weighted over the LOD's own triangles.
-  std::vector<Vec3f> vn(lod.positions.size());
-  for (const Triangle& t : lod.triangles) {
-    const Vec3f n = cross(lod.positions[t[1]] - lod.positions[t[0]], lod.positions[t[2]] - lod.positions[t[0]]);
-    for (std::uint32_t v : t) vn[v] = vn[v] + n;
-  }
   std::vector<std::uint32_t> tv;
   std::vector<float> tn;
-  for (const Triangle& t : lod.triangles)
-    for (std::uint32_t v : t) {
-      tv.push_back(v);
-      const Vec3f n = normalized(vn[v]);
-      tn.insert(tn.end(), {n.x, n.y, n.z});
-    }
+  triangle_corners(lod, tv, tn);
   if (draco && !tv.empty()) {
     std::vector<float> pos;
     std::vector<Rgb8> col;

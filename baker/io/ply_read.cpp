@@ -9,6 +9,7 @@
 
 #include "core/file_io.h"
 #include "io/model_io.h"
+#include "io/ply_header.h"
 #include "io/reader_util.h"
 
 namespace qf {
@@ -16,208 +17,7 @@ namespace {
 
 using io::quote_token;
 
-enum class Type : std::uint8_t { kInt8, kUInt8, kInt16, kUInt16, kInt32, kUInt32, kFloat32, kFloat64 };
-enum class Format { kAscii, kBinaryLE, kBinaryBE };
-
-// Where a vertex property's value goes.
-enum class Dest : std::uint8_t { kSkip, kX, kY, kZ, kNX, kNY, kNZ, kRed, kGreen, kBlue, kRadius };
-
-struct Property {
-  std::string name;
-  bool is_list = false;
-  Type count_type = Type::kUInt8;  // lists only
-  Type type = Type::kFloat32;      // value type (element type for lists)
-  Dest dest = Dest::kSkip;
-  bool is_face_indices = false;
-};
-
-struct Element {
-  std::string name;
-  std::uint64_t count = 0;
-  std::vector<Property> props;
-  std::size_t header_line = 0;
-};
-
-struct Header {
-  Format format = Format::kAscii;
-  std::vector<Element> elements;
-  std::vector<std::string> comments;
-  std::size_t body_offset = 0;  // first byte after "end_header\n"
-  std::size_t body_line = 0;    // line number of the first body line (ascii)
-};
-
-std::size_t type_size(Type t) {
-  switch (t) {
-    case Type::kInt8: case Type::kUInt8: return 1;
-    case Type::kInt16: case Type::kUInt16: return 2;
-    case Type::kInt32: case Type::kUInt32: case Type::kFloat32: return 4;
-    case Type::kFloat64: return 8;
-  }
-  return 0;
-}
-
-bool is_integer_type(Type t) { return t != Type::kFloat32 && t != Type::kFloat64; }
-
-const char* type_name(Type t) {
-  switch (t) {
-    case Type::kInt8: return "char";
-    case Type::kUInt8: return "uchar";
-    case Type::kInt16: return "short";
-    case Type::kUInt16: return "ushort";
-    case Type::kInt32: return "int";
-    case Type::kUInt32: return "uint";
-    case Type::kFloat32: return "float";
-    case Type::kFloat64: return "double";
-  }
-  return "?";
-}
-
-// The range of an integer type (the value range a binary file of that type can hold).
-long long integer_min(Type t) {
-  switch (t) {
-    case Type::kInt8: return std::numeric_limits<std::int8_t>::min();
-    case Type::kInt16: return std::numeric_limits<std::int16_t>::min();
-    case Type::kInt32: return std::numeric_limits<std::int32_t>::min();
-    default: return 0;
-  }
-}
-long long integer_max(Type t) {
-  switch (t) {
-    case Type::kInt8: return std::numeric_limits<std::int8_t>::max();
-    case Type::kUInt8: return std::numeric_limits<std::uint8_t>::max();
-    case Type::kInt16: return std::numeric_limits<std::int16_t>::max();
-    case Type::kUInt16: return std::numeric_limits<std::uint16_t>::max();
-    case Type::kInt32: return std::numeric_limits<std::int32_t>::max();
-    case Type::kUInt32: return std::numeric_limits<std::uint32_t>::max();
-    default: return 0;
-  }
-}
-std::string type_range(Type t) { return std::to_string(integer_min(t)) + ".." + std::to_string(integer_max(t)); }
-
-std::optional<Type> parse_type(std::string_view s) {
-  if (s == "char" || s == "int8") return Type::kInt8;
-  if (s == "uchar" || s == "uint8") return Type::kUInt8;
-  if (s == "short" || s == "int16") return Type::kInt16;
-  if (s == "ushort" || s == "uint16") return Type::kUInt16;
-  if (s == "int" || s == "int32") return Type::kInt32;
-  if (s == "uint" || s == "uint32") return Type::kUInt32;
-  if (s == "float" || s == "float32") return Type::kFloat32;
-  if (s == "double" || s == "float64") return Type::kFloat64;
-  return std::nullopt;
-}
-
-Dest vertex_dest(const std::string& n) {
-  if (n == "x") return Dest::kX;
-  if (n == "y") return Dest::kY;
-  if (n == "z") return Dest::kZ;
-  if (n == "nx" || n == "normal_x") return Dest::kNX;
-  if (n == "ny" || n == "normal_y") return Dest::kNY;
-  if (n == "nz" || n == "normal_z") return Dest::kNZ;
-  if (n == "red" || n == "diffuse_red" || n == "r") return Dest::kRed;
-  if (n == "green" || n == "diffuse_green" || n == "g") return Dest::kGreen;
-  if (n == "blue" || n == "diffuse_blue" || n == "b") return Dest::kBlue;
-  // "scale" is the splat radius in several point-splatting tools. "confidence" (Stanford scans) is
-  // a quality weight in [0,1], not a length, so it is not read as a radius.
-  if (n == "radius" || n == "scale") return Dest::kRadius;
-  return Dest::kSkip;
-}
-
-// ---------------------------------------------------------------------------------------------
-// Header
-
-Header parse_header(ByteView bytes, const std::string& path) {
-  Header h;
-  const char* begin = reinterpret_cast<const char*>(bytes.data());
-  const char* end = begin + bytes.size();
-  // 1. Magic: "ply" alone on the first line.
-  if (bytes.size() < 4 || std::memcmp(begin, "ply", 3) != 0 || (begin[3] != '\n' && begin[3] != '\r'))
-    throw InputError("ply.header.magic", path, at_byte(0), "expected the line 'ply' at the start of the file");
-  // 2. One keyword line at a time up to end_header.
-  const char* p = begin;
-  std::size_t line_no = 0;
-  bool have_format = false, done = false;
-  while (!done) {
-    if (p >= end)
-      throw InputError("ply.header.truncated", path, at_line(line_no),
-                       "file ends inside the header; expected 'end_header'");
-    const char* nl = static_cast<const char*>(std::memchr(p, '\n', static_cast<std::size_t>(end - p)));
-    if (!nl)
-      throw InputError("ply.header.truncated", path, at_line(line_no + 1),
-                       "file ends inside the header; expected 'end_header'");
-    ++line_no;
-    std::string_view line(p, static_cast<std::size_t>(nl - p));
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    p = nl + 1;
-    if (line_no > 100000)
-      throw InputError("ply.header.truncated", path, at_line(line_no), "header longer than 100000 lines");
-    io::Tokenizer tok(line.data(), line.data() + line.size(), line_no);
-    const std::string_view key = tok.next();
-    const std::string where = at_line(line_no);
-    if (line_no == 1) continue;  // "ply"
-    if (key == "comment" || key == "obj_info") {
-      if (key == "comment") {
-        std::string_view text = line.substr(std::min(line.size(), std::size_t{8}));
-        h.comments.emplace_back(text);
-      }
-    } else if (key == "format") {
-      const std::string_view f = tok.next(), version = tok.next();
-      if (f == "ascii") h.format = Format::kAscii;
-      else if (f == "binary_little_endian") h.format = Format::kBinaryLE;
-      else if (f == "binary_big_endian") h.format = Format::kBinaryBE;
-      else
-        throw InputError("ply.header.format", path, where,
-                         "unknown format " + quote_token(f) +
-                             ", expected ascii, binary_little_endian or binary_big_endian");
-      if (version != "1.0")
-        throw InputError("ply.header.format", path, where, "unsupported version " + quote_token(version) + ", expected 1.0");
-      have_format = true;
-    } else if (key == "element") {
-      Element e;
-      e.name = std::string(tok.next());
-      long long count = -1;
-      if (e.name.empty() || !io::parse_int64(tok.next(), count) || count < 0)
-        throw InputError("ply.header.syntax", path, where, "expected 'element NAME COUNT' with COUNT >= 0");
-      e.count = static_cast<std::uint64_t>(count);
-      e.header_line = line_no;
-      h.elements.push_back(std::move(e));
-    } else if (key == "property") {
-      if (h.elements.empty())
-        throw InputError("ply.header.syntax", path, where, "'property' before any 'element' line");
-      Property prop;
-      std::string_view t = tok.next();
-      if (t == "list") {
-        prop.is_list = true;
-        const std::string_view ct = tok.next();
-        const auto count_type = parse_type(ct);
-        if (!count_type)
-          throw InputError("ply.header.property_type", path, where, "unsupported list count type " + quote_token(ct));
-        if (!is_integer_type(*count_type))
-          throw InputError("ply.header.property_type", path, where, "list count type must be an integer type, not " + quote_token(ct));
-        prop.count_type = *count_type;
-        t = tok.next();
-      }
-      const auto type = parse_type(t);
-      if (!type)
-        throw InputError("ply.header.property_type", path, where,
-                         "unsupported property type " + quote_token(t) +
-                             ", expected one of char uchar short ushort int uint float double (or int8..float64)");
-      prop.type = *type;
-      prop.name = std::string(tok.next());
-      if (prop.name.empty()) throw InputError("ply.header.syntax", path, where, "property without a name");
-      h.elements.back().props.push_back(std::move(prop));
-    } else if (key == "end_header") {
-      done = true;
-    } else {
-      throw InputError("ply.header.syntax", path, where,
-                       "unknown header line " + quote_token(key) +
-                           ", expected format, element, property, comment, obj_info or end_header");
-    }
-  }
-  if (!have_format) throw InputError("ply.header.format", path, at_line(2), "missing 'format' line");
-  h.body_offset = static_cast<std::size_t>(p - begin);
-  h.body_line = line_no + 1;
-  return h;
-}
+using namespace ply;
 
 // ---------------------------------------------------------------------------------------------
 // Body: values land in a Sink, which knows the vertex layout and collects faces.
@@ -356,45 +156,53 @@ class BinaryBody {
 
   void read_element(const Element& e, bool is_vertex, bool is_face, Sink& s, const Type* dest_types) {
     const bool fixed = std::none_of(e.props.begin(), e.props.end(), [](const Property& p) { return p.is_list; });
+    if (fixed) read_fixed(e, is_vertex, s, dest_types);
+    else read_with_lists(e, is_vertex, is_face, s, dest_types);
+  }
+
+  std::size_t position() const { return pos_; }
+
+ private:
+  // Fixed-size records: check the whole element fits once, then decode without bounds checks.
+  void read_fixed(const Element& e, bool is_vertex, Sink& s, const Type* dest_types) {
     std::size_t stride = 0;
-    for (const Property& p : e.props) stride += p.is_list ? 0 : type_size(p.type);
-    // Fixed-size records: check the whole element fits once, then decode without bounds checks.
-    if (fixed) {
-      const std::size_t available = end_ - pos_;
-      if (stride != 0 && e.count > available / stride)
-        throw InputError("ply.body.truncated", path_, at_byte(pos_),
-                         "file ends inside element '" + e.name + "': " + std::to_string(e.count) + " records of " +
-                             std::to_string(stride) + " bytes need " + std::to_string(e.count * stride) +
-                             " bytes, only " + std::to_string(available) + " remain (file size " +
-                             std::to_string(end_) + ")");
-      if (!is_vertex) {
-        pos_ += static_cast<std::size_t>(e.count) * stride;
-        return;
-      }
-      // Decode a block of records column by column: the type switch stays outside the inner
-      // loops, which keeps the reader near memory speed (foundation issue: >= 300 MB/s).
-      constexpr std::size_t kBlock = 512;
-      std::vector<double> columns(11 * kBlock);
-      for (std::uint64_t b0 = 0; b0 < e.count; b0 += kBlock) {
-        const std::size_t m = static_cast<std::size_t>(std::min<std::uint64_t>(kBlock, e.count - b0));
-        const std::uint8_t* base = data_ + pos_ + static_cast<std::size_t>(b0) * stride;
-        std::size_t offset = 0;
-        for (const Property& p : e.props) {
-          if (p.dest != Dest::kSkip) decode_column(base + offset, stride, m, p.type, swap_, &columns[int(p.dest) * kBlock]);
-          offset += type_size(p.type);
-        }
-        for (std::size_t j = 0; j < m; ++j) {
-          VertexValues vv;
-          for (const Property& p : e.props)
-            if (p.dest != Dest::kSkip) vv.v[int(p.dest)] = columns[int(p.dest) * kBlock + j];
-          const std::size_t record = pos_ + static_cast<std::size_t>(b0 + j) * stride;
-          store_vertex(s, vv, dest_types, static_cast<std::size_t>(b0 + j), [&] { return at_byte(record); });
-        }
-      }
+    for (const Property& p : e.props) stride += type_size(p.type);
+    const std::size_t available = end_ - pos_;
+    if (stride != 0 && e.count > available / stride)
+      throw InputError("ply.body.truncated", path_, at_byte(pos_),
+                       "file ends inside element '" + e.name + "': " + std::to_string(e.count) + " records of " +
+                           std::to_string(stride) + " bytes need " + std::to_string(e.count * stride) +
+                           " bytes, only " + std::to_string(available) + " remain (file size " +
+                           std::to_string(end_) + ")");
+    if (!is_vertex) {
       pos_ += static_cast<std::size_t>(e.count) * stride;
       return;
     }
-    // Records with lists: walk value by value.
+    // Decode a block of records column by column: the type switch stays outside the inner
+    // loops, which keeps the reader near memory speed (foundation issue: >= 300 MB/s).
+    constexpr std::size_t kBlock = 512;
+    std::vector<double> columns(11 * kBlock);
+    for (std::uint64_t b0 = 0; b0 < e.count; b0 += kBlock) {
+      const std::size_t m = static_cast<std::size_t>(std::min<std::uint64_t>(kBlock, e.count - b0));
+      const std::uint8_t* base = data_ + pos_ + static_cast<std::size_t>(b0) * stride;
+      std::size_t offset = 0;
+      for (const Property& p : e.props) {
+        if (p.dest != Dest::kSkip) decode_column(base + offset, stride, m, p.type, swap_, &columns[int(p.dest) * kBlock]);
+        offset += type_size(p.type);
+      }
+      for (std::size_t j = 0; j < m; ++j) {
+        VertexValues vv;
+        for (const Property& p : e.props)
+          if (p.dest != Dest::kSkip) vv.v[int(p.dest)] = columns[int(p.dest) * kBlock + j];
+        const std::size_t record = pos_ + static_cast<std::size_t>(b0 + j) * stride;
+        store_vertex(s, vv, dest_types, static_cast<std::size_t>(b0 + j), [&] { return at_byte(record); });
+      }
+    }
+    pos_ += static_cast<std::size_t>(e.count) * stride;
+  }
+
+  // Records with lists: walk value by value.
+  void read_with_lists(const Element& e, bool is_vertex, bool is_face, Sink& s, const Type* dest_types) {
     std::vector<long long> indices;
     for (std::uint64_t i = 0; i < e.count; ++i) {
       const std::size_t record = pos_;
@@ -434,9 +242,6 @@ class BinaryBody {
     }
   }
 
-  std::size_t position() const { return pos_; }
-
- private:
   double read_checked(Type t, const Element& e, std::uint64_t i) {
     if (type_size(t) > end_ - pos_)
       throw InputError("ply.body.truncated", path_, at_byte(end_),
@@ -561,85 +366,79 @@ Model read_ply(const std::string& path, const ReadOptions& options, ReadReport* 
   return decode_ply(file.bytes(), path, options, report);
 }
 
-Model decode_ply(ByteView bytes, const std::string& path, const ReadOptions& options, ReadReport* report) {
-  if (bytes.empty()) throw InputError("ply.header.magic", path, "", "file is empty, expected a PLY header");
-  Header h = parse_header(bytes, path);
+namespace {
 
-  // 1. Find the vertex and face elements and map their properties.
+// What the body is read into: the vertex and face elements (face null when it carries no
+// indices) and, per vertex destination, whether a property lands there and its type.
+struct BodyLayout {
   Element* vertex = nullptr;
   Element* face = nullptr;
-  for (Element& e : h.elements) {
-    if (e.name == "vertex" && !vertex) vertex = &e;
-    if (e.name == "face" && !face) face = &e;
-  }
-  if (!vertex) throw InputError("ply.header.no_vertex", path, "", "no 'element vertex' in the header");
   Type dest_types[11] = {};
   bool seen[11] = {};
-  for (Property& p : vertex->props) {
+};
+
+// Step 1: finds the vertex and face elements and maps their properties.
+BodyLayout map_elements(Header& h, const std::string& path) {
+  BodyLayout l;
+  for (Element& e : h.elements) {
+    if (e.name == "vertex" && !l.vertex) l.vertex = &e;
+    if (e.name == "face" && !l.face) l.face = &e;
+  }
+  if (!l.vertex) throw InputError("ply.header.no_vertex", path, "", "no 'element vertex' in the header");
+  for (Property& p : l.vertex->props) {
     p.dest = vertex_dest(p.name);
     if (p.dest == Dest::kSkip) continue;
     if (p.is_list)
-      throw InputError("ply.header.property_type", path, at_line(vertex->header_line),
+      throw InputError("ply.header.property_type", path, at_line(l.vertex->header_line),
                        "vertex property '" + p.name + "' is a list, expected a scalar");
-    seen[int(p.dest)] = true;
-    dest_types[int(p.dest)] = p.type;
+    l.seen[int(p.dest)] = true;
+    l.dest_types[int(p.dest)] = p.type;
   }
-  if (!seen[int(Dest::kX)] || !seen[int(Dest::kY)] || !seen[int(Dest::kZ)])
-    throw InputError("ply.header.no_xyz", path, at_line(vertex->header_line),
+  if (!l.seen[int(Dest::kX)] || !l.seen[int(Dest::kY)] || !l.seen[int(Dest::kZ)])
+    throw InputError("ply.header.no_xyz", path, at_line(l.vertex->header_line),
                      "vertex element lacks one of the properties x, y, z");
-  if (face) {
-    for (Property& p : face->props)
+  if (l.face) {
+    for (Property& p : l.face->props)
       if (p.is_list && (p.name == "vertex_indices" || p.name == "vertex_index")) {
         if (!is_integer_type(p.type))
-          throw InputError("ply.header.property_type", path, at_line(face->header_line),
+          throw InputError("ply.header.property_type", path, at_line(l.face->header_line),
                            "face list '" + p.name + "' has non-integer type, expected an integer type");
         p.is_face_indices = true;
         break;
       }
-    if (std::none_of(face->props.begin(), face->props.end(), [](const Property& p) { return p.is_face_indices; }))
-      face = nullptr;  // a face element without indices carries nothing we use
+    if (std::none_of(l.face->props.begin(), l.face->props.end(), [](const Property& p) { return p.is_face_indices; }))
+      l.face = nullptr;  // a face element without indices carries nothing we use
   }
+  return l;
+}
 
-  io::NonFiniteFilter nonfinite(path, options);
-  Sink sink{path, nonfinite, {}, {}, {}, {}, false, false, false, vertex->count, {}, 0};
-  sink.want_normals = seen[int(Dest::kNX)] && seen[int(Dest::kNY)] && seen[int(Dest::kNZ)];
-  sink.want_colors = seen[int(Dest::kRed)] && seen[int(Dest::kGreen)] && seen[int(Dest::kBlue)];
-  sink.want_radii = seen[int(Dest::kRadius)];
-  const std::size_t reserve = static_cast<std::size_t>(std::min<std::uint64_t>(vertex->count, bytes.size()));
-  sink.positions.reserve(reserve);
-  if (sink.want_normals) sink.normals.reserve(reserve);
-  if (sink.want_colors) sink.colors.reserve(reserve);
-  if (sink.want_radii) sink.radii.reserve(reserve);
-
-  // 2. Read every element in file order (unknown ones are walked over).
+// Step 2: every element in file order (unknown ones are walked over), ascii or binary.
+void read_body(ByteView bytes, const Header& h, const BodyLayout& l, Sink& sink, const std::string& path) {
   if (h.format == Format::kAscii) {
     AsciiBody body(bytes, h, path);
-    for (const Element& e : h.elements) body.read_element(e, &e == vertex, &e == face, sink, dest_types);
+    for (const Element& e : h.elements) body.read_element(e, &e == l.vertex, &e == l.face, sink, l.dest_types);
     body.expect_end();
-  } else {
-    const bool little_host = [] {
-      const std::uint16_t one = 1;
-      std::uint8_t b;
-      std::memcpy(&b, &one, 1);
-      return b == 1;
-    }();
-    const bool swap = (h.format == Format::kBinaryLE) != little_host;
-    BinaryBody body(bytes, h.body_offset, swap, path);
-    for (const Element& e : h.elements) body.read_element(e, &e == vertex, &e == face, sink, dest_types);
-    if (body.position() != bytes.size())
-      throw InputError("ply.body.trailing", path, at_byte(body.position()),
-                       std::to_string(bytes.size() - body.position()) +
-                           " bytes after the last element; the header's counts do not match the body");
+    return;
   }
+  const bool little_host = [] {
+    const std::uint16_t one = 1;
+    std::uint8_t b;
+    std::memcpy(&b, &one, 1);
+    return b == 1;
+  }();
+  const bool swap = (h.format == Format::kBinaryLE) != little_host;
+  BinaryBody body(bytes, h.body_offset, swap, path);
+  for (const Element& e : h.elements) body.read_element(e, &e == l.vertex, &e == l.face, sink, l.dest_types);
+  if (body.position() != bytes.size())
+    throw InputError("ply.body.trailing", path, at_byte(body.position()),
+                     std::to_string(bytes.size() - body.position()) +
+                         " bytes after the last element; the header's counts do not match the body");
+}
 
-  if (report) {
-    report->format = h.format == Format::kAscii       ? "ply (ascii)"
-                     : h.format == Format::kBinaryLE ? "ply (binary_little_endian)"
-                                                      : "ply (binary_big_endian)";
-    report->polygons_triangulated += sink.polygons_triangulated;
-  }
+// Step 3: what was read, as a mesh (when there are faces) or a point set.
+Model to_model(Sink& sink, Header& h, bool mesh, io::NonFiniteFilter& nonfinite, ReadReport* report) {
   Model m;
-  if (face) {
+  if (mesh) {
     m.is_mesh = true;
     m.mesh.positions = std::move(sink.positions);
     m.mesh.normals = std::move(sink.normals);
@@ -656,6 +455,32 @@ Model decode_ply(ByteView bytes, const std::string& path, const ReadOptions& opt
     nonfinite.apply(m.points, report);
   }
   return m;
+}
+
+}  // namespace
+
+Model decode_ply(ByteView bytes, const std::string& path, const ReadOptions& options, ReadReport* report) {
+  if (bytes.empty()) throw InputError("ply.header.magic", path, "", "file is empty, expected a PLY header");
+  Header h = parse_header(bytes, path);
+  const BodyLayout l = map_elements(h, path);
+  io::NonFiniteFilter nonfinite(path, options);
+  Sink sink{path, nonfinite, {}, {}, {}, {}, false, false, false, l.vertex->count, {}, 0};
+  sink.want_normals = l.seen[int(Dest::kNX)] && l.seen[int(Dest::kNY)] && l.seen[int(Dest::kNZ)];
+  sink.want_colors = l.seen[int(Dest::kRed)] && l.seen[int(Dest::kGreen)] && l.seen[int(Dest::kBlue)];
+  sink.want_radii = l.seen[int(Dest::kRadius)];
+  const std::size_t reserve = static_cast<std::size_t>(std::min<std::uint64_t>(l.vertex->count, bytes.size()));
+  sink.positions.reserve(reserve);
+  if (sink.want_normals) sink.normals.reserve(reserve);
+  if (sink.want_colors) sink.colors.reserve(reserve);
+  if (sink.want_radii) sink.radii.reserve(reserve);
+  read_body(bytes, h, l, sink, path);
+  if (report) {
+    report->format = h.format == Format::kAscii       ? "ply (ascii)"
+                     : h.format == Format::kBinaryLE ? "ply (binary_little_endian)"
+                                                      : "ply (binary_big_endian)";
+    report->polygons_triangulated += sink.polygons_triangulated;
+  }
+  return to_model(sink, h, l.face != nullptr, nonfinite, report);
 }
 
 }  // namespace qf

@@ -62,53 +62,59 @@ class FragmentDecoder {
     // §2.4: the first group has an offset iff the fragment has more leaves than root children.
     open_group(start_ + qsplat::kHeaderBytes, k0, header_leaves > k0, root_center, root_radius, node_size);
     std::size_t leaves = 0, interior = 0;
-    const auto& spheres = qsplat::sphere_table();
-    const auto& normals = qsplat::normal_table();
     while (!stack_.empty()) {
       Group& g = stack_.back();
       if (g.left == 0) {
         stack_.pop_back();
         continue;
       }
-      const std::size_t rec = g.rec;
-      g.rec += node_size;
-      --g.left;
-      const std::uint8_t* p = d_ + rec;
-      const unsigned w0 = (unsigned(p[0]) << 8) | p[1];
-      const unsigned w1 = (unsigned(p[2]) << 8) | p[3];
-      const unsigned sphere = w0 >> 3, cc = w0 & 3, grand = (w0 >> 2) & 1;
-      if (sphere >= static_cast<unsigned>(qsplat::kSphereEntries))
-        fail("qsplat.sphere_index", rec, "sphere index " + std::to_string(sphere) + " is invalid, expected 0.." +
-                                             std::to_string(qsplat::kSphereEntries - 1));
-      float c[3], r;
-      qsplat::decode_sphere(spheres[sphere], g.center, g.radius, c, r);
-      if (cc == 0) {
-        if (grand) fail("qsplat.node", rec, "leaf record with the has-grandchildren flag set");
-        out_.positions.push_back({c[0], c[1], c[2]});
-        out_.radii.push_back(r);
-        out_.normals.push_back(normals[w1 >> 2]);
-        // Uncoloured fragments get white (QSplat's default); the caller drops colours if no fragment had any.
-        out_.colors.push_back(colored_ ? qsplat::decode_color(static_cast<std::uint16_t>((p[4] << 8) | p[5]))
-                                       : Rgb8{255, 255, 255});
-        if (++leaves > static_cast<std::size_t>(header_leaves))
-          fail("qsplat.leaf_count", rec, "tree holds more leaves than the header's " + std::to_string(header_leaves));
-        continue;
-      }
-      if (!g.has_offset)
-        fail("qsplat.node", rec, "interior record in a group whose parent was marked as having no grandchildren");
-      // Every interior node has at least two children, so there are fewer interior nodes than
-      // leaves; this also bounds the work on a file whose offsets make groups overlap.
-      if (++interior > static_cast<std::size_t>(header_leaves))
-        fail("qsplat.leaf_count", rec, "tree holds more interior nodes than the header's " + std::to_string(header_leaves) + " leaves allow");
-      const int count = static_cast<int>(cc) + 1;
-      const std::size_t child = g.next_child;
-      g.next_child += (grand ? 4 : 0) + node_size * static_cast<std::size_t>(count);
-      open_group(child, count, grand != 0, c, r, node_size);  // may reallocate stack_: g is not used after
+      read_record(g, header_leaves, node_size, leaves, interior);  // may reallocate stack_: g is not used after
     }
     return leaves;
   }
 
  private:
+  // The next record of group g: a leaf becomes a point; an interior node opens its children's
+  // group. Counts both against the header's leaves.
+  void read_record(Group& g, std::int32_t header_leaves, std::size_t node_size, std::size_t& leaves, std::size_t& interior) {
+    const auto& spheres = qsplat::sphere_table();
+    const auto& normals = qsplat::normal_table();
+    const std::size_t rec = g.rec;
+    g.rec += node_size;
+    --g.left;
+    const std::uint8_t* p = d_ + rec;
+    const unsigned w0 = (unsigned(p[0]) << 8) | p[1];
+    const unsigned w1 = (unsigned(p[2]) << 8) | p[3];
+    const unsigned sphere = w0 >> 3, cc = w0 & 3, grand = (w0 >> 2) & 1;
+    if (sphere >= static_cast<unsigned>(qsplat::kSphereEntries))
+      fail("qsplat.sphere_index", rec, "sphere index " + std::to_string(sphere) + " is invalid, expected 0.." +
+                                           std::to_string(qsplat::kSphereEntries - 1));
+    float c[3], r;
+    qsplat::decode_sphere(spheres[sphere], g.center, g.radius, c, r);
+    if (cc == 0) {
+      if (grand) fail("qsplat.node", rec, "leaf record with the has-grandchildren flag set");
+      out_.positions.push_back({c[0], c[1], c[2]});
+      out_.radii.push_back(r);
+      out_.normals.push_back(normals[w1 >> 2]);
+      // Uncoloured fragments get white (QSplat's default); the caller drops colours if no fragment had any.
+      out_.colors.push_back(colored_ ? qsplat::decode_color(static_cast<std::uint16_t>((p[4] << 8) | p[5]))
+                                     : Rgb8{255, 255, 255});
+      if (++leaves > static_cast<std::size_t>(header_leaves))
+        fail("qsplat.leaf_count", rec, "tree holds more leaves than the header's " + std::to_string(header_leaves));
+      return;
+    }
+    if (!g.has_offset)
+      fail("qsplat.node", rec, "interior record in a group whose parent was marked as having no grandchildren");
+    // Every interior node has at least two children, so there are fewer interior nodes than
+    // leaves; this also bounds the work on a file whose offsets make groups overlap.
+    if (++interior > static_cast<std::size_t>(header_leaves))
+      fail("qsplat.leaf_count", rec, "tree holds more interior nodes than the header's " + std::to_string(header_leaves) + " leaves allow");
+    const int count = static_cast<int>(cc) + 1;
+    const std::size_t child = g.next_child;
+    g.next_child += (grand ? 4 : 0) + node_size * static_cast<std::size_t>(count);
+    open_group(child, count, grand != 0, c, r, node_size);  // may reallocate stack_: g is not used after
+  }
+
   // Checks a group's bytes and pushes it; its child offset (if any) must point forward into the fragment.
   void open_group(std::size_t at, int count, bool has_offset, const float center[3], float radius, std::size_t node_size) {
     Group g{at, count, 0, has_offset, {center[0], center[1], center[2]}, radius};
@@ -144,6 +150,42 @@ class FragmentDecoder {
   bool colored_;
   std::vector<Group> stack_;
 };
+
+// A comment fragment's text, one comment per line (zero padding dropped, §1.4).
+void read_comment(const std::uint8_t* h, std::int32_t len, PointSet& out) {
+  std::string text(reinterpret_cast<const char*>(h + 20), static_cast<std::size_t>(len - 20));
+  while (!text.empty() && text.back() == '\0') text.pop_back();  // zero padding (§1.4)
+  std::size_t a = 0;
+  while (a < text.size()) {
+    std::size_t b = text.find('\n', a);
+    if (b == std::string::npos) b = text.size();
+    out.comments.push_back(text.substr(a, b - a));
+    a = b + 1;
+  }
+}
+
+// A data fragment (its header checked: length, leaves, options) decoded into `out`; returns 1,
+// the fragments it counts.
+std::size_t read_data_fragment(ByteView bytes, std::size_t pos, std::int32_t len, std::int32_t leaves, std::uint32_t options,
+                               const std::string& path, PointSet& out, bool& any_color) {
+  if (len < qsplat::kHeaderBytes)
+    throw InputError("qsplat.fragment_length", path, at_byte(pos + 8), "data fragment shorter than its 40-byte header");
+  if (leaves < 0) throw InputError("qsplat.leaf_count", path, at_byte(pos + 12), "negative leaf count " + std::to_string(leaves));
+  const bool colored = (options & qsplat::kOptionColor) != 0;
+  any_color = any_color || colored;
+  const std::size_t node_size = colored ? 6 : 4;
+  // Each leaf needs its own record, so the header cannot claim more leaves than records fit.
+  if (static_cast<std::size_t>(leaves) > (static_cast<std::size_t>(len) - qsplat::kHeaderBytes) / node_size + 1)
+    throw InputError("qsplat.leaf_count", path, at_byte(pos + 12),
+                     "header claims " + std::to_string(leaves) + " leaves, more than the fragment's " +
+                         std::to_string(len) + " bytes can hold");
+  FragmentDecoder dec(bytes, pos, pos + static_cast<std::size_t>(len), path, out, colored);
+  const std::size_t found = dec.decode(leaves);
+  if (found != static_cast<std::size_t>(leaves))
+    throw InputError("qsplat.leaf_count", path, at_byte(pos + 12),
+                     "header says " + std::to_string(leaves) + " leaves, the tree holds " + std::to_string(found));
+  return 1;
+}
 
 }  // namespace
 
@@ -188,35 +230,8 @@ PointSet decode_qsplat(ByteView bytes, const std::string& path, ReadReport* repo
     }
     if (options & ~(qsplat::kOptionColor | qsplat::kOptionComment))
       throw InputError("qsplat.options", path, at_byte(pos + 16), "unknown option bits " + std::to_string(options) + ", expected 0..3");
-    if (comment) {
-      std::string text(reinterpret_cast<const char*>(h + 20), static_cast<std::size_t>(len - 20));
-      while (!text.empty() && text.back() == '\0') text.pop_back();  // zero padding (§1.4)
-      std::size_t a = 0;
-      while (a < text.size()) {
-        std::size_t b = text.find('\n', a);
-        if (b == std::string::npos) b = text.size();
-        out.comments.push_back(text.substr(a, b - a));
-        a = b + 1;
-      }
-    } else {
-      if (len < qsplat::kHeaderBytes)
-        throw InputError("qsplat.fragment_length", path, at_byte(pos + 8), "data fragment shorter than its 40-byte header");
-      if (leaves < 0) throw InputError("qsplat.leaf_count", path, at_byte(pos + 12), "negative leaf count " + std::to_string(leaves));
-      const bool colored = (options & qsplat::kOptionColor) != 0;
-      any_color = any_color || colored;
-      const std::size_t node_size = colored ? 6 : 4;
-      // Each leaf needs its own record, so the header cannot claim more leaves than records fit.
-      if (static_cast<std::size_t>(leaves) > (static_cast<std::size_t>(len) - qsplat::kHeaderBytes) / node_size + 1)
-        throw InputError("qsplat.leaf_count", path, at_byte(pos + 12),
-                         "header claims " + std::to_string(leaves) + " leaves, more than the fragment's " +
-                             std::to_string(len) + " bytes can hold");
-      FragmentDecoder dec(bytes, pos, pos + static_cast<std::size_t>(len), path, out, colored);
-      const std::size_t found = dec.decode(leaves);
-      if (found != static_cast<std::size_t>(leaves))
-        throw InputError("qsplat.leaf_count", path, at_byte(pos + 12),
-                         "header says " + std::to_string(leaves) + " leaves, the tree holds " + std::to_string(found));
-      ++fragments;
-    }
+    if (comment) read_comment(h, len, out);
+    else fragments += read_data_fragment(bytes, pos, len, leaves, options, path, out, any_color);
     pos += static_cast<std::size_t>(len);
   }
   if (!any_color) out.colors.clear();

@@ -43,17 +43,8 @@ void check_settings(const std::string& path, const std::string& where, const Jso
   for (const auto& [k, v] : s.items()) check_setting(path, where + "." + k, v);
 }
 
-}  // namespace
 
-BatchManifest read_batch_manifest(const std::string& path) {
-  const InputFile file(path);
-  return parse_batch_manifest(file.bytes(), path);
-}
-
-BatchManifest parse_batch_manifest(ByteView bytes, const std::string& path) {
-  BatchManifest m;
-  m.path = path;
-  m.sha256 = Sha256().update(bytes).hex();
+Json parse_manifest_json(ByteView bytes, const std::string& path) {
   Json j;
   try {
     j = Json::parse(bytes.data(), bytes.data() + bytes.size());
@@ -69,6 +60,59 @@ BatchManifest parse_batch_manifest(ByteView bytes, const std::string& path) {
     if (k != "$schema" && k != "description" && k != "output" && k != "defaults" && k != "assets")
       manifest_error(path, k, "unknown key (expected $schema, description, output, defaults, assets)");
   }
+  return j;
+}
+
+// Entry i of "assets": a path, or {input, name, settings}; its settings overlay the defaults.
+BatchAsset read_asset_entry(const Json& e, std::size_t i, const Json& defaults, const std::string& path) {
+  const std::string where = "assets[" + std::to_string(i) + "]";
+  BatchAsset a;
+  a.index = i;
+  a.settings = defaults;
+  if (e.is_string()) {
+    a.input = e.get<std::string>();
+  } else if (e.is_object()) {
+    for (const auto& [k, v] : e.items()) {
+      (void)v;
+      if (k != "input" && k != "name" && k != "settings") manifest_error(path, where + "." + k, "unknown key (expected input, name, settings)");
+    }
+    if (!e.contains("input") || !e["input"].is_string()) manifest_error(path, where + ".input", "expected the input file's path");
+    a.input = e["input"].get<std::string>();
+    if (e.contains("name")) {
+      if (!e["name"].is_string()) manifest_error(path, where + ".name", "expected a string");
+      a.name = e["name"].get<std::string>();
+    }
+    if (e.contains("settings")) {
+      check_settings(path, where + ".settings", e["settings"]);
+      for (const auto& [k, v] : e["settings"].items()) {
+        // --levels and --primitives choose the levels two ways: an asset's choice replaces the defaults'.
+        if (k == "levels" && !e["settings"].contains("primitives")) a.settings.erase("primitives");
+        if (k == "primitives" && !e["settings"].contains("levels")) a.settings.erase("levels");
+        a.settings[k] = v;
+      }
+    }
+  } else {
+    manifest_error(path, where, "expected an input path or an object {input, name, settings}");
+  }
+  if (a.input.empty()) manifest_error(path, where + ".input", "expected the input file's path");
+  if (a.name.empty()) a.name = std::filesystem::path(a.input).stem().string();
+  if (!valid_name(a.name))
+    manifest_error(path, where + ".name", "'" + a.name + "' cannot name a folder (letters, digits, '_', '-', '.'; not starting with '.' or '-')");
+  return a;
+}
+
+}  // namespace
+
+BatchManifest read_batch_manifest(const std::string& path) {
+  const InputFile file(path);
+  return parse_batch_manifest(file.bytes(), path);
+}
+
+BatchManifest parse_batch_manifest(ByteView bytes, const std::string& path) {
+  BatchManifest m;
+  m.path = path;
+  m.sha256 = Sha256().update(bytes).hex();
+  const Json j = parse_manifest_json(bytes, path);
   const std::filesystem::path dir = std::filesystem::path(path).parent_path();
   auto resolve = [&](const std::string& p) {
     const std::filesystem::path q(p);
@@ -87,42 +131,9 @@ BatchManifest parse_batch_manifest(ByteView bytes, const std::string& path) {
     manifest_error(path, "assets", "expected a non-empty list of assets");
   std::set<std::string> names;
   for (std::size_t i = 0; i < j["assets"].size(); ++i) {
-    const Json& e = j["assets"][i];
-    const std::string where = "assets[" + std::to_string(i) + "]";
-    BatchAsset a;
-    a.index = i;
-    a.settings = defaults;
-    if (e.is_string()) {
-      a.input = e.get<std::string>();
-    } else if (e.is_object()) {
-      for (const auto& [k, v] : e.items()) {
-        (void)v;
-        if (k != "input" && k != "name" && k != "settings") manifest_error(path, where + "." + k, "unknown key (expected input, name, settings)");
-      }
-      if (!e.contains("input") || !e["input"].is_string()) manifest_error(path, where + ".input", "expected the input file's path");
-      a.input = e["input"].get<std::string>();
-      if (e.contains("name")) {
-        if (!e["name"].is_string()) manifest_error(path, where + ".name", "expected a string");
-        a.name = e["name"].get<std::string>();
-      }
-      if (e.contains("settings")) {
-        check_settings(path, where + ".settings", e["settings"]);
-        for (const auto& [k, v] : e["settings"].items()) {
-          // --levels and --primitives choose the levels two ways: an asset's choice replaces the defaults'.
-          if (k == "levels" && !e["settings"].contains("primitives")) a.settings.erase("primitives");
-          if (k == "primitives" && !e["settings"].contains("levels")) a.settings.erase("levels");
-          a.settings[k] = v;
-        }
-      }
-    } else {
-      manifest_error(path, where, "expected an input path or an object {input, name, settings}");
-    }
-    if (a.input.empty()) manifest_error(path, where + ".input", "expected the input file's path");
-    if (a.name.empty()) a.name = std::filesystem::path(a.input).stem().string();
-    if (!valid_name(a.name))
-      manifest_error(path, where + ".name", "'" + a.name + "' cannot name a folder (letters, digits, '_', '-', '.'; not starting with '.' or '-')");
+    BatchAsset a = read_asset_entry(j["assets"][i], i, defaults, path);
     if (!names.insert(a.name).second)
-      manifest_error(path, where + ".name", "'" + a.name + "' names two assets; give one a \"name\"");
+      manifest_error(path, "assets[" + std::to_string(i) + "].name", "'" + a.name + "' names two assets; give one a \"name\"");
     a.path = resolve(a.input);
     m.assets.push_back(std::move(a));
   }

@@ -27,6 +27,56 @@ void blit(const std::vector<std::uint8_t>& rgba, const Texture& t, int x, int y,
     }
 }
 
+// Step 3: shelves, left to right, top to bottom; a full atlas opens the next one. Places every
+// tile (its image, x, y, size) and returns each image's used height.
+std::vector<int> place_on_shelves(const std::vector<int>& pw, const std::vector<int>& ph, const std::vector<std::size_t>& order, int width,
+                                  const AtlasOptions& o, std::vector<AtlasTile>& tiles, const std::vector<Texture>& textures) {
+  std::vector<int> heights;
+  int x = 0, y = 0, shelf = 0;
+  std::uint32_t image = 0;
+  heights.push_back(0);
+  for (std::size_t k : order) {
+    if (x + pw[k] > width) x = 0, y += shelf, shelf = 0;
+    if (y + ph[k] > o.max_side) {
+      ++image, x = 0, y = 0, shelf = 0;
+      heights.push_back(0);
+    }
+    tiles[k] = {image, x + o.gutter, y + o.gutter, textures[k].width, textures[k].height, 0, 0, 0, 0};
+    x += pw[k];
+    shelf = std::max(shelf, ph[k]);
+    heights[image] = std::max(heights[image], y + shelf);
+  }
+  return heights;
+}
+
+// Step 4: the images (and normal maps, when every texture has one), power-of-two high, the
+// textures copied in with their gutters, and every tile's texture coordinates.
+void fill_images(const std::vector<Texture>& textures, const std::vector<int>& pw, const std::vector<int>& ph, int width,
+                 const std::vector<int>& heights, const AtlasOptions& o, Atlas& a) {
+  const bool with_normals = !textures.empty() &&
+      std::all_of(textures.begin(), textures.end(), [](const Texture& t) { return !t.normals.empty(); });
+  for (std::size_t i = 0; i < heights.size(); ++i) {
+    a.widths.push_back(width);
+    // Power-of-two sides: mipmapping everywhere (WebGL 1 needs it), no validator NPOT notices.
+    int side = o.block;
+    while (side < heights[i]) side *= 2;
+    a.heights.push_back(side);
+    const std::size_t bytes = 4 * static_cast<std::size_t>(width) * static_cast<std::size_t>(a.heights.back());
+    a.images.emplace_back(bytes, 0);
+    if (with_normals) a.normal_images.emplace_back(bytes, 0);
+  }
+  for (std::size_t k = 0; k < textures.size(); ++k) {
+    AtlasTile& t = a.tiles[k];
+    blit(textures[k].rgba, textures[k], t.x - o.gutter, t.y - o.gutter, pw[k], ph[k], o.gutter, width, a.images[t.atlas]);
+    if (with_normals)
+      blit(textures[k].normals, textures[k], t.x - o.gutter, t.y - o.gutter, pw[k], ph[k], o.gutter, width,
+           a.normal_images[t.atlas]);
+    const float w = static_cast<float>(a.widths[t.atlas]), h = static_cast<float>(a.heights[t.atlas]);
+    t.u0 = t.x / w, t.u1 = (t.x + t.width) / w;
+    t.v0 = t.y / h, t.v1 = (t.y + t.height) / h;
+  }
+}
+
 }  // namespace
 
 Atlas pack_atlas(const std::vector<Texture>& textures, const AtlasOptions& o) {
@@ -51,45 +101,9 @@ Atlas pack_atlas(const std::vector<Texture>& textures, const AtlasOptions& o) {
   while (width < o.max_side && static_cast<std::size_t>(width) * static_cast<std::size_t>(width) < area) width *= 2;
   for (std::size_t k : order)
     while (width < pw[k]) width *= 2;
-  // 3. Shelves, left to right, top to bottom; a full atlas opens the next one.
-  std::vector<int> heights;
-  int x = 0, y = 0, shelf = 0;
-  std::uint32_t image = 0;
-  heights.push_back(0);
-  for (std::size_t k : order) {
-    if (x + pw[k] > width) x = 0, y += shelf, shelf = 0;
-    if (y + ph[k] > o.max_side) {
-      ++image, x = 0, y = 0, shelf = 0;
-      heights.push_back(0);
-    }
-    a.tiles[k] = {image, x + o.gutter, y + o.gutter, textures[k].width, textures[k].height, 0, 0, 0, 0};
-    x += pw[k];
-    shelf = std::max(shelf, ph[k]);
-    heights[image] = std::max(heights[image], y + shelf);
-  }
-  // 4. Images (and normal maps, when every texture has one) and texture coordinates.
-  const bool with_normals = !textures.empty() &&
-      std::all_of(textures.begin(), textures.end(), [](const Texture& t) { return !t.normals.empty(); });
-  for (std::size_t i = 0; i < heights.size(); ++i) {
-    a.widths.push_back(width);
-    // Power-of-two sides: mipmapping everywhere (WebGL 1 needs it), no validator NPOT notices.
-    int side = o.block;
-    while (side < heights[i]) side *= 2;
-    a.heights.push_back(side);
-    const std::size_t bytes = 4 * static_cast<std::size_t>(width) * static_cast<std::size_t>(a.heights.back());
-    a.images.emplace_back(bytes, 0);
-    if (with_normals) a.normal_images.emplace_back(bytes, 0);
-  }
-  for (std::size_t k = 0; k < textures.size(); ++k) {
-    AtlasTile& t = a.tiles[k];
-    blit(textures[k].rgba, textures[k], t.x - o.gutter, t.y - o.gutter, pw[k], ph[k], o.gutter, width, a.images[t.atlas]);
-    if (with_normals)
-      blit(textures[k].normals, textures[k], t.x - o.gutter, t.y - o.gutter, pw[k], ph[k], o.gutter, width,
-           a.normal_images[t.atlas]);
-    const float w = static_cast<float>(a.widths[t.atlas]), h = static_cast<float>(a.heights[t.atlas]);
-    t.u0 = t.x / w, t.u1 = (t.x + t.width) / w;
-    t.v0 = t.y / h, t.v1 = (t.y + t.height) / h;
-  }
+  // 3. Shelves, 4. images and texture coordinates.
+  const std::vector<int> heights = place_on_shelves(pw, ph, order, width, o, a.tiles, textures);
+  fill_images(textures, pw, ph, width, heights, o, a);
   return a;
 }
 

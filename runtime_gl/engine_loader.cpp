@@ -1,0 +1,242 @@
+// A glTF file as a standard engine sees it (engine_scene.h): node transforms composed, materials
+// with the spec's defaults, vertex attributes in any type glTF allows for them.
+#include <array>
+#include <cmath>
+#include <cstring>
+
+#include "core/color.h"
+#include "runtime_gl/gltf_read.h"
+
+namespace qf::render {
+namespace {
+
+using namespace gltf;
+
+// A vertex attribute as floats, `components` per vertex: FLOAT, or normalized UNSIGNED_BYTE /
+// UNSIGNED_SHORT (glTF 2.0 3.7.2.1 allows these for COLOR_n and TEXCOORD_n). VEC3 colours get
+// alpha 1 when `components` is 4.
+std::vector<float> attribute_floats(const AccessorReader& read, int index, int components) {
+  const tinygltf::Accessor& a = read.accessor(index);
+  const int have = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(a.type));
+  if (a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT && have == components) return read.floats(index, components);
+  const int size = a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ? 1 : a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 2 : 0;
+  const bool colour_rgb = components == 4 && have == 3;
+  if (!(have == components || colour_rgb) || (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && (size == 0 || !a.normalized)))
+    fail(read.path, "accessor", "accessor " + std::to_string(index) + ": expected " + std::to_string(components) +
+                                    " float or normalized unsigned components");
+  const std::size_t elem = static_cast<std::size_t>(have) * (size ? static_cast<std::size_t>(size) : 4);
+  std::size_t stride = 0;
+  const unsigned char* p = read.base(a, elem, stride);
+  std::vector<float> out;
+  out.reserve(a.count * static_cast<std::size_t>(components));
+  for (std::size_t i = 0; i < a.count; ++i) {
+    for (int c = 0; c < have; ++c) {
+      const unsigned char* q = p + i * stride + static_cast<std::size_t>(c) * (size ? static_cast<std::size_t>(size) : 4);
+      float v = 0;
+      if (size == 1) v = *q / 255.0f;
+      else if (size == 2) {
+        std::uint16_t u = 0;
+        std::memcpy(&u, q, 2);
+        v = u / 65535.0f;
+      } else {
+        std::memcpy(&v, q, 4);
+      }
+      out.push_back(v);
+    }
+    if (colour_rgb) out.push_back(1.0f);
+  }
+  return out;
+}
+
+using Mat4d = std::array<double, 16>;  // column-major, as glTF stores node matrices
+
+Mat4d multiply(const Mat4d& a, const Mat4d& b) {
+  Mat4d r{};
+  for (int c = 0; c < 4; ++c)
+    for (int rr = 0; rr < 4; ++rr)
+      for (int k = 0; k < 4; ++k) r[static_cast<std::size_t>(c * 4 + rr)] += a[static_cast<std::size_t>(k * 4 + rr)] * b[static_cast<std::size_t>(c * 4 + k)];
+  return r;
+}
+
+// A node's local transform: its matrix, else T * R * S (glTF 2.0 3.5.3).
+Mat4d local_transform(const tinygltf::Node& n) {
+  Mat4d m{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+  if (n.matrix.size() == 16) {
+    std::copy(n.matrix.begin(), n.matrix.end(), m.begin());
+    return m;
+  }
+  const double x = n.rotation.size() == 4 ? n.rotation[0] : 0, y = n.rotation.size() == 4 ? n.rotation[1] : 0,
+               z = n.rotation.size() == 4 ? n.rotation[2] : 0, w = n.rotation.size() == 4 ? n.rotation[3] : 1;
+  const double sx = n.scale.size() == 3 ? n.scale[0] : 1, sy = n.scale.size() == 3 ? n.scale[1] : 1, sz = n.scale.size() == 3 ? n.scale[2] : 1;
+  const Mat4d r{1 - 2 * (y * y + z * z), 2 * (x * y + z * w), 2 * (x * z - y * w), 0,
+                2 * (x * y - z * w), 1 - 2 * (x * x + z * z), 2 * (y * z + x * w), 0,
+                2 * (x * z + y * w), 2 * (y * z - x * w), 1 - 2 * (x * x + y * y), 0,
+                0, 0, 0, 1};
+  for (int k = 0; k < 4; ++k) {
+    m[static_cast<std::size_t>(k)] = r[static_cast<std::size_t>(k)] * sx;
+    m[static_cast<std::size_t>(4 + k)] = r[static_cast<std::size_t>(4 + k)] * sy;
+    m[static_cast<std::size_t>(8 + k)] = r[static_cast<std::size_t>(8 + k)] * sz;
+  }
+  if (n.translation.size() == 3) m[12] = n.translation[0], m[13] = n.translation[1], m[14] = n.translation[2];
+  return m;
+}
+
+EngineMaterial engine_material(const tinygltf::Model& m, int index, int& uv_set) {
+  EngineMaterial out;  // glTF's default material
+  uv_set = 0;
+  if (index < 0 || index >= static_cast<int>(m.materials.size())) return out;
+  const tinygltf::Material& mat = m.materials[static_cast<std::size_t>(index)];
+  const tinygltf::PbrMetallicRoughness& pbr = mat.pbrMetallicRoughness;
+  for (std::size_t c = 0; c < 4 && c < pbr.baseColorFactor.size(); ++c) out.base_color[c] = static_cast<float>(pbr.baseColorFactor[c]);
+  auto image_of = [&](int texture) {
+    if (texture < 0 || texture >= static_cast<int>(m.textures.size())) return -1;
+    const int src = m.textures[static_cast<std::size_t>(texture)].source;
+    return src >= 0 && src < static_cast<int>(m.images.size()) ? src : -1;
+  };
+  auto wraps_of = [&](int texture, int& s, int& t) {
+    if (texture < 0 || texture >= static_cast<int>(m.textures.size())) return;
+    const int sampler = m.textures[static_cast<std::size_t>(texture)].sampler;
+    if (sampler < 0 || sampler >= static_cast<int>(m.samplers.size())) return;
+    s = m.samplers[static_cast<std::size_t>(sampler)].wrapS;
+    t = m.samplers[static_cast<std::size_t>(sampler)].wrapT;
+  };
+  out.base_texture = image_of(pbr.baseColorTexture.index);
+  if (out.base_texture >= 0) uv_set = pbr.baseColorTexture.texCoord;
+  wraps_of(pbr.baseColorTexture.index, out.base_wrap_s, out.base_wrap_t);
+  wraps_of(mat.normalTexture.index, out.normal_wrap_s, out.normal_wrap_t);
+  // KHR_texture_transform of the base colour texture (three.js applies it): uv' = T R S uv.
+  const auto tt = pbr.baseColorTexture.extensions.find("KHR_texture_transform");
+  if (tt != pbr.baseColorTexture.extensions.end() && tt->second.IsObject()) {
+    const tinygltf::Value& e = tt->second;
+    auto num = [](const tinygltf::Value& v, int i, double fallback) {
+      return v.IsArray() && static_cast<std::size_t>(i) < v.ArrayLen() && v.Get(i).IsNumber() ? v.Get(i).GetNumberAsDouble() : fallback;
+    };
+    const double r = e.Get("rotation").IsNumber() ? e.Get("rotation").GetNumberAsDouble() : 0.0;
+    const double sx = num(e.Get("scale"), 0, 1), sy = num(e.Get("scale"), 1, 1);
+    out.uv_transform = {static_cast<float>(std::cos(r) * sx), static_cast<float>(std::sin(r) * sy),
+                        static_cast<float>(num(e.Get("offset"), 0, 0)), static_cast<float>(-std::sin(r) * sx),
+                        static_cast<float>(std::cos(r) * sy), static_cast<float>(num(e.Get("offset"), 1, 0))};
+    if (e.Get("texCoord").IsInt()) uv_set = e.Get("texCoord").GetNumberAsInt();
+  }
+  out.metallic = static_cast<float>(pbr.metallicFactor);
+  out.roughness = static_cast<float>(pbr.roughnessFactor);
+  out.normal_texture = image_of(mat.normalTexture.index);
+  out.normal_scale = static_cast<float>(mat.normalTexture.scale);
+  out.alpha = mat.alphaMode == "MASK" ? EngineMaterial::Alpha::kMask : mat.alphaMode == "BLEND" ? EngineMaterial::Alpha::kBlend : EngineMaterial::Alpha::kOpaque;
+  out.alpha_cutoff = static_cast<float>(mat.alphaCutoff);
+  out.double_sided = mat.doubleSided;
+  return out;
+}
+
+// One primitive of a mesh, placed by `world`.
+EnginePrimitive engine_primitive(const AccessorReader& read, const tinygltf::Primitive& prim, const Mat4d& world) {
+  EnginePrimitive p;
+  if (prim.mode == TINYGLTF_MODE_LINE) p.mode = EnginePrimitive::Mode::kLines;
+  else if (prim.mode == TINYGLTF_MODE_POINTS) p.mode = EnginePrimitive::Mode::kPoints;
+  int uv_set = 0;
+  p.material = engine_material(read.m, prim.material, uv_set);
+  auto attribute = [&](const std::string& name, int components) {
+    const auto it = prim.attributes.find(name);
+    return it == prim.attributes.end() ? std::vector<float>() : attribute_floats(read, it->second, components);
+  };
+  p.positions = attribute("POSITION", 3);
+  const std::size_t n = p.positions.size() / 3;
+  p.normals = attribute("NORMAL", 3);
+  p.tangents = attribute("TANGENT", 4);
+  p.uvs = attribute("TEXCOORD_" + std::to_string(uv_set), 2);
+  p.colors = attribute("COLOR_0", 4);
+  if ((!p.normals.empty() && p.normals.size() != n * 3) || (!p.tangents.empty() && p.tangents.size() != n * 4) ||
+      (!p.uvs.empty() && p.uvs.size() != n * 2) || (!p.colors.empty() && p.colors.size() != n * 4))
+    fail(read.path, "mesh", "a primitive's attributes differ in count from POSITION");
+  const std::array<float, 6>& k = p.material.uv_transform;
+  for (std::size_t v = 0; v + 1 < p.uvs.size(); v += 2) {
+    const float u0 = p.uvs[v], v0 = p.uvs[v + 1];
+    p.uvs[v] = k[0] * u0 + k[1] * v0 + k[2];
+    p.uvs[v + 1] = k[3] * u0 + k[4] * v0 + k[5];
+  }
+  if (prim.indices >= 0) {
+    p.indices = read.indices(prim.indices);
+    for (std::uint32_t i : p.indices)
+      if (i >= n) fail(read.path, "mesh", "index " + std::to_string(i) + " out of range (" + std::to_string(n) + " vertices)");
+  } else {
+    for (std::uint32_t i = 0; i < n; ++i) p.indices.push_back(i);
+  }
+  // Strips and fans as triangle lists (every other strip triangle turned back to the first's winding).
+  if (prim.mode == TINYGLTF_MODE_TRIANGLE_STRIP || prim.mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+    std::vector<std::uint32_t> list;
+    for (std::size_t i = 0; i + 2 < p.indices.size(); ++i) {
+      if (prim.mode == TINYGLTF_MODE_TRIANGLE_FAN) list.insert(list.end(), {p.indices[0], p.indices[i + 1], p.indices[i + 2]});
+      else if (i % 2 == 0) list.insert(list.end(), {p.indices[i], p.indices[i + 1], p.indices[i + 2]});
+      else list.insert(list.end(), {p.indices[i + 1], p.indices[i], p.indices[i + 2]});
+    }
+    p.indices = std::move(list);
+  }
+  // World space: points by the matrix, normals by its inverse transpose (the cofactor matrix,
+  // normalised), tangents by the matrix; a negative determinant mirrors, so flip the winding.
+  const Mat4d& w = world;
+  auto at = [&](int r, int c) { return w[static_cast<std::size_t>(c * 4 + r)]; };
+  const double det = at(0, 0) * (at(1, 1) * at(2, 2) - at(1, 2) * at(2, 1)) - at(0, 1) * (at(1, 0) * at(2, 2) - at(1, 2) * at(2, 0)) +
+                     at(0, 2) * (at(1, 0) * at(2, 1) - at(1, 1) * at(2, 0));
+  for (std::size_t v = 0; v < n; ++v) {
+    const double x = p.positions[v * 3], y = p.positions[v * 3 + 1], z = p.positions[v * 3 + 2];
+    for (int r = 0; r < 3; ++r) p.positions[v * 3 + static_cast<std::size_t>(r)] = static_cast<float>(at(r, 0) * x + at(r, 1) * y + at(r, 2) * z + at(r, 3));
+  }
+  auto cof = [&](int r, int c) {  // cofactor of the 3x3 part
+    const int r1 = (r + 1) % 3, r2 = (r + 2) % 3, c1 = (c + 1) % 3, c2 = (c + 2) % 3;
+    return at(r1, c1) * at(r2, c2) - at(r1, c2) * at(r2, c1);
+  };
+  // Directions (xyz of every `stride` floats) through a 3x3 matrix m(r, c), renormalised.
+  auto turn = [](std::vector<float>& d, std::size_t stride, auto&& m) {
+    for (std::size_t v = 0; v + 2 < d.size(); v += stride) {
+      const Vec3f q{d[v], d[v + 1], d[v + 2]};
+      Vec3f t;
+      for (int r = 0; r < 3; ++r) t[r] = static_cast<float>(m(r, 0) * q.x + m(r, 1) * q.y + m(r, 2) * q.z);
+      t = normalized(t);
+      std::copy_n(&t.x, 3, &d[v]);
+    }
+  };
+  turn(p.normals, 3, cof);
+  turn(p.tangents, 4, at);
+  if (det < 0 && p.mode == EnginePrimitive::Mode::kTriangles)
+    for (std::size_t t = 0; t + 2 < p.indices.size(); t += 3) std::swap(p.indices[t + 1], p.indices[t + 2]);
+  return p;
+}
+
+}  // namespace
+
+std::vector<int> scene_roots(const tinygltf::Model& m) {
+  const int scene = m.defaultScene >= 0 ? m.defaultScene : (m.scenes.empty() ? -1 : 0);
+  if (scene >= 0 && scene < static_cast<int>(m.scenes.size())) return m.scenes[static_cast<std::size_t>(scene)].nodes;
+  return {};
+}
+
+EngineScene engine_scene(const tinygltf::Model& m, const std::string& path, const std::vector<int>& roots) {
+  EngineScene s;
+  for (const tinygltf::Image& img : m.images) s.images.push_back(to_image(img, path));
+  AccessorReader read{m, path};
+  std::vector<int> depth(m.nodes.size(), -1);  // on the current path: a cycle guard
+  const Mat4d identity{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+  auto visit = [&](auto&& self, int node, const Mat4d& parent, int level) -> void {
+    if (node < 0 || node >= static_cast<int>(m.nodes.size())) fail(path, "nodes", "node " + std::to_string(node) + " does not exist");
+    if (depth[static_cast<std::size_t>(node)] >= 0) fail(path, "nodes", "nodes[" + std::to_string(node) + "] is its own ancestor (a cycle)");
+    depth[static_cast<std::size_t>(node)] = level;
+    const tinygltf::Node& n = m.nodes[static_cast<std::size_t>(node)];
+    const Mat4d world = multiply(parent, local_transform(n));
+    if (n.mesh >= 0 && n.mesh < static_cast<int>(m.meshes.size()))
+      for (const tinygltf::Primitive& prim : m.meshes[static_cast<std::size_t>(n.mesh)].primitives)
+        if (prim.mode == TINYGLTF_MODE_TRIANGLES || prim.mode == TINYGLTF_MODE_TRIANGLE_STRIP ||
+            prim.mode == TINYGLTF_MODE_TRIANGLE_FAN || prim.mode == TINYGLTF_MODE_LINE || prim.mode == TINYGLTF_MODE_POINTS)
+          s.primitives.push_back(engine_primitive(read, prim, world));
+    for (int child : n.children) self(self, child, world, level + 1);
+    depth[static_cast<std::size_t>(node)] = -1;
+  };
+  for (int r : roots) visit(visit, r, identity, 0);
+  for (const EnginePrimitive& p : s.primitives) {
+    for (std::size_t v = 0; v + 2 < p.positions.size(); v += 3) s.bounds.add({p.positions[v], p.positions[v + 1], p.positions[v + 2]});
+    for (int t : {p.material.base_texture, p.material.normal_texture})
+      if (t >= static_cast<int>(s.images.size())) fail(path, "image", "a material names a missing image");
+  }
+  return s;
+}
+
+}  // namespace qf::render
