@@ -47,8 +47,8 @@ def main():
     sizes = a.sizes.split(",")
     rows = []  # one per model x level x size
     for name in a.names.split(","):
-        src = os.path.join(a.models, name)
-        stem = os.path.splitext(name)[0]
+        src = os.path.join(a.models, name)  # an absolute name stands for itself
+        stem = os.path.splitext(os.path.basename(name))[0]
         out = os.path.join(a.work, stem)
         run(f"{a.bins}/qf-bake", src, "-o", out, "--primitives", a.budgets, "--no-cache", "--mesh-lods", "clustering", "-q")
         manifest = json.load(open(os.path.join(out, "manifest.json")))
@@ -75,6 +75,8 @@ def main():
                 rows.append(row)
 
     def cell(m):
+        if m is None:  # a glTF asset reference is scored by the engine method only
+            return "-"
         return f"{m['psnr']:5.2f} {m['iou']:.3f} {100 * m['holes']:4.1f}%"
 
     for size in sizes:

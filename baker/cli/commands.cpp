@@ -9,8 +9,10 @@
 #include "analysis/neighborhoods.h"
 #include "core/error.h"
 #include "core/file_io.h"
+#include "gltf/glb.h"
 #include "io/model_io.h"
 #include "shapes/shapes.h"
+#include "shapes/tree.h"
 
 namespace qf::cli {
 
@@ -142,8 +144,11 @@ const std::vector<Command>& commands() {
                        quiet_option()}),
         2, 2},
        run_convert},
-      {{"generate", "SHAPE -o OUT [options]", "write an analytic sample shape as a point set",
+      {{"generate", "SHAPE -o OUT [options]", "write an analytic sample shape as a point set, or a sample tree as a .glb",
         "SHAPE is one of:\n" + shape_list() +
+            "  tree         a trunk, branches and --leaves alpha-masked leaf quads with generated bark and\n"
+            "               leaf textures: a textured game asset (OUT must be .glb), where mesh\n"
+            "               simplification has nothing to collapse\n"
             "Points are spread uniformly by area with a seeded generator (identical output for\n"
             "identical settings), with outward normals, colours, and radii from local spacing.",
         {{"output", 'o', "OUT", "", "output file (.ply, .qs, .xyz or .pwn); required"},
@@ -151,6 +156,7 @@ const std::vector<Command>& commands() {
          {"seed", 0, "S", "1", "random seed"},
          {"mesh", 0, "", "", "write a closed triangle mesh instead (octahedron, cube, sphere; OUT must be .ply)"},
          {"subdivisions", 0, "N", "16", "--mesh: each face split into N x N triangles"},
+         {"leaves", 0, "N", "3000", "tree: number of leaf quads"},
          quiet_option()},
         1, 1},
        run_generate},
@@ -215,6 +221,19 @@ int run_generate(const ParsedArgs& args) {
   o.points = static_cast<std::size_t>(args.get_int("points", static_cast<long long>(o.points), 1, 100000000));
   o.seed = static_cast<std::uint64_t>(args.get_int("seed", static_cast<long long>(o.seed), 0, (1ll << 62)));
   const std::string out = args.get("output");
+  if (args.positional[0] == "tree") {
+    if (file_extension(out) != "glb") throw UsageError("generate tree writes a .glb, not '" + out + "'");
+    TreeOptions t;
+    t.seed = o.seed;
+    t.leaves = static_cast<std::size_t>(args.get_int("leaves", static_cast<long long>(t.leaves), 1, 1000000));
+    const TriangleMesh tree = generate_tree(t);
+    const std::vector<std::uint8_t> bytes = encode_textured_mesh_glb(tree);
+    write_bytes_atomically(out, bytes);
+    if (!args.flag("quiet"))
+      std::cerr << "qf-bake generate: tree -> " << out << ": " << tree.triangles.size() << " triangles (" << t.leaves << " leaves), "
+                << bytes.size() << " bytes\n";
+    return 0;
+  }
   if (args.flag("mesh")) {
     if (file_extension(out) != "ply") throw UsageError("generate --mesh writes .ply meshes, not '" + out + "'");
     const TriangleMesh mesh = generate_mesh(args.positional[0], static_cast<int>(args.get_int("subdivisions", 16, 1, 2000)));

@@ -110,6 +110,7 @@ struct SurfaceMaterial {
   TextureWrap wrap_s = TextureWrap::kRepeat, wrap_t = TextureWrap::kRepeat;
   AlphaMode alpha_mode = AlphaMode::kOpaque;
   float alpha_cutoff = 0.5f;
+  bool double_sided = false;  // what engines cull (sampling sees both sides either way)
 };
 
 // An indexed triangle mesh; per-vertex normals/colours are empty or one per position. Materials are

@@ -6,8 +6,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <sstream>
 #include <stdexcept>
+#include <tuple>
 
 #include "core/color.h"
 #include "gltf/draco.h"
@@ -520,6 +522,84 @@ std::vector<std::uint8_t> encode_mesh_glb(const TriangleMesh& mesh, bool smooth_
   tinygltf::Mesh gm;
   gm.name = "mesh_lod";
   gm.primitives.push_back(prim);
+  add_single_node_scene(m, gm);
+  return write_glb(m);
+}
+
+namespace {
+
+int wrap_code(TextureWrap w) {
+  return w == TextureWrap::kClampToEdge ? TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE
+         : w == TextureWrap::kMirroredRepeat ? TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT : TINYGLTF_TEXTURE_WRAP_REPEAT;
+}
+
+int add_surface_material(tinygltf::Model& m, const TriangleMesh& mesh, const SurfaceMaterial& s) {
+  tinygltf::Material mat;
+  mat.name = s.name;
+  mat.pbrMetallicRoughness.baseColorFactor.assign(s.base_color.begin(), s.base_color.end());
+  mat.pbrMetallicRoughness.metallicFactor = 0;
+  mat.alphaMode = s.alpha_mode == AlphaMode::kMask ? "MASK" : s.alpha_mode == AlphaMode::kBlend ? "BLEND" : "OPAQUE";
+  if (s.alpha_mode == AlphaMode::kMask) mat.alphaCutoff = s.alpha_cutoff;
+  mat.doubleSided = s.double_sided;
+  if (s.texture >= 0) {
+    const TextureImage& t = mesh.textures[static_cast<std::size_t>(s.texture)];
+    const int texture = add_png_texture(m, t.rgba, t.width, t.height, s.name);
+    tinygltf::Sampler sampler;
+    sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+    sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
+    sampler.wrapS = wrap_code(s.wrap_s);
+    sampler.wrapT = wrap_code(s.wrap_t);
+    m.samplers.push_back(sampler);
+    m.textures[static_cast<std::size_t>(texture)].sampler = static_cast<int>(m.samplers.size() - 1);
+    mat.pbrMetallicRoughness.baseColorTexture.index = texture;
+  }
+  m.materials.push_back(mat);
+  return static_cast<int>(m.materials.size() - 1);
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> encode_textured_mesh_glb(const TriangleMesh& mesh, const GltfOptions& options) {
+  if (mesh.triangles.empty()) throw std::invalid_argument("encode_textured_mesh_glb: a mesh without triangles");
+  tinygltf::Model m = new_model(options);
+  m.samplers.clear();
+  const std::size_t materials = std::max<std::size_t>(mesh.materials.size(), 1);
+  tinygltf::Mesh gm;
+  gm.name = "asset";
+  for (std::size_t mi = 0; mi < materials; ++mi) {
+    // 1. This material's corners as vertices: (position, uv) pairs in first-use order.
+    std::map<std::tuple<std::uint32_t, float, float>, std::uint32_t> vertex_of;
+    std::vector<float> pos, nrm, uv;
+    std::vector<Rgb8> col;
+    std::vector<std::uint32_t> idx;
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+      if (!mesh.triangle_materials.empty() && mesh.triangle_materials[t] != mi) continue;
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t v = mesh.triangles[t][static_cast<std::size_t>(k)];
+        const Vec2f c = mesh.corner_uvs.empty() ? Vec2f{} : mesh.corner_uvs[t][static_cast<std::size_t>(k)];
+        const auto [it, fresh] = vertex_of.emplace(std::make_tuple(v, c.x, c.y), static_cast<std::uint32_t>(pos.size() / 3));
+        if (fresh) {
+          const Vec3f p = mesh.positions[v];
+          pos.insert(pos.end(), {p.x, p.y, p.z});
+          if (!mesh.normals.empty()) nrm.insert(nrm.end(), {mesh.normals[v].x, mesh.normals[v].y, mesh.normals[v].z});
+          if (!mesh.corner_uvs.empty()) uv.insert(uv.end(), {c.x, c.y});
+          if (!mesh.colors.empty()) col.push_back(mesh.colors[v]);
+        }
+        idx.push_back(it->second);
+      }
+    }
+    if (idx.empty()) continue;
+    // 2. The primitive and its material.
+    tinygltf::Primitive prim;
+    prim.mode = TINYGLTF_MODE_TRIANGLES;
+    prim.material = mesh.materials.empty() ? -1 : add_surface_material(m, mesh, mesh.materials[mi]);
+    prim.attributes["POSITION"] = add_floats(m, pos, 3, TINYGLTF_TYPE_VEC3, true);
+    if (!nrm.empty()) prim.attributes["NORMAL"] = add_floats(m, nrm, 3, TINYGLTF_TYPE_VEC3, false);
+    if (!uv.empty()) prim.attributes["TEXCOORD_0"] = add_floats(m, uv, 2, TINYGLTF_TYPE_VEC2, false);
+    if (!col.empty()) prim.attributes["COLOR_0"] = add_colors(m, col);
+    prim.indices = add_indices(m, idx);
+    gm.primitives.push_back(prim);
+  }
   add_single_node_scene(m, gm);
   return write_glb(m);
 }

@@ -84,4 +84,9 @@ std::vector<std::uint8_t> encode_cluster_glb(const LodMesh& lod, const GltfOptio
 // where the mesh has colours.
 std::vector<std::uint8_t> encode_mesh_glb(const TriangleMesh& mesh, bool smooth_normals, const GltfOptions& options = {});
 
+// A mesh with its materials as a game asset (qf-bake generate tree): one primitive per material,
+// with its base colour factor, texture (PNG), sampler wraps, alpha mode and sidedness; corners
+// that share a position and texture coordinate share a vertex. Same mesh, same bytes.
+std::vector<std::uint8_t> encode_textured_mesh_glb(const TriangleMesh& mesh, const GltfOptions& options = {});
+
 }  // namespace qf

@@ -367,6 +367,7 @@ class MaterialTable {
       for (std::size_t c = 0; c < 4 && c < f.size(); ++c) out.base_color[c] = static_cast<float>(f[c]);
       out.alpha_mode = g.alphaMode == "MASK" ? AlphaMode::kMask : g.alphaMode == "BLEND" ? AlphaMode::kBlend : AlphaMode::kOpaque;
       out.alpha_cutoff = static_cast<float>(g.alphaCutoff);
+      out.double_sided = g.doubleSided;
       const tinygltf::TextureInfo& info = g.pbrMetallicRoughness.baseColorTexture;
       if (info.index >= 0) {
         const std::string where = "materials[" + std::to_string(index) + "].pbrMetallicRoughness.baseColorTexture";

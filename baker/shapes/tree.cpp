@@ -1,0 +1,148 @@
+// The sample tree (tree.h).
+#include "shapes/tree.h"
+
+#include <cmath>
+
+#include "core/color.h"
+#include "core/error.h"
+#include "core/random.h"
+
+namespace qf {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Bark: brown with vertical grooves and a little noise, repeating around the trunk.
+TextureImage bark_texture(SplitMix64& random) {
+  TextureImage t{64, 64, std::vector<std::uint8_t>(64 * 64 * 4)};
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) {
+      const double groove = 0.75 + 0.25 * std::sin(x * 2 * kPi / 8.0 + 0.8 * std::sin(y * 2 * kPi / 32.0));
+      const double shade = groove * (0.85 + 0.15 * random.uniform());
+      std::uint8_t* p = &t.rgba[static_cast<std::size_t>(y * 64 + x) * 4];
+      p[0] = static_cast<std::uint8_t>(110 * shade), p[1] = static_cast<std::uint8_t>(78 * shade);
+      p[2] = static_cast<std::uint8_t>(50 * shade), p[3] = 255;
+    }
+  return t;
+}
+
+// A leaf: a pointed oval (u across, v along from the stalk at v = 1 to the tip at v = 0) with a
+// lighter midrib; alpha 0 outside it, so a MASK material cuts the quad to the leaf's shape.
+TextureImage leaf_texture() {
+  TextureImage t{64, 64, std::vector<std::uint8_t>(64 * 64 * 4, 0)};
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) {
+      const double u = (x + 0.5) / 32.0 - 1, v = (y + 0.5) / 64.0;      // u in -1..1, v in 0..1
+      const double half_width = 0.95 * std::sin(kPi * v) * std::sqrt(v);  // widest past the middle
+      if (std::fabs(u) > half_width) continue;
+      const double rib = std::fabs(u) < 0.06 ? 1.25 : 1.0;
+      const double shade = (0.7 + 0.3 * (1 - std::fabs(u) / std::max(half_width, 1e-6))) * rib;
+      std::uint8_t* p = &t.rgba[static_cast<std::size_t>(y * 64 + x) * 4];
+      p[0] = static_cast<std::uint8_t>(std::min(255.0, 60 * shade)), p[1] = static_cast<std::uint8_t>(std::min(255.0, 130 * shade));
+      p[2] = static_cast<std::uint8_t>(std::min(255.0, 40 * shade)), p[3] = 255;
+    }
+  return t;
+}
+
+Vec3f vec(double x, double y, double z) { return {static_cast<float>(x), static_cast<float>(y), static_cast<float>(z)}; }
+
+// Any two unit vectors perpendicular to unit d and to each other.
+void frame(Vec3f d, Vec3f& a, Vec3f& b) {
+  a = normalized(cross(d, std::fabs(d.y) < 0.9f ? Vec3f{0, 1, 0} : Vec3f{1, 0, 0}));
+  b = cross(d, a);
+}
+
+// A tapered tube from `from` along unit `dir`, `length` long, radius r0 -> r1, with the bark's
+// texture coordinates (u around, twice; v along, one repeat per unit).
+void add_tube(TriangleMesh& mesh, Vec3f from, Vec3f dir, double length, double r0, double r1) {
+  constexpr int kSides = 10, kRings = 6;
+  Vec3f a, b;
+  frame(dir, a, b);
+  const auto base = static_cast<std::uint32_t>(mesh.positions.size());
+  for (int i = 0; i <= kRings; ++i) {
+    const double f = static_cast<double>(i) / kRings, r = r0 + (r1 - r0) * f;
+    for (int k = 0; k < kSides; ++k) {
+      const double angle = 2 * kPi * k / kSides;
+      const Vec3f radial = a * static_cast<float>(std::cos(angle)) + b * static_cast<float>(std::sin(angle));
+      mesh.positions.push_back(from + dir * static_cast<float>(length * f) + radial * static_cast<float>(r));
+      mesh.normals.push_back(radial);
+    }
+  }
+  for (int i = 0; i < kRings; ++i)
+    for (int k = 0; k < kSides; ++k) {
+      const auto v = [&](int ring, int side) { return base + static_cast<std::uint32_t>(ring * kSides + (side % kSides)); };
+      const float u0 = 2.0f * static_cast<float>(k) / kSides, u1 = 2.0f * static_cast<float>(k + 1) / kSides;
+      const float v0 = static_cast<float>(length * i / kRings), v1 = static_cast<float>(length * (i + 1) / kRings);
+      mesh.triangles.push_back({v(i, k), v(i, k + 1), v(i + 1, k + 1)});
+      mesh.corner_uvs.push_back({Vec2f{u0, v0}, Vec2f{u1, v0}, Vec2f{u1, v1}});
+      mesh.triangles.push_back({v(i, k), v(i + 1, k + 1), v(i + 1, k)});
+      mesh.corner_uvs.push_back({Vec2f{u0, v0}, Vec2f{u1, v1}, Vec2f{u0, v1}});
+      mesh.triangle_materials.insert(mesh.triangle_materials.end(), 2, 0u);
+    }
+}
+
+// A leaf quad at `at` facing unit `n`, its stalk end pointing along `along` (in the leaf's plane).
+void add_leaf(TriangleMesh& mesh, Vec3f at, Vec3f n, Vec3f along, float length, float width) {
+  const Vec3f across = normalized(cross(n, along));
+  const Vec3f up = cross(across, n);
+  const auto base = static_cast<std::uint32_t>(mesh.positions.size());
+  const Vec3f corners[4] = {at - across * (0.5f * width), at + across * (0.5f * width),
+                            at + across * (0.5f * width) + up * length, at - across * (0.5f * width) + up * length};
+  for (const Vec3f& c : corners) mesh.positions.push_back(c), mesh.normals.push_back(n);
+  // Texture v = 1 at the stalk (the quad's base), 0 at the tip.
+  mesh.triangles.push_back({base, base + 1, base + 2});
+  mesh.corner_uvs.push_back({Vec2f{0, 1}, Vec2f{1, 1}, Vec2f{1, 0}});
+  mesh.triangles.push_back({base, base + 2, base + 3});
+  mesh.corner_uvs.push_back({Vec2f{0, 1}, Vec2f{1, 0}, Vec2f{0, 0}});
+  mesh.triangle_materials.insert(mesh.triangle_materials.end(), 2, 1u);
+}
+
+}  // namespace
+
+TriangleMesh generate_tree(const TreeOptions& options) {
+  if (options.leaves == 0 || options.leaves > 1000000) throw UsageError("a tree needs 1..1000000 leaves");
+  SplitMix64 random(options.seed);
+  TriangleMesh mesh;
+  // 1. Materials: bark (repeating) and leaves (cut out by alpha, seen from both sides).
+  mesh.textures = {bark_texture(random), leaf_texture()};
+  SurfaceMaterial bark;
+  bark.name = "bark";
+  bark.texture = 0;
+  SurfaceMaterial leaf;
+  leaf.name = "leaf";
+  leaf.texture = 1;
+  leaf.wrap_s = leaf.wrap_t = TextureWrap::kClampToEdge;
+  leaf.alpha_mode = AlphaMode::kMask;
+  leaf.double_sided = true;
+  mesh.materials = {bark, leaf};
+  // 2. The trunk, and branches leaving it upwards in a spiral.
+  add_tube(mesh, {0, 0, 0}, {0, 1, 0}, 2.6, 0.16, 0.07);
+  constexpr int kBranches = 7;
+  std::vector<Vec3f> tips;
+  for (int i = 0; i < kBranches; ++i) {
+    const double angle = 2.4 * i + 0.5 * random.uniform(), height = 1.3 + 1.2 * i / (kBranches - 1);
+    const Vec3f dir = normalized(vec(std::cos(angle), 0.7 + 0.4 * random.uniform(), std::sin(angle)));
+    const double length = 0.9 + 0.4 * random.uniform();
+    const Vec3f from{0, static_cast<float>(height), 0};
+    add_tube(mesh, from, dir, length, 0.06, 0.025);
+    tips.push_back(from + dir * static_cast<float>(length));
+  }
+  tips.push_back({0, 2.6f, 0});
+  // 3. Leaves in clusters around the tips: each at a random offset (denser near the tip),
+  //    facing a random direction, its stalk towards the tip.
+  for (std::size_t l = 0; l < options.leaves; ++l) {
+    const Vec3f tip = tips[static_cast<std::size_t>(random.next() % tips.size())];
+    const double z = 2 * random.uniform() - 1, phi = 2 * kPi * random.uniform(), r = 0.7 * std::cbrt(random.uniform());
+    const Vec3f offset = vec(std::sqrt(1 - z * z) * std::cos(phi) * r, z * r * 0.8 + 0.15, std::sqrt(1 - z * z) * std::sin(phi) * r);
+    const double nz = 2 * random.uniform() - 1, nphi = 2 * kPi * random.uniform();
+    const Vec3f n = vec(std::sqrt(1 - nz * nz) * std::cos(nphi), nz, std::sqrt(1 - nz * nz) * std::sin(nphi));
+    const Vec3f at = tip + offset;
+    Vec3f along = offset - n * dot(offset, n);  // outward from the tip, in the leaf's plane
+    if (dot(along, along) < 1e-8f) frame(n, along, along);
+    const float size = static_cast<float>(0.16 + 0.08 * random.uniform());
+    add_leaf(mesh, at, n, normalized(along), size, 0.6f * size);
+  }
+  return mesh;
+}
+
+}  // namespace qf

@@ -1,0 +1,22 @@
+// A generated sample tree: the classic impostor case, where mesh simplification has nothing to
+// collapse (thousands of separate alpha-masked leaf quads).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "core/types.h"
+
+namespace qf {
+
+struct TreeOptions {
+  std::size_t leaves = 3000;
+  std::uint64_t seed = 1;  // same seed, same tree, on every platform
+};
+
+// A trunk and branches (tapered tubes with a generated bark texture, material 0) and `leaves`
+// quads (material 1: a generated leaf texture, alpha MASK at 0.5, double-sided) in a crown of
+// radius ~1.3 around the branch tips, 4 units tall, standing on y = 0 (glTF's up).
+TriangleMesh generate_tree(const TreeOptions& options = {});
+
+}  // namespace qf
