@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# Textured assets baked (tests/data/textured and the generated tree), judged as an engine draws them:
+# - MASK cut-outs stay holes: the finest level of cube_mask.gltf covers what the asset covers
+#   (IoU >= 0.95 against it) and not the cut-away halves (IoU <= 0.85 against the whole cube);
+# - `generate tree` is deterministic, validates, and its coarsest impostor level keeps the crown
+#   where meshoptimizer's simplify at twice its quads in triangles has collapsed the leaves away
+#   (silhouette IoU against the tree, 256^2, 4 views).
+# usage: textured_test.sh QF_BAKE QF_RENDER VALIDATOR_DIR DATA_DIR
+set -u
+bake=$1 render=$2 validator=$3 data=$4
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+pass=0 fail=0
+ok() { pass=$((pass + 1)); }
+bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
+iou() {  # REFERENCE BAKED SIZE VIEWS
+  "$render" eval "$1" "$2" --size "$3" --views "$4" -o "$work/eval.json" >/dev/null 2>&1 &&
+    python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["mean"]["engine"]["iou"])' "$work/eval.json"
+}
+at_least() { python3 -c "import sys; sys.exit(0 if $1 >= $2 else 1)"; }
+
+# 1. MASK cut-outs.
+"$bake" bake "$data/textured/cube_mask.gltf" -o "$work/mask" --no-cache -q || bad "cube_mask.gltf did not bake"
+finest=$(ls "$work"/mask/cube_mask_L*.glb | sort -V | head -1)
+mask=$(iou "$data/textured/cube_mask.gltf" "$finest" 128 8) whole=$(iou "$data/textured/cube.gltf" "$finest" 128 8)
+at_least "$mask" 0.95 && ok || bad "cube_mask finest level IoU $mask against the masked cube (want >= 0.95)"
+at_least 0.85 "$whole" && ok || bad "cube_mask finest level IoU $whole against the whole cube (want <= 0.85: cut-outs filled)"
+echo "cube_mask finest level: IoU $mask against the asset, $whole against the uncut cube"
+
+# 2. The tree.
+"$bake" generate tree -o "$work/tree.glb" --leaves 1500 -q && "$bake" generate tree -o "$work/tree2.glb" --leaves 1500 -q || bad "generate tree failed"
+cmp -s "$work/tree.glb" "$work/tree2.glb" && ok || bad "generate tree is not deterministic"
+node "$validator/validate.js" "$work/tree.glb" >"$work/v" 2>&1 && ok || bad "tree.glb does not validate: $(tail -2 "$work/v")"
+"$bake" bake "$work/tree.glb" -o "$work/treeb" --ldi 192 --no-cache --mesh-lods none -q || bad "tree.glb did not bake"
+coarsest=$(ls "$work"/treeb/tree_L*.glb | sort -V | tail -1)
+quads=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["levels"][-1]["primitives"])' "$work/treeb/manifest.json")
+"$bake" simplify "$work/tree.glb" -o "$work/simp" --triangles $((2 * quads)) -q || bad "simplify of tree.glb failed"
+imp=$(iou "$work/tree.glb" "$coarsest" 256 4) peer=$(iou "$work/tree.glb" "$(ls "$work"/simp/*.glb | head -1)" 256 4)
+at_least "$imp" "$peer + 0.2" && ok || bad "tree: coarsest level ($quads quads) IoU $imp, simplify at $((2 * quads)) triangles $peer"
+echo "tree: coarsest level $quads quads IoU $imp; simplify at $((2 * quads)) triangles IoU $peer"
+
+echo "textured: $pass passed, $fail failed"
+[[ $fail -eq 0 ]]
