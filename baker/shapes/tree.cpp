@@ -27,14 +27,20 @@ TextureImage bark_texture(SplitMix64& random) {
 }
 
 // A leaf: a pointed oval (u across, v along from the stalk at v = 1 to the tip at v = 0) with a
-// lighter midrib; alpha 0 outside it, so a MASK material cuts the quad to the leaf's shape.
+// lighter midrib; alpha 0 outside it, so a MASK material cuts the quad to the leaf's shape. The
+// cut-away texels keep a leaf green (as texture artists dilate colour into them): black there
+// would bleed into the leaf's edge in an engine's mipmaps and darken the tree at a distance.
 TextureImage leaf_texture() {
   TextureImage t{64, 64, std::vector<std::uint8_t>(64 * 64 * 4, 0)};
   for (int y = 0; y < 64; ++y)
     for (int x = 0; x < 64; ++x) {
       const double u = (x + 0.5) / 32.0 - 1, v = (y + 0.5) / 64.0;      // u in -1..1, v in 0..1
       const double half_width = 0.95 * std::sin(kPi * v) * std::sqrt(v);  // widest past the middle
-      if (std::fabs(u) > half_width) continue;
+      if (std::fabs(u) > half_width) {
+        std::uint8_t* p = &t.rgba[static_cast<std::size_t>(y * 64 + x) * 4];
+        p[0] = 50, p[1] = 110, p[2] = 34, p[3] = 0;
+        continue;
+      }
       const double rib = std::fabs(u) < 0.06 ? 1.25 : 1.0;
       const double shade = (0.7 + 0.3 * (1 - std::fabs(u) / std::max(half_width, 1e-6))) * rib;
       std::uint8_t* p = &t.rgba[static_cast<std::size_t>(y * 64 + x) * 4];
