@@ -95,11 +95,14 @@ void add_leaf(TriangleMesh& mesh, Vec3f at, Vec3f n, Vec3f along, float length, 
   const Vec3f corners[4] = {at - across * (0.5f * width), at + across * (0.5f * width),
                             at + across * (0.5f * width) + up * length, at - across * (0.5f * width) + up * length};
   for (const Vec3f& c : corners) mesh.positions.push_back(c), mesh.normals.push_back(n);
-  // Texture v = 1 at the stalk (the quad's base), 0 at the tip.
-  mesh.triangles.push_back({base, base + 1, base + 2});
-  mesh.corner_uvs.push_back({Vec2f{0, 1}, Vec2f{1, 1}, Vec2f{1, 0}});
-  mesh.triangles.push_back({base, base + 2, base + 3});
-  mesh.corner_uvs.push_back({Vec2f{0, 1}, Vec2f{1, 0}, Vec2f{0, 0}});
+  // Texture v = 1 at the stalk (the quad's base), 0 at the tip. Wound counter-clockwise seen from
+  // the side `n` points to (across x up = -n, so the corners go 0 3 2 1): engines take the winding
+  // for the front, and flip a double-sided back face's normal; a winding against NORMAL would
+  // leave every leaf lit from behind, ambient only.
+  mesh.triangles.push_back({base, base + 3, base + 2});
+  mesh.corner_uvs.push_back({Vec2f{0, 1}, Vec2f{0, 0}, Vec2f{1, 0}});
+  mesh.triangles.push_back({base, base + 2, base + 1});
+  mesh.corner_uvs.push_back({Vec2f{0, 1}, Vec2f{1, 0}, Vec2f{1, 1}});
   mesh.triangle_materials.insert(mesh.triangle_materials.end(), 2, 1u);
 }
 
