@@ -138,8 +138,9 @@ Neighborhoods compute_neighborhoods(const std::vector<Vec3f>& positions, const N
   const int max_neighbors = std::max(options.max_neighbors, k);
   if (n < 2) return nb;
 
-  // Queries go in blocks of consecutive points along the Morton curve; blocks are spread over the
-  // threads, and each block's answer depends only on the block, so any thread count gives the same.
+  // Queries go in blocks of consecutive points along the Morton curve; blocks are handed out to the
+  // threads dynamically (a thread slowed by the machine's other jobs does not hold the other up),
+  // and each block's answer depends only on the block, so any thread count gives the same.
   const std::vector<std::uint32_t> order = morton_order(positions);
   std::vector<float> cloud(3 * n);
   for (std::size_t s = 0; s < n; ++s)
@@ -162,7 +163,7 @@ Neighborhoods compute_neighborhoods(const std::vector<Vec3f>& positions, const N
     {
       Searcher::Scratch sc;
       std::size_t unused = 0;
-#pragma omp for schedule(static)
+#pragma omp for schedule(dynamic)
       for (std::ptrdiff_t b = 0; b < static_cast<std::ptrdiff_t>(blocks); ++b) {
         const std::size_t first = static_cast<std::size_t>(b) * kBlock, count = std::min(kBlock, n - first);
         search.query_block(first, count, k, 0.0f, max_neighbors, sc, unused, unused);
@@ -185,7 +186,7 @@ Neighborhoods compute_neighborhoods(const std::vector<Vec3f>& positions, const N
 #pragma omp parallel reduction(+ : widened, capped)
   {
     Searcher::Scratch sc;
-#pragma omp for schedule(static)
+#pragma omp for schedule(dynamic)
     for (std::ptrdiff_t b = 0; b < static_cast<std::ptrdiff_t>(blocks); ++b) {
       const auto bi = static_cast<std::size_t>(b);
       const std::size_t first = bi * kBlock, count = std::min(kBlock, n - first);

@@ -1,8 +1,6 @@
 // Shared sparse-matrix operations: symmetrisation with zero row sums, Galerkin product.
 #include "core/sparse.h"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <atomic>
 #include <cstdint>
@@ -12,36 +10,38 @@ namespace qf {
 
 namespace {
 
-// Builds an n_rows x n_cols matrix row by row over every core. Each thread owns a Scratch (made
-// by make_scratch) and takes a contiguous block of rows (static schedule); row(i, scratch, cols,
-// vals) appends row i's entries in increasing column order. Blocks are joined in row order, so
-// the result does not depend on the thread count.
-// `expected` is the expected number of entries in all, to reserve the blocks once (growing them
+// Builds an n_rows x n_cols matrix row by row over every core. Rows go in chunks of kRowChunk,
+// handed out dynamically (a thread that the machine's other jobs slow down, or that drew costly
+// rows, does not hold the others up at the end); each thread owns a Scratch (made by
+// make_scratch); row(i, scratch, cols, vals) appends row i's entries in increasing column order.
+// Chunks are joined in row order, so the result does not depend on the thread count or schedule.
+// `expected` is the expected number of entries in all, to reserve each chunk once (growing them
 // copies into fresh pages, which is slow on the project's machines).
+constexpr std::size_t kRowChunk = 2048;
+
 template <class MakeScratch, class Row>
 SparseMatrix rows_in_parallel(std::size_t n_rows, Eigen::Index n_cols, std::size_t expected, MakeScratch&& make_scratch,
                               Row&& row) {
   std::vector<std::int32_t> outer(n_rows + 1, 0);
-  std::vector<std::vector<std::int32_t>> block_cols;
-  std::vector<std::vector<double>> block_vals;
+  const std::size_t chunks = (n_rows + kRowChunk - 1) / kRowChunk;
+  std::vector<std::vector<std::int32_t>> block_cols(chunks);
+  std::vector<std::vector<double>> block_vals(chunks);
+  const std::size_t per_chunk = n_rows ? expected / n_rows * kRowChunk + expected % n_rows * kRowChunk / n_rows + 64 : 0;
 #pragma omp parallel
   {
-#pragma omp single
-    {
-      block_cols.resize(static_cast<std::size_t>(omp_get_num_threads()));
-      block_vals.resize(block_cols.size());
-    }
-    const auto t = static_cast<std::size_t>(omp_get_thread_num());
     auto scratch = make_scratch();
-    auto& cols = block_cols[t];
-    auto& vals = block_vals[t];
-    cols.reserve(expected / block_cols.size() + 1024);
-    vals.reserve(expected / block_cols.size() + 1024);
-#pragma omp for schedule(static)
-    for (std::ptrdiff_t si = 0; si < static_cast<std::ptrdiff_t>(n_rows); ++si) {
-      const std::size_t before = cols.size();
-      row(static_cast<std::size_t>(si), scratch, cols, vals);
-      outer[static_cast<std::size_t>(si) + 1] = static_cast<std::int32_t>(cols.size() - before);
+#pragma omp for schedule(dynamic)
+    for (std::ptrdiff_t c = 0; c < static_cast<std::ptrdiff_t>(chunks); ++c) {
+      auto& cols = block_cols[static_cast<std::size_t>(c)];
+      auto& vals = block_vals[static_cast<std::size_t>(c)];
+      cols.reserve(per_chunk);
+      vals.reserve(per_chunk);
+      const std::size_t first = static_cast<std::size_t>(c) * kRowChunk, last = std::min(n_rows, first + kRowChunk);
+      for (std::size_t i = first; i < last; ++i) {
+        const std::size_t before = cols.size();
+        row(i, scratch, cols, vals);
+        outer[i + 1] = static_cast<std::int32_t>(cols.size() - before);
+      }
     }
   }
   for (std::size_t i = 0; i < n_rows; ++i) outer[i + 1] += outer[i];
