@@ -20,14 +20,21 @@ void frame_of(std::size_t i, const std::vector<Vec3f>& pos, const Neighborhoods&
   const Vec3f x = pos[i];
   const std::uint32_t b = nb.offsets[i], e = nb.offsets[i + 1];
   const double count = 1.0 + (e - b);
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d outer = Eigen::Matrix3d::Zero();
+  // The sums of v and of v v^T (lower triangle), by hand: the same products and additions in the
+  // same order as Eigen's selfadjointView().rankUpdate(v) (lower entry (i, j) += v_j v_i), so the
+  // same bits, without its out-of-line call per neighbour (~1/3 of the frames step).
+  double sx = 0, sy = 0, sz = 0, xx = 0, yx = 0, zx = 0, yy = 0, zy = 0, zz = 0;
   for (std::uint32_t r = b; r < e; ++r) {
     const Vec3f d = pos[nb.indices[r]] - x;
-    const Eigen::Vector3d v(d.x, d.y, d.z);
-    sum += v;
-    outer.selfadjointView<Eigen::Lower>().rankUpdate(v);
+    const double vx = d.x, vy = d.y, vz = d.z;
+    sx += vx, sy += vy, sz += vz;
+    xx += vx * vx, yx += vx * vy, zx += vx * vz;
+    yy += vy * vy, zy += vy * vz;
+    zz += vz * vz;
   }
+  const Eigen::Vector3d sum(sx, sy, sz);
+  Eigen::Matrix3d outer = Eigen::Matrix3d::Zero();
+  outer(0, 0) = xx, outer(1, 0) = yx, outer(2, 0) = zx, outer(1, 1) = yy, outer(2, 1) = zy, outer(2, 2) = zz;
   const Eigen::Vector3d m0 = sum / count;  // barycentre relative to x
   Eigen::Matrix3d cov = outer.selfadjointView<Eigen::Lower>();
   cov = cov / count - m0 * m0.transpose();
