@@ -9,7 +9,7 @@ set -u
 bake=$1
 source "$(dirname "$0")/test_lib.sh"
 
-# A small set (~384 MB estimated: the fixed part) and a big one (~200k x 670 bytes = ~130 MB more).
+# A small set (~384 MB estimated: the fixed part) and a big one (~200k x 800 bytes = ~160 MB more).
 "$bake" generate sphere -n 600 -o "$work/small.ply" -q
 "$bake" generate torus -n 200000 -o "$work/big.ply" -q
 limit=450M
