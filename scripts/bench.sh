@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Benchmarks (tables, not tests): reader throughput on 1M points; the surface analysis (k = 50)
-# on 100k and 1M synthetic points and on bunny00, with 2 threads and 1; the AMG stages; render
+# on 30k, 100k and 1M synthetic points and on bunny00, with 2 threads and 1, beside PCL's
+# NormalEstimationOMP in the same run; the AMG stages; render
 # speed of every method on the baked levels of bunny00 and fandisk beside their point sets; the
 # whole bake (per stage: time, memory, resampler texels/s) on bunny00, kitten and a 1M-point torus.
 # mesh sampling (GL and CPU depth peeling at LDI 100 and 1000) on cow, elephant, fandisk, bunny00.
@@ -27,10 +28,12 @@ for w in "${what[@]}"; do
     io) build/bin/qf-bench-io ;;
     analysis)
       models=$(scripts/fetch-models.sh bunny00.off | tail -1)
-      echo "surface analysis: time per step (wall clock); B/pt = peak memory added by the analysis per point"
+      echo "surface analysis: time per step (wall clock, fastest of 3 runs); B/pt = peak memory added by the analysis per point;"
+      echo "PCL s = PCL's NormalEstimationOMP (kd-tree + kNN + PCA) on the same points, k and threads; vs PCL = PCL s / total s"
       echo
       build/bin/qf-bench-analysis --header
       for threads in 2 1; do
+        OMP_NUM_THREADS=$threads build/bin/qf-bench-analysis torus 30000
         OMP_NUM_THREADS=$threads build/bin/qf-bench-analysis torus 100000
         OMP_NUM_THREADS=$threads build/bin/qf-bench-analysis torus 1000000
         OMP_NUM_THREADS=$threads build/bin/qf-bench-analysis "$models/bunny00.off"

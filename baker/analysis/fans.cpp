@@ -1,8 +1,6 @@
 // Local Delaunay fans by Voronoi-cell clipping in the tangent plane (paper 2.2, fig. 3b).
 #include "analysis/fans.h"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 
@@ -110,29 +108,36 @@ Fans compute_fans(const std::vector<Vec3f>& positions, const Neighborhoods& nb, 
   const std::size_t n = positions.size();
   Fans fans;
   fans.offsets.assign(n + 1, 0);
-  std::vector<std::vector<std::array<std::uint32_t, 2>>> blocks;
+  // Chunks of consecutive points handed out dynamically (no thread waits for a slowed one), joined
+  // in point order: thread-count independent.
+  constexpr std::size_t kChunk = 2048;
+  const std::size_t chunks = (n + kChunk - 1) / kChunk;
+  std::vector<std::vector<std::array<std::uint32_t, 2>>> blocks(chunks);
   std::size_t open = 0, empty = 0, duplicates = 0;
-  // Contiguous blocks per thread (static schedule), joined in point order: thread-count independent.
 #pragma omp parallel reduction(+ : open, empty, duplicates)
   {
-#pragma omp single
-    blocks.resize(static_cast<std::size_t>(omp_get_num_threads()));
-    auto& out = blocks[static_cast<std::size_t>(omp_get_thread_num())];
     CellClipper clipper;
-#pragma omp for schedule(static)
-    for (std::ptrdiff_t si = 0; si < static_cast<std::ptrdiff_t>(n); ++si) {
-      const auto i = static_cast<std::size_t>(si);
-      const std::size_t before = out.size();
-      const bool closed = clipper.fan(i, positions, nb, frames, out, duplicates);
-      const std::size_t count = out.size() - before;
-      fans.offsets[i + 1] = static_cast<std::uint32_t>(count);
-      if (count == 0) ++empty;
-      else if (!closed) ++open;
+#pragma omp for schedule(dynamic)
+    for (std::ptrdiff_t c = 0; c < static_cast<std::ptrdiff_t>(chunks); ++c) {
+      auto& out = blocks[static_cast<std::size_t>(c)];
+      out.reserve(6 * kChunk + 64);  // ~6 triangles a point (a closed fan of a regular sampling)
+      const std::size_t first = static_cast<std::size_t>(c) * kChunk, last = std::min(n, first + kChunk);
+      for (std::size_t i = first; i < last; ++i) {
+        const std::size_t before = out.size();
+        const bool closed = clipper.fan(i, positions, nb, frames, out, duplicates);
+        const std::size_t count = out.size() - before;
+        fans.offsets[i + 1] = static_cast<std::uint32_t>(count);
+        if (count == 0) ++empty;
+        else if (!closed) ++open;
+      }
     }
   }
   for (std::size_t i = 0; i < n; ++i) fans.offsets[i + 1] += fans.offsets[i];
   fans.triangles.reserve(fans.offsets[n]);
-  for (const auto& blk : blocks) fans.triangles.insert(fans.triangles.end(), blk.begin(), blk.end());
+  for (auto& blk : blocks) {
+    fans.triangles.insert(fans.triangles.end(), blk.begin(), blk.end());
+    std::vector<std::array<std::uint32_t, 2>>().swap(blk);
+  }
   if (report) report->open = open, report->empty = empty, report->duplicates = duplicates;
   return fans;
 }

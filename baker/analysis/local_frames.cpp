@@ -5,7 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <queue>
+#include <tuple>
 
 namespace qf {
 namespace {
@@ -20,14 +20,21 @@ void frame_of(std::size_t i, const std::vector<Vec3f>& pos, const Neighborhoods&
   const Vec3f x = pos[i];
   const std::uint32_t b = nb.offsets[i], e = nb.offsets[i + 1];
   const double count = 1.0 + (e - b);
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d outer = Eigen::Matrix3d::Zero();
+  // The sums of v and of v v^T (lower triangle), by hand: the same products and additions in the
+  // same order as Eigen's selfadjointView().rankUpdate(v) (lower entry (i, j) += v_j v_i), so the
+  // same bits, without its out-of-line call per neighbour (~1/3 of the frames step).
+  double sx = 0, sy = 0, sz = 0, xx = 0, yx = 0, zx = 0, yy = 0, zy = 0, zz = 0;
   for (std::uint32_t r = b; r < e; ++r) {
     const Vec3f d = pos[nb.indices[r]] - x;
-    const Eigen::Vector3d v(d.x, d.y, d.z);
-    sum += v;
-    outer.selfadjointView<Eigen::Lower>().rankUpdate(v);
+    const double vx = d.x, vy = d.y, vz = d.z;
+    sx += vx, sy += vy, sz += vz;
+    xx += vx * vx, yx += vx * vy, zx += vx * vz;
+    yy += vy * vy, zy += vy * vz;
+    zz += vz * vz;
   }
+  const Eigen::Vector3d sum(sx, sy, sz);
+  Eigen::Matrix3d outer = Eigen::Matrix3d::Zero();
+  outer(0, 0) = xx, outer(1, 0) = yx, outer(2, 0) = zx, outer(1, 1) = yy, outer(2, 1) = zy, outer(2, 2) = zz;
   const Eigen::Vector3d m0 = sum / count;  // barycentre relative to x
   Eigen::Matrix3d cov = outer.selfadjointView<Eigen::Lower>();
   cov = cov / count - m0 * m0.transpose();
@@ -40,6 +47,76 @@ void frame_of(std::size_t i, const std::vector<Vec3f>& pos, const Neighborhoods&
   f.centroid_offset[i] = static_cast<float>(m0.norm());
   f.radius[i] = e > b ? nb.distances[e - 1] : 0.0f;
 }
+
+// The tree edge by which Prim's algorithm reaches a point: its weight, the point, the tree point
+// it hangs from. Ordered by (w, to, from): the lowest index wins ties, so the tree is unique.
+struct TreeEdge {
+  float w;
+  std::uint32_t to, from;
+  bool operator<(const TreeEdge& o) const { return std::tie(w, to, from) < std::tie(o.w, o.to, o.from); }
+};
+
+// A binary min-heap of the points outside the tree, each with its best edge to the tree (Prim's
+// algorithm with decrease-key). It pops the same edges in the same order as a heap of every
+// crossing edge with lazy deletion, the textbook form this replaced: for each outside point that
+// heap's smallest entry is exactly this key, and the order compares the point next. It holds one
+// entry per point instead of one per edge (~16): 4-5x faster on bunny00 (37.7k points), where
+// orientation was a third of the analysis, and serial.
+class FrontierHeap {
+ public:
+  explicit FrontierHeap(std::size_t n) : slot_(n, kAbsent) {}
+  bool empty() const { return heap_.empty(); }
+  // Offers edge e to point e.to: kept if the point is new or e beats its current edge.
+  void offer(const TreeEdge& e) {
+    std::uint32_t& s = slot_[e.to];
+    if (s == kAbsent) {
+      s = static_cast<std::uint32_t>(heap_.size());
+      heap_.push_back(e);
+    } else if (e < heap_[s]) {
+      heap_[s] = e;
+    } else {
+      return;
+    }
+    sift_up(s);
+  }
+  TreeEdge pop() {
+    const TreeEdge top = heap_.front();
+    slot_[top.to] = kTaken;
+    heap_.front() = heap_.back();
+    heap_.pop_back();
+    if (!heap_.empty()) slot_[heap_.front().to] = 0, sift_down(0);
+    return top;
+  }
+
+ private:
+  static constexpr std::uint32_t kAbsent = 0xffffffffu, kTaken = 0xfffffffeu;
+  void place(std::uint32_t at, const TreeEdge& e) { heap_[at] = e, slot_[e.to] = at; }
+  void sift_up(std::uint32_t at) {
+    const TreeEdge e = heap_[at];
+    while (at > 0) {
+      const std::uint32_t parent = (at - 1) / 2;
+      if (!(e < heap_[parent])) break;
+      place(at, heap_[parent]);
+      at = parent;
+    }
+    place(at, e);
+  }
+  void sift_down(std::uint32_t at) {
+    const TreeEdge e = heap_[at];
+    const auto size = static_cast<std::uint32_t>(heap_.size());
+    for (;;) {
+      std::uint32_t child = 2 * at + 1;
+      if (child >= size) break;
+      if (child + 1 < size && heap_[child + 1] < heap_[child]) ++child;
+      if (!(heap_[child] < e)) break;
+      place(at, heap_[child]);
+      at = child;
+    }
+    place(at, e);
+  }
+  std::vector<TreeEdge> heap_;
+  std::vector<std::uint32_t> slot_;  // heap position of each point, kAbsent, or kTaken (in the tree)
+};
 
 // Step 2 (no input normals): orient normals consistently along a minimum spanning tree of the
 // neighbour graph weighted by 1 - |n_i . n_j| (Hoppe et al. 1992): the tree prefers edges between
@@ -65,12 +142,7 @@ void orient_by_propagation(const std::vector<Vec3f>& pos, const Neighborhoods& n
   // Connected parts in index order, then Prim's algorithm in each.
   std::vector<std::int32_t> part(n, -1);
   std::vector<char> done(n, 0);
-  struct Edge {
-    float w;
-    std::uint32_t to, from;
-    bool operator>(const Edge& o) const { return std::tie(w, to, from) > std::tie(o.w, o.to, o.from); }
-  };
-  std::priority_queue<Edge, std::vector<Edge>, std::greater<Edge>> heap;
+  FrontierHeap heap(n);
   std::vector<std::uint32_t> members;
   for (std::size_t start = 0; start < n; ++start) {
     if (part[start] >= 0) continue;
@@ -95,13 +167,11 @@ void orient_by_propagation(const std::vector<Vec3f>& pos, const Neighborhoods& n
     done[seed] = 1;
     auto push_edges = [&](std::uint32_t i) {
       for (std::uint32_t a = degree[i]; a < degree[i + 1]; ++a)
-        if (!done[adj[a]]) heap.push({1.0f - std::fabs(dot(f.normal[i], f.normal[adj[a]])), adj[a], i});
+        if (!done[adj[a]]) heap.offer({1.0f - std::fabs(dot(f.normal[i], f.normal[adj[a]])), adj[a], i});
     };
     push_edges(seed);
     while (!heap.empty()) {
-      const Edge e = heap.top();
-      heap.pop();
-      if (done[e.to]) continue;
+      const TreeEdge e = heap.pop();
       done[e.to] = 1;
       if (dot(f.normal[e.to], f.normal[e.from]) < 0) f.normal[e.to] = f.normal[e.to] * -1.0f, ++f.flipped;
       push_edges(e.to);
@@ -121,7 +191,8 @@ LocalFrames compute_local_frames(const std::vector<Vec3f>& positions, const Neig
   f.normal.resize(n);
   f.centroid_offset.resize(n);
   f.radius.resize(n);
-#pragma omp parallel for schedule(static)
+  // Dynamic chunks: a thread slowed by the machine's other jobs does not hold the other up.
+#pragma omp parallel for schedule(dynamic, 1024)
   for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(n); ++i)
     frame_of(static_cast<std::size_t>(i), positions, nb, f);
   for (std::size_t i = 0; i < n; ++i) f.isolated += nb.count(i) == 0;

@@ -2,8 +2,6 @@
 // the zero-row-sum diagonal, built directly in compressed row storage.
 #include "analysis/stiffness.h"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 
@@ -64,22 +62,26 @@ void fan_row(std::size_t i, const std::vector<Vec3f>& pos, const Fans& fans, con
 SparseMatrix assemble_stiffness(const std::vector<Vec3f>& positions, const Fans& fans,
                                 const std::vector<float>& classifier, StiffnessReport* report) {
   const std::size_t n = positions.size();
-  // 1. At, row by row in parallel; contiguous blocks joined in order (thread-count independent).
+  // 1. At, row by row in parallel: chunks of rows handed out dynamically, joined in row order
+  //    (thread-count independent).
+  constexpr std::size_t kChunk = 2048;
+  const std::size_t chunks = (n + kChunk - 1) / kChunk;
   std::vector<std::int32_t> outer(n + 1, 0);
-  std::vector<std::vector<Entry>> blocks;
+  std::vector<std::vector<Entry>> blocks(chunks);
   std::size_t zero_area = 0;
 #pragma omp parallel reduction(+ : zero_area)
   {
-#pragma omp single
-    blocks.resize(static_cast<std::size_t>(omp_get_num_threads()));
-    auto& out = blocks[static_cast<std::size_t>(omp_get_thread_num())];
     std::vector<Entry> row;
-#pragma omp for schedule(static)
-    for (std::ptrdiff_t si = 0; si < static_cast<std::ptrdiff_t>(n); ++si) {
-      const auto i = static_cast<std::size_t>(si);
-      fan_row(i, positions, fans, classifier, row, zero_area);
-      outer[i + 1] = static_cast<std::int32_t>(row.size());
-      out.insert(out.end(), row.begin(), row.end());
+#pragma omp for schedule(dynamic)
+    for (std::ptrdiff_t c = 0; c < static_cast<std::ptrdiff_t>(chunks); ++c) {
+      auto& out = blocks[static_cast<std::size_t>(c)];
+      out.reserve(7 * kChunk + 64);  // ~6 neighbours a row
+      const std::size_t first = static_cast<std::size_t>(c) * kChunk, last = std::min(n, first + kChunk);
+      for (std::size_t i = first; i < last; ++i) {
+        fan_row(i, positions, fans, classifier, row, zero_area);
+        outer[i + 1] = static_cast<std::int32_t>(row.size());
+        out.insert(out.end(), row.begin(), row.end());
+      }
     }
   }
   for (std::size_t i = 0; i < n; ++i) outer[i + 1] += outer[i];

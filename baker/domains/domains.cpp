@@ -62,20 +62,31 @@ Domains make_domains(const SparseMatrix& psi, const DomainOptions& options) {
 }
 
 SparseMatrix domain_partition(const SparseMatrix& psi, const Domains& domains) {
-  using Triplet = Eigen::Triplet<double, std::int32_t>;
-  std::vector<Triplet> kept;
-  kept.reserve(domains.points.size());
-  std::vector<double> sum(static_cast<std::size_t>(psi.rows()), 0.0);
+  const auto n = static_cast<std::size_t>(psi.rows());
+  // 1. The rows' shape: each point's domains, in increasing order (a counting sort of the
+  //    domains' point lists), written straight into compressed rows; no triplets and no
+  //    column-major temporary (~40 bytes a membership at the peak, ~1 s a level at 1M points).
+  SparseMatrix out(psi.rows(), psi.cols());
+  out.resizeNonZeros(static_cast<Eigen::Index>(domains.points.size()));
+  std::int32_t* outer = out.outerIndexPtr();
+  std::fill(outer, outer + n + 1, 0);
+  for (std::uint32_t x : domains.points) ++outer[x + 1];
+  for (std::size_t i = 0; i < n; ++i) outer[i + 1] += outer[i];
+  std::vector<std::int32_t> fill(outer, outer + n);
   for (std::size_t d = 0; d < domains.count(); ++d)
     for (std::uint32_t q = domains.offsets[d]; q < domains.offsets[d + 1]; ++q) {
       const std::uint32_t x = domains.points[q];
-      const double w = psi.coeff(x, static_cast<Eigen::Index>(d));
-      kept.emplace_back(static_cast<std::int32_t>(x), static_cast<std::int32_t>(d), w);
-      sum[x] += w;
+      const auto k = static_cast<std::size_t>(fill[x]++);
+      out.innerIndexPtr()[k] = static_cast<std::int32_t>(d);
+      out.valuePtr()[k] = psi.coeff(x, static_cast<Eigen::Index>(d));
     }
-  for (Triplet& t : kept) t = Triplet(t.row(), t.col(), t.value() / sum[static_cast<std::size_t>(t.row())]);
-  SparseMatrix out(psi.rows(), psi.cols());
-  out.setFromTriplets(kept.begin(), kept.end());
+  // 2. Each row over its sum, summed in increasing domain order.
+  double* value = out.valuePtr();
+  for (std::size_t i = 0; i < n; ++i) {
+    double sum = 0;
+    for (std::int32_t k = outer[i]; k < outer[i + 1]; ++k) sum += value[k];
+    for (std::int32_t k = outer[i]; k < outer[i + 1]; ++k) value[k] /= sum;
+  }
   return out;
 }
 

@@ -215,7 +215,7 @@ BakeResult bake(const PointSet& input, const BakeOptions& o, const std::string& 
     // Merged faces trimmed at their crease no longer overlap but stay neighbours there.
     if (o.merge) d.edges = std::move(merged_edges);
     const std::vector<SupportRect> rects = support_rectangles(points.positions, normals, points.radii, psi, d, o.support);
-    const SparseMatrix alpha = domain_partition(psi, d);  // what the rendered sum adds up
+    SparseMatrix alpha = domain_partition(psi, d);  // what the rendered sum adds up
     watch.lap("level " + std::to_string(level) + " domains");
     std::vector<Texture> textures(rects.size());
 #pragma omp parallel for schedule(dynamic, 4)
@@ -231,7 +231,11 @@ BakeResult bake(const PointSet& input, const BakeOptions& o, const std::string& 
     out.error = rects.empty() ? 0.0 : out.error / double(rects.size());
     out.relative_error = r.diagonal > 0 ? out.error / r.diagonal : 0.0;
     out.max_screen_pixels = out.error > 0 ? std::min(0.5 * r.diagonal / out.error, 1e9) : 1e9;
+    // The level's per-point matrices are done with; its textures once packed into the atlas (at
+    // 10M sampled points a level's textures are ~0.8 GB, freed before the PNG encoding needs more).
+    psi = SparseMatrix(), alpha = SparseMatrix();
     ImpostorLevel il = make_impostor_level(level, rects, textures, d, o.atlas);
+    std::vector<Texture>().swap(textures);
     out.atlas_images = static_cast<int>(il.atlas.images.size());
     out.glb = encode_glb(il, o.gltf);
     r.levels.push_back(std::move(out));

@@ -31,12 +31,14 @@ AmgHierarchy cached_hierarchy(const PointSet& points, const AnalysisOptions& ana
 
 // The peak memory a bake of `points` points adds to the process that holds them, bytes: a fixed
 // part plus, per point, a part for the arrays of every stage and one per neighbour (the
-// neighbourhood lists, 8 bytes per neighbour, at their largest during the analysis). Fitted with
-// a margin to scripts/bench.sh big (peak RSS less the input set, generated and sampled shapes of
-// 1M and 10M points, default settings); the ball mode's extra neighbours are not counted.
+// neighbourhood lists, 8 bytes per neighbour, at their largest during the analysis). Fitted to
+// scripts/bench.sh big (peak RSS less the RSS before the bake, default settings): a torus of 1M
+// and 10M points added 0.99 and 6.8 GB, bunny00 sampled at LDI 2200 (9.8M points, whose textures
+// hold ~3.5x the torus' texels) 8.1 GB; the line bounds the sampled mesh with ~3% to spare and the
+// torus with 20-25%. The ball mode's extra neighbours are not counted.
 constexpr double kBakeBytesPerPoint = 400;
 constexpr double kBakeBytesPerNeighbor = 8;
-constexpr std::size_t kBakeFixedBytes = std::size_t{64} << 20;
+constexpr std::size_t kBakeFixedBytes = std::size_t{384} << 20;
 std::size_t estimated_bake_bytes(std::size_t points, const AnalysisOptions& analysis);
 
 // Throws InputError("bake.memory") naming the estimated need and the memory available

@@ -9,15 +9,15 @@ set -u
 bake=$1
 source "$(dirname "$0")/test_lib.sh"
 
-# A small set (~64 MB estimated: the fixed part) and a big one (~200k x 800 bytes = ~160 MB more).
+# A small set (~384 MB estimated: the fixed part) and a big one (~200k x 800 bytes = ~160 MB more).
 "$bake" generate sphere -n 600 -o "$work/small.ply" -q
 "$bake" generate torus -n 200000 -o "$work/big.ply" -q
-limit=120M
+limit=450M
 
 # --- 1. one bake: exit 1, the figures, no output ---
 QF_MEMORY_LIMIT=$limit "$bake" "$work/big.ply" -o "$work/out-big" 2>"$work/err1"; rc=$?
 [[ $rc -eq 1 ]] && ok || bad "a bake past the limit exits 1, got $rc: $(cat "$work/err1")"
-grep -q "big.ply: its 200000 points need about [0-9.]* [MG]B to bake (estimated), but only 120 MB is available (QF_MEMORY_LIMIT).*\[bake.memory\]" "$work/err1" &&
+grep -q "big.ply: its 200000 points need about [0-9.]* [MG]B to bake (estimated), but only 450 MB is available (QF_MEMORY_LIMIT).*\[bake.memory\]" "$work/err1" &&
   ok || bad "the message names the file, the estimated need and the memory available: $(cat "$work/err1")"
 [[ ! -e $work/out-big/manifest.json ]] && ok || bad "nothing is written for the failed bake"
 QF_MEMORY_LIMIT=$limit "$bake" "$work/small.ply" -o "$work/out-small" -q; rc=$?

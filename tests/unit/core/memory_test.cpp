@@ -66,18 +66,18 @@ TEST(Memory, EstimateGrowsWithPointsAndNeighbours) {
 
 TEST(Memory, BakeThatDoesNotFitFailsWithTheFigures) {
   const AnalysisOptions a;
-  MemoryLimit cap("200M");
+  MemoryLimit cap("1G");
   EXPECT_NO_THROW(check_bake_memory(1000, a, "small.ply"));
   try {
     check_bake_memory(10000000, a, "big.ply");
-    FAIL() << "10M points fit in 200 MB";
+    FAIL() << "10M points fit in 1 GB";
   } catch (const InputError& e) {
     EXPECT_EQ(e.code(), "bake.memory");
     EXPECT_EQ(e.file(), "big.ply");
     const std::string what = e.what();
     EXPECT_NE(what.find("10000000 points"), std::string::npos) << what;
     EXPECT_NE(what.find(format_bytes(double(estimated_bake_bytes(10000000, a)))), std::string::npos) << what;
-    EXPECT_NE(what.find("200 MB is available (QF_MEMORY_LIMIT)"), std::string::npos) << what;
+    EXPECT_NE(what.find("1.0 GB is available (QF_MEMORY_LIMIT)"), std::string::npos) << what;
   }
 }
 
