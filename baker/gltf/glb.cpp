@@ -528,11 +528,6 @@ std::vector<std::uint8_t> encode_mesh_glb(const TriangleMesh& mesh, bool smooth_
 
 namespace {
 
-int wrap_code(TextureWrap w) {
-  return w == TextureWrap::kClampToEdge ? TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE
-         : w == TextureWrap::kMirroredRepeat ? TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT : TINYGLTF_TEXTURE_WRAP_REPEAT;
-}
-
 int add_surface_material(tinygltf::Model& m, const TriangleMesh& mesh, const SurfaceMaterial& s) {
   tinygltf::Material mat;
   mat.name = s.name;
@@ -543,30 +538,28 @@ int add_surface_material(tinygltf::Model& m, const TriangleMesh& mesh, const Sur
   mat.doubleSided = s.double_sided;
   if (s.texture >= 0) {
     const TextureImage& t = mesh.textures[static_cast<std::size_t>(s.texture)];
-    const int texture = add_png_texture(m, t.rgba, t.width, t.height, s.name);
-    tinygltf::Sampler sampler;
-    sampler.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
-    sampler.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
-    sampler.wrapS = wrap_code(s.wrap_s);
-    sampler.wrapT = wrap_code(s.wrap_t);
-    m.samplers.push_back(sampler);
+    const int texture = add_png_texture(m, t.rgba, t.width, t.height, s.name);  // + its own sampler:
+    const auto code = [](TextureWrap w) {
+      return w == TextureWrap::kClampToEdge ? TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE
+             : w == TextureWrap::kMirroredRepeat ? TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT : TINYGLTF_TEXTURE_WRAP_REPEAT;
+    };
+    m.samplers.push_back(new_model({}).samplers[0]);
+    m.samplers.back().wrapS = code(s.wrap_s), m.samplers.back().wrapT = code(s.wrap_t);
     m.textures[static_cast<std::size_t>(texture)].sampler = static_cast<int>(m.samplers.size() - 1);
     mat.pbrMetallicRoughness.baseColorTexture.index = texture;
   }
   m.materials.push_back(mat);
   return static_cast<int>(m.materials.size() - 1);
 }
-
 }  // namespace
 
 std::vector<std::uint8_t> encode_textured_mesh_glb(const TriangleMesh& mesh, const GltfOptions& options) {
   if (mesh.triangles.empty()) throw std::invalid_argument("encode_textured_mesh_glb: a mesh without triangles");
   tinygltf::Model m = new_model(options);
   m.samplers.clear();
-  const std::size_t materials = std::max<std::size_t>(mesh.materials.size(), 1);
   tinygltf::Mesh gm;
   gm.name = "asset";
-  for (std::size_t mi = 0; mi < materials; ++mi) {
+  for (std::size_t mi = 0; mi < std::max<std::size_t>(mesh.materials.size(), 1); ++mi) {
     // 1. This material's corners as vertices: (position, uv) pairs in first-use order.
     std::map<std::tuple<std::uint32_t, float, float>, std::uint32_t> vertex_of;
     std::vector<float> pos, nrm, uv;
@@ -588,7 +581,7 @@ std::vector<std::uint8_t> encode_textured_mesh_glb(const TriangleMesh& mesh, con
         idx.push_back(it->second);
       }
     }
-    if (idx.empty()) continue;
+    if (idx.empty()) continue;  // a material no triangle uses
     // 2. The primitive and its material.
     tinygltf::Primitive prim;
     prim.mode = TINYGLTF_MODE_TRIANGLES;

@@ -10,7 +10,6 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
-#include <nlohmann/json.hpp>
 #include <string_view>
 #include <set>
 #include <string>
@@ -18,8 +17,9 @@
 
 #include "core/color.h"
 #include "core/error.h"
-#include "gltf/draco.h"
 #include "gltf/png.h"
+#include "io/gltf_json.h"
+#include "io/gltf_primitives.h"
 #include "io/model_io.h"
 
 namespace qf {
@@ -75,116 +75,13 @@ bool load_image(tinygltf::Image* image, const int index, std::string* err, std::
   }
 }
 
-// tinygltf skips values of the wrong JSON type and goes on with defaults, so a malformed file would
-// bake as something else. The keys this reader uses are checked first, by the type the glTF schema
-// gives them wherever they appear, naming the first wrong one by its JSON path.
-const char* json_kind(const nlohmann::json& v) {
-  if (v.is_object()) return "an object";
-  if (v.is_array()) return "an array";
-  if (v.is_string()) return "a string";
-  if (v.is_boolean()) return "a boolean";
-  if (v.is_number()) return "a number";
-  return "null";
-}
-
-std::string json_found(const nlohmann::json& v) {
-  return v.is_number() ? v.dump() : json_kind(v);
-}
-
-void check_json_types(const nlohmann::json& j, const std::string& where, const std::string& path) {
-  static const std::set<std::string> uints{"scene", "mesh", "skin", "camera", "indices", "material", "mode", "bufferView",
-                                           "byteOffset", "byteLength", "byteStride", "componentType", "count", "buffer",
-                                           "index", "texCoord", "sampler", "source", "wrapS", "wrapT", "magFilter",
-                                           "minFilter", "target"};
-  static const std::set<std::string> strings{"name", "uri", "mimeType", "type", "alphaMode", "version", "generator"};
-  static const std::set<std::string> numbers{"alphaCutoff", "strength", "metallicFactor", "roughnessFactor"};
-  static const std::set<std::string> objects{"asset", "attributes", "pbrMetallicRoughness", "baseColorTexture", "normalTexture",
-                                             "occlusionTexture", "emissiveTexture", "metallicRoughnessTexture", "extensions",
-                                             "KHR_texture_transform", "KHR_draco_mesh_compression", "sparse"};
-  static const std::set<std::string> arrays{"scenes", "nodes", "meshes", "primitives", "accessors", "bufferViews", "buffers",
-                                            "materials", "textures", "images", "samplers", "children", "targets", "matrix",
-                                            "translation", "baseColorFactor", "emissiveFactor", "min", "max", "weights",
-                                            "extensionsUsed", "extensionsRequired", "offset", "skins", "joints"};
-  auto wrong = [&](const std::string& at, const char* expected, const nlohmann::json& v) {
-    fail(path, "json_type", at, std::string("expected ") + expected + ", found " + json_found(v));
-  };
-  // Only what this reader reads: animations, cameras, skins and other extensions' contents are not.
-  static const std::set<std::string> read_top{"asset", "scene", "scenes", "nodes", "meshes", "accessors", "bufferViews",
-                                              "buffers", "materials", "textures", "images", "samplers",
-                                              "extensionsUsed", "extensionsRequired"};
-  const bool in_extensions = where.size() >= 10 && where.compare(where.size() - 10, 10, "extensions") == 0;
-  for (auto it = j.begin(); it != j.end(); ++it) {
-    const std::string& key = it.key();
-    const nlohmann::json& v = it.value();
-    const std::string at = where.empty() ? key : where + "." + key;
-    if (key == "extras" || (where.empty() && !read_top.count(key))) continue;
-    if (in_extensions && key != "KHR_texture_transform" && key != "KHR_draco_mesh_compression") continue;
-    if (uints.count(key) && !v.is_number_unsigned()) wrong(at, "a non-negative integer", v);
-    if (strings.count(key) && !v.is_string()) wrong(at, "a string", v);
-    if (numbers.count(key) && !v.is_number()) wrong(at, "a number", v);
-    if (objects.count(key) && !v.is_object()) wrong(at, "an object", v);
-    if (arrays.count(key) && !v.is_array()) wrong(at, "an array", v);
-    // node scale and rotation are arrays, a texture transform's a number or an array of numbers.
-    if ((key == "scale" || key == "rotation") && !v.is_number() && !v.is_array()) wrong(at, "a number or an array", v);
-    if (v.is_object()) check_json_types(v, at, path);
-    if (v.is_array())
-      for (std::size_t i = 0; i < v.size(); ++i) {
-        const std::string ai = at + "[" + std::to_string(i) + "]";
-        const bool index_list = key == "children" || key == "joints" || (key == "nodes" && where.rfind("scenes", 0) == 0);
-        if (index_list && !v[i].is_number_unsigned()) wrong(ai, "a node index", v[i]);
-        if (v[i].is_object()) check_json_types(v[i], ai, path);
-      }
-  }
-}
-
-// tinygltf built without Draco (Debian's) refuses a compressed primitive's `indices` accessor, which
-// has no bufferView by design. Such primitives get their triangles from the Draco stream, so the
-// key is dropped from the JSON (of a .gltf, or of a .glb's JSON chunk) before tinygltf sees it.
-std::vector<std::uint8_t> without_draco_indices(ByteView bytes, nlohmann::json j) {
-  const bool binary = bytes.size() >= 20 && std::memcmp(bytes.data(), "glTF", 4) == 0;
-  std::uint32_t json_length = 0;
-  if (binary) std::memcpy(&json_length, bytes.data() + 12, 4);
-  const std::size_t json_start = binary ? 20 : 0;
-  if (!j.contains("meshes") || !j["meshes"].is_array()) return {};
-  for (nlohmann::json& mesh : j["meshes"])
-    if (mesh.is_object() && mesh.contains("primitives") && mesh["primitives"].is_array())
-      for (nlohmann::json& p : mesh["primitives"])
-        if (p.is_object() && p.contains("extensions") && p["extensions"].is_object() &&
-            p["extensions"].contains("KHR_draco_mesh_compression"))
-          p.erase("indices");
-  std::string json = j.dump();
-  if (!binary) return std::vector<std::uint8_t>(json.begin(), json.end());
-  json.resize((json.size() + 3) / 4 * 4, ' ');
-  const std::size_t rest = json_start + json_length;
-  std::vector<std::uint8_t> out(bytes.data(), bytes.data() + 12);
-  const auto put32 = [&out](std::uint32_t v) { out.insert(out.end(), reinterpret_cast<std::uint8_t*>(&v), reinterpret_cast<std::uint8_t*>(&v) + 4); };
-  put32(static_cast<std::uint32_t>(json.size()));
-  put32(0x4E4F534A);  // "JSON"
-  out.insert(out.end(), json.begin(), json.end());
-  out.insert(out.end(), bytes.data() + rest, bytes.data() + bytes.size());
-  const auto total = static_cast<std::uint32_t>(out.size());
-  std::memcpy(out.data() + 8, &total, 4);
-  return out;
-}
-
-// The JSON of a .gltf, or of a .glb's first chunk; null when it does not parse (tinygltf then says why).
-nlohmann::json json_of(ByteView bytes) {
-  const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
-  std::uint32_t length = 0;
-  if (binary && bytes.size() >= 20) std::memcpy(&length, bytes.data() + 12, 4);
-  if (binary && (bytes.size() < 20 || length > bytes.size() - 20)) return nullptr;
-  const char* text = reinterpret_cast<const char*>(bytes.data() + (binary ? 20 : 0));
-  nlohmann::json j = nlohmann::json::parse(text, text + (binary ? length : bytes.size()), nullptr, false);
-  return j.is_discarded() || !j.is_object() ? nlohmann::json() : j;
-}
-
 tinygltf::Model parse(ByteView bytes, const std::string& path) {
   std::vector<std::uint8_t> rewritten;
-  const nlohmann::json j = json_of(bytes);
+  const nlohmann::json j = io::gltf_json(bytes);
   if (j.is_object()) {
-    check_json_types(j, "", path);
+    io::check_gltf_json_types(j, path);
     const std::string_view view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
-    if (view.find("KHR_draco_mesh_compression") != std::string_view::npos) rewritten = without_draco_indices(bytes, j);
+    if (view.find("KHR_draco_mesh_compression") != std::string_view::npos) rewritten = io::without_draco_indices(bytes, j);
     if (!rewritten.empty()) bytes = ByteView(rewritten.data(), rewritten.size());
   }
   tinygltf::Model m;
@@ -210,106 +107,6 @@ tinygltf::Model parse(ByteView bytes, const std::string& path) {
            "KHR_draco_mesh_compression, KHR_mesh_quantization)");
   return m;
 }
-
-// ---- 2. Accessors ----------------------------------------------------------------------------
-
-// Reads accessors of one file, every read checked against its buffer view and buffer.
-class Accessors {
- public:
-  Accessors(const tinygltf::Model& m, const std::string& path) : m_(m), path_(path) {}
-
-  // `components` floats per element; normalized integers become 0..1 / -1..1, other integers
-  // their value (KHR_mesh_quantization). `allowed` is the set of component counts glTF allows.
-  std::vector<float> floats(int index, int components, const std::string& where) const {
-    const tinygltf::Accessor& a = accessor(index, where);
-    if (tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(a.type)) != components)
-      fail(path_, "accessor_type", where, "expected a " + std::to_string(components) + "-component accessor, found type " +
-                                              std::to_string(tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(a.type))));
-    std::vector<float> out(a.count * static_cast<std::size_t>(components));
-    const int csize = tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(a.componentType));
-    if (csize <= 0) fail(path_, "accessor_type", where, "unknown componentType " + std::to_string(a.componentType));
-    std::size_t stride = 0;
-    const unsigned char* base = data(a, static_cast<std::size_t>(csize) * static_cast<std::size_t>(components), stride, where);
-    for (std::size_t i = 0; i < a.count; ++i)
-      for (int c = 0; c < components; ++c)
-        out[i * static_cast<std::size_t>(components) + static_cast<std::size_t>(c)] =
-            component(base + i * stride + static_cast<std::size_t>(c * csize), a.componentType, a.normalized);
-    return out;
-  }
-
-  // Triangle-list or strip/fan vertex indices (unsigned byte, short or int), each < `vertices`.
-  std::vector<std::uint32_t> indices(int index, std::size_t vertices, const std::string& where) const {
-    const tinygltf::Accessor& a = accessor(index, where);
-    const int ct = a.componentType;
-    if (a.type != TINYGLTF_TYPE_SCALAR || (ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
-                                           ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT && ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT))
-      fail(path_, "indices", where, "expected scalar unsigned byte, short or int indices");
-    const std::size_t csize = static_cast<std::size_t>(tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(ct)));
-    std::size_t stride = 0;
-    const unsigned char* base = data(a, csize, stride, where);
-    std::vector<std::uint32_t> out(a.count);
-    for (std::size_t i = 0; i < a.count; ++i) {
-      const unsigned char* p = base + i * stride;
-      std::uint32_t v = 0;
-      if (csize == 1) v = *p;
-      else if (csize == 2) { std::uint16_t s; std::memcpy(&s, p, 2); v = s; }
-      else std::memcpy(&v, p, 4);
-      if (v >= vertices)
-        fail(path_, "index_range", where, "index " + std::to_string(v) + " out of range (" + std::to_string(vertices) + " vertices)");
-      out[i] = v;
-    }
-    return out;
-  }
-
-  std::size_t count(int index, const std::string& where) const { return accessor(index, where).count; }
-
- private:
-  const tinygltf::Accessor& accessor(int index, const std::string& where) const {
-    if (index < 0 || static_cast<std::size_t>(index) >= m_.accessors.size())
-      fail(path_, "accessor", where, "accessor " + std::to_string(index) + " does not exist (" +
-                                         std::to_string(m_.accessors.size()) + " accessors)");
-    const tinygltf::Accessor& a = m_.accessors[static_cast<std::size_t>(index)];
-    if (a.sparse.isSparse) fail(path_, "sparse", where, "sparse accessors are not supported; store the values densely");
-    if (a.bufferView < 0) fail(path_, "accessor", where, "accessor " + std::to_string(index) + " has no bufferView");
-    return a;
-  }
-
-  // The first element's bytes and the stride, after checking that count elements of `elem` bytes
-  // lie within the view and the view within its buffer.
-  const unsigned char* data(const tinygltf::Accessor& a, std::size_t elem, std::size_t& stride, const std::string& where) const {
-    if (static_cast<std::size_t>(a.bufferView) >= m_.bufferViews.size())
-      fail(path_, "buffer_view", where, "bufferView " + std::to_string(a.bufferView) + " does not exist");
-    const tinygltf::BufferView& v = m_.bufferViews[static_cast<std::size_t>(a.bufferView)];
-    if (v.buffer < 0 || static_cast<std::size_t>(v.buffer) >= m_.buffers.size())
-      fail(path_, "buffer", where, "buffer " + std::to_string(v.buffer) + " does not exist");
-    const std::size_t buffer = m_.buffers[static_cast<std::size_t>(v.buffer)].data.size();
-    if (v.byteOffset > buffer || v.byteLength > buffer - v.byteOffset)
-      fail(path_, "buffer_view", where, "bufferView " + std::to_string(a.bufferView) + " (" + std::to_string(v.byteLength) +
-                                            " bytes at " + std::to_string(v.byteOffset) + ") reaches past its buffer (" +
-                                            std::to_string(buffer) + " bytes)");
-    stride = v.byteStride ? v.byteStride : elem;
-    const std::size_t need = a.count == 0 ? 0 : a.byteOffset + (a.count - 1) * stride + elem;
-    if (a.count && (a.count - 1 > (SIZE_MAX - elem - a.byteOffset) / stride || need > v.byteLength))
-      fail(path_, "accessor_bounds", where, "the accessor (" + std::to_string(a.count) + " elements) reaches past its bufferView (" +
-                                                std::to_string(v.byteLength) + " bytes)");
-    return m_.buffers[static_cast<std::size_t>(v.buffer)].data.data() + v.byteOffset + a.byteOffset;
-  }
-
-  static float component(const unsigned char* p, int type, bool normalized) {
-    switch (type) {
-      case TINYGLTF_COMPONENT_TYPE_FLOAT: { float f; std::memcpy(&f, p, 4); return f; }
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? *p / 255.0f : *p;
-      case TINYGLTF_COMPONENT_TYPE_BYTE: { const auto s = static_cast<std::int8_t>(*p); return normalized ? std::max(s / 127.0f, -1.0f) : s; }
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { std::uint16_t s; std::memcpy(&s, p, 2); return normalized ? s / 65535.0f : s; }
-      case TINYGLTF_COMPONENT_TYPE_SHORT: { std::int16_t s; std::memcpy(&s, p, 2); return normalized ? std::max(s / 32767.0f, -1.0f) : s; }
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { std::uint32_t s; std::memcpy(&s, p, 4); return static_cast<float>(s); }
-      default: return 0;
-    }
-  }
-
-  const tinygltf::Model& m_;
-  const std::string& path_;
-};
 
 // ---- 3. Materials and textures ---------------------------------------------------------------
 
@@ -422,124 +219,6 @@ class MaterialTable {
   std::map<int, UvTransform> transforms_;
 };
 
-// ---- 4. Primitives ---------------------------------------------------------------------------
-
-// One primitive's vertex attributes in its mesh's space, and its triangles.
-struct PrimitiveData {
-  std::vector<float> positions, normals, colors, uvs;  // 3, 3, 4, 2 per vertex (empty when absent)
-  std::vector<std::uint32_t> corners;                   // 3 per triangle
-};
-
-// Triangle corners from the primitive's index list (or 0..n-1) by its mode; -1 for modes that
-// have no triangles (points, lines).
-bool triangle_corners(int mode, const std::vector<std::uint32_t>& idx, std::vector<std::uint32_t>& out) {
-  if (mode == TINYGLTF_MODE_TRIANGLES) {
-    for (std::size_t i = 0; i + 2 < idx.size(); i += 3) out.insert(out.end(), {idx[i], idx[i + 1], idx[i + 2]});
-  } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
-    // Every other triangle of a strip turns the other way; swapping its first two corners keeps the
-    // winding of the first.
-    for (std::size_t i = 0; i + 2 < idx.size(); ++i)
-      if (i % 2 == 0) out.insert(out.end(), {idx[i], idx[i + 1], idx[i + 2]});
-      else out.insert(out.end(), {idx[i + 1], idx[i], idx[i + 2]});
-  } else if (mode == TINYGLTF_MODE_TRIANGLE_FAN) {
-    for (std::size_t i = 1; i + 1 < idx.size(); ++i) out.insert(out.end(), {idx[0], idx[i], idx[i + 1]});
-  } else {
-    return false;
-  }
-  return true;
-}
-
-// The attribute accessor `name` of a primitive, or -1.
-int attribute(const tinygltf::Primitive& p, const std::string& name) {
-  const auto it = p.attributes.find(name);
-  return it == p.attributes.end() ? -1 : it->second;
-}
-
-PrimitiveData draco_primitive(const tinygltf::Model& m, const tinygltf::Primitive& p, const tinygltf::Value& ext,
-                              int uv_set, const std::string& path, const std::string& where) {
-  const std::string w = where + ".extensions.KHR_draco_mesh_compression";
-  if (!ext.Has("bufferView") || !ext.Get("bufferView").IsInt()) fail(path, "draco", w, "has no bufferView");
-  const int view = ext.Get("bufferView").GetNumberAsInt();
-  if (view < 0 || static_cast<std::size_t>(view) >= m.bufferViews.size()) fail(path, "draco", w, "names a bufferView that does not exist");
-  const tinygltf::BufferView& v = m.bufferViews[static_cast<std::size_t>(view)];
-  if (v.buffer < 0 || static_cast<std::size_t>(v.buffer) >= m.buffers.size()) fail(path, "draco", w, "names a buffer that does not exist");
-  const std::vector<unsigned char>& buffer = m.buffers[static_cast<std::size_t>(v.buffer)].data;
-  if (v.byteOffset > buffer.size() || v.byteLength > buffer.size() - v.byteOffset)
-    fail(path, "draco", w, "its bufferView reaches past its buffer");
-  const tinygltf::Value& ids = ext.Get("attributes");
-  auto id_of = [&](const std::string& name) { return ids.Has(name) && ids.Get(name).IsInt() ? ids.Get(name).GetNumberAsInt() : -1; };
-  const int pos = id_of("POSITION"), nrm = id_of("NORMAL"), col = id_of("COLOR_0"), uv = id_of("TEXCOORD_" + std::to_string(uv_set));
-  if (pos < 0) fail(path, "draco", w, "has no POSITION attribute");
-  int col_components = 4;
-  if (col >= 0 && attribute(p, "COLOR_0") >= 0 && static_cast<std::size_t>(attribute(p, "COLOR_0")) < m.accessors.size())
-    col_components = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(m.accessors[static_cast<std::size_t>(attribute(p, "COLOR_0"))].type));
-  std::vector<std::pair<int, int>> wanted{{pos, 3}};
-  if (nrm >= 0) wanted.push_back({nrm, 3});
-  if (col >= 0) wanted.push_back({col, col_components == 3 ? 3 : 4});
-  if (uv >= 0) wanted.push_back({uv, 2});
-  DracoMesh d;
-  try {
-    d = draco_decode_mesh(buffer.data() + v.byteOffset, v.byteLength, wanted);
-  } catch (const std::exception& e) {
-    fail(path, "draco", w, e.what());
-  }
-  PrimitiveData out;
-  out.positions = std::move(d.attributes[pos]);
-  if (nrm >= 0) out.normals = std::move(d.attributes[nrm]);
-  if (col >= 0) {
-    std::vector<float>& c = d.attributes[col];
-    if (col_components == 3) {
-      out.colors.reserve(d.points * 4);
-      for (std::size_t i = 0; i < d.points; ++i) out.colors.insert(out.colors.end(), {c[3 * i], c[3 * i + 1], c[3 * i + 2], 1.0f});
-    } else {
-      out.colors = std::move(c);
-    }
-  }
-  if (uv >= 0) out.uvs = std::move(d.attributes[uv]);
-  for (std::uint32_t c : d.corners)
-    if (c >= d.points) fail(path, "draco", w, "a decoded corner is out of range");
-  if (p.mode == TINYGLTF_MODE_TRIANGLES || p.mode == -1) out.corners = std::move(d.corners);
-  else triangle_corners(p.mode, d.corners, out.corners);
-  return out;
-}
-
-PrimitiveData read_primitive(const tinygltf::Model& m, const Accessors& read, const tinygltf::Primitive& p, int uv_set,
-                             const std::string& path, const std::string& where) {
-  const auto draco = p.extensions.find("KHR_draco_mesh_compression");
-  if (draco != p.extensions.end()) return draco_primitive(m, p, draco->second, uv_set, path, where);
-  PrimitiveData out;
-  const int pos = attribute(p, "POSITION");
-  if (pos < 0) fail(path, "no_position", where + ".attributes", "has no POSITION attribute");
-  out.positions = read.floats(pos, 3, where + ".attributes.POSITION");
-  const std::size_t n = out.positions.size() / 3;
-  auto same_count = [&](int index, const std::string& name) {
-    if (read.count(index, where + ".attributes." + name) != n)
-      fail(path, "attribute_count", where + ".attributes." + name,
-           "has " + std::to_string(read.count(index, where + ".attributes." + name)) + " elements, POSITION has " + std::to_string(n));
-  };
-  if (const int a = attribute(p, "NORMAL"); a >= 0) same_count(a, "NORMAL"), out.normals = read.floats(a, 3, where + ".attributes.NORMAL");
-  if (const int a = attribute(p, "COLOR_0"); a >= 0) {
-    same_count(a, "COLOR_0");
-    const std::size_t k = read.count(a, where + ".attributes.COLOR_0");
-    const int comps = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(m.accessors[static_cast<std::size_t>(a)].type));
-    const std::vector<float> c = read.floats(a, comps == 3 ? 3 : 4, where + ".attributes.COLOR_0");
-    out.colors.resize(k * 4, 1.0f);
-    for (std::size_t i = 0; i < k; ++i)
-      for (int j = 0; j < (comps == 3 ? 3 : 4); ++j) out.colors[i * 4 + static_cast<std::size_t>(j)] = c[i * static_cast<std::size_t>(comps == 3 ? 3 : 4) + static_cast<std::size_t>(j)];
-  }
-  const std::string uv_name = "TEXCOORD_" + std::to_string(uv_set);
-  if (const int a = attribute(p, uv_name); a >= 0) same_count(a, uv_name), out.uvs = read.floats(a, 2, where + ".attributes." + uv_name);
-  std::vector<std::uint32_t> idx;
-  if (p.indices >= 0) {
-    idx = read.indices(p.indices, n, where + ".indices");
-  } else {
-    idx.resize(n);
-    for (std::size_t i = 0; i < n; ++i) idx[i] = static_cast<std::uint32_t>(i);
-  }
-  triangle_corners(p.mode, idx, out.corners);
-  return out;
-}
-
 // ---- 5. The scene ----------------------------------------------------------------------------
 
 Mat4 multiply(const Mat4& a, const Mat4& b) {
@@ -577,7 +256,6 @@ struct SceneReader {
   const std::string& path;
   const ReadOptions& options;
   ReadReport* report;
-  Accessors read;
   TriangleMesh mesh;
   MaterialTable materials;
   bool any_normals = false, any_colors = false, any_uvs = false;
@@ -585,7 +263,7 @@ struct SceneReader {
   std::size_t skipped = 0;
 
   SceneReader(const tinygltf::Model& model, const std::string& p, const ReadOptions& o, ReadReport* r)
-      : m(model), path(p), options(o), report(r), read(model, p), materials(model, p, mesh) {}
+      : m(model), path(p), options(o), report(r), materials(model, p, mesh) {}
 
   void warn(const std::string& text) {
     if (report && std::find(report->warnings.begin(), report->warnings.end(), text) == report->warnings.end())
@@ -626,12 +304,12 @@ struct SceneReader {
       if (!p.targets.empty()) warn("morph targets are not applied: meshes[" + std::to_string(index) + "] is baked without them");
       const std::uint32_t material = materials.material(p.material);
       const UvTransform* uvt = materials.transform(p.material);
-      const PrimitiveData d = read_primitive(m, read, p, uvt ? uvt->tex_coord : 0, path, where);
+      const io::PrimitiveData d = io::read_primitive(m, p, uvt ? uvt->tex_coord : 0, path, where);
       add_primitive(d, world, mirror, material, uvt, where);
     }
   }
 
-  void add_primitive(const PrimitiveData& d, const Mat4& world, bool mirror, std::uint32_t material, const UvTransform* uvt,
+  void add_primitive(const io::PrimitiveData& d, const Mat4& world, bool mirror, std::uint32_t material, const UvTransform* uvt,
                      const std::string& where) {
     const std::size_t n = d.positions.size() / 3, first = mesh.positions.size();
     // Normals go by the inverse transpose; its scale does not matter as they are normalized.
