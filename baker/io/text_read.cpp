@@ -208,141 +208,181 @@ TriangleMesh read_obj(const std::string& path, const ReadOptions& options, ReadR
   return decode_obj(file.bytes(), path, options, report);
 }
 
-TriangleMesh decode_obj(ByteView bytes, const std::string& path, const ReadOptions& options, ReadReport* report) {
-  check_text(bytes, path, "obj", "'v x y z' lines");
-  io::Tokenizer tok(text_begin(bytes), text_end(bytes));
-  io::NonFiniteFilter nonfinite(path, options);
-  TriangleMesh mesh;
-  std::vector<Vec3f> vn;                 // the file's normals, by vn index
-  std::vector<std::int64_t> normal_of;   // per vertex: index into vn of its first corner's normal, or -1
-  struct Corner { long long v, t, n; };
-  std::vector<Corner> face;
-  bool any_color = false;
-  // Texture coordinates and materials (vt, mtllib, usemtl): per triangle, -1 where none is named.
-  std::vector<Vec2f> vt;
-  std::vector<std::array<long long, 3>> triangle_vt;
-  std::vector<long long> triangle_material;
-  io::MaterialLibrary library;
-  long long material = -1;
-  bool any_vt = false, any_material = false;
+namespace {
+
+// decode_obj's state and steps: one method per keyword, then finish() to make the mesh.
+class ObjReader {
+ public:
+  ObjReader(ByteView bytes, const std::string& path, const ReadOptions& options, ReadReport* report)
+      : tok_(text_begin(bytes), text_end(bytes)), path_(path), nonfinite_(path, options), report_(report) {}
+
+  // 1. Line by line, each keyword to its step; everything else (o, g, s, l, p, comments) carries
+  //    nothing we use.
+  void read_lines() {
+    while (!tok_.at_end()) {
+      const std::size_t line = tok_.line();
+      const std::string_view key = tok_.next_on_line();
+      if (key == "v") vertex(line);
+      else if (key == "vn") normal(line);
+      else if (key == "vt") texcoord(line);
+      else if (key == "mtllib" || key == "usemtl") material_line(key, line);
+      else if (key == "f") face(line);
+      tok_.skip_line();
+    }
+  }
+
+  // 2. The mesh: per-vertex normals and colours, per-triangle materials and texture coordinates.
+  TriangleMesh finish() {
+    if (mesh_.positions.empty())
+      throw InputError("obj.no_vertices", path_, at_line(tok_.line()), "no vertices in the file, expected 'v x y z' lines");
+    if (!any_color_) mesh_.colors.clear();
+    // Per-vertex normals: the normal of the first corner that names one. Used only if every vertex has one.
+    if (!vn_.empty() && std::all_of(normal_of_.begin(), normal_of_.end(), [](std::int64_t n) { return n >= 0; })) {
+      mesh_.normals.reserve(normal_of_.size());
+      for (std::int64_t n : normal_of_) mesh_.normals.push_back(vn_[static_cast<std::size_t>(n)]);
+    }
+    // A default material for triangles before the first usemtl.
+    if (any_material_) {
+      std::uint32_t fallback = UINT32_MAX;
+      for (long long m : triangle_material_) {
+        if (m < 0 && fallback == UINT32_MAX) fallback = static_cast<std::uint32_t>(mesh_.materials.size()), mesh_.materials.push_back({});
+        mesh_.triangle_materials.push_back(m < 0 ? fallback : static_cast<std::uint32_t>(m));
+      }
+    }
+    if (any_vt_)
+      for (const auto& t : triangle_vt_) {
+        std::array<Vec2f, 3> uv{};
+        for (std::size_t k = 0; k < 3; ++k)
+          if (t[k] >= 0) uv[k] = vt_[static_cast<std::size_t>(t[k])];
+        mesh_.corner_uvs.push_back(uv);
+      }
+    nonfinite_.apply(mesh_, report_);
+    if (report_) report_->format = "obj";
+    return std::move(mesh_);
+  }
+
+ private:
+  struct Corner {
+    long long v, t, n;  // vertex, texture coordinate, normal; -1 where the corner names none
+  };
+
+  // "v x y z [r g b]": "v x y z r g b" (a common extension) carries a colour in [0,1], "v x y z w" a weight.
+  void vertex(std::size_t line) {
+    float v[7];
+    int n = 0;
+    for (std::string_view t = tok_.next_on_line(); !t.empty(); t = tok_.next_on_line()) {
+      if (n == 7) throw InputError("obj.vertex", path_, at_line(line), "more than 7 values after 'v'");
+      v[n++] = number(t, path_, line, "obj.bad_number", "a vertex coordinate");
+    }
+    if (n < 3) throw InputError("obj.vertex", path_, at_line(line), "expected 'v x y z [r g b]', found " + std::to_string(n) + " values");
+    const Vec3f p{v[0], v[1], v[2]};
+    nonfinite_.check(mesh_.positions.size(), p, "obj.nonfinite", [&] { return at_line(line); });
+    mesh_.positions.push_back(p);
+    normal_of_.push_back(-1);
+    Rgb8 c{255, 255, 255};
+    if (n >= 6) {
+      any_color_ = true;
+      auto q = [](float x) { return static_cast<std::uint8_t>(std::lround(std::clamp(x, 0.0f, 1.0f) * 255.0f)); };
+      c = {q(v[3]), q(v[4]), q(v[5])};
+    }
+    mesh_.colors.push_back(c);
+  }
+
+  void normal(std::size_t line) {
+    float n[3];
+    for (float& x : n) x = number(tok_.next_on_line(), path_, line, "obj.bad_number", "a normal component");
+    vn_.push_back(as_unit({n[0], n[1], n[2]}));
+  }
+
+  void texcoord(std::size_t line) {
+    float uv[2];
+    for (float& x : uv) x = number(tok_.next_on_line(), path_, line, "obj.bad_number", "a texture coordinate");
+    vt_.push_back({uv[0], 1 - uv[1]});  // OBJ's v runs up the image, glTF's (ours) down
+  }
+
+  // mtllib FILE: its materials; usemtl NAME: the material of the faces that follow. Names may
+  // hold spaces (one file per word is the format; a name with spaces is far more common).
+  void material_line(std::string_view key, std::size_t) {
+    std::vector<std::string_view> words;
+    for (std::string_view t = tok_.next_on_line(); !t.empty(); t = tok_.next_on_line()) words.push_back(t);
+    const std::string name = io::join_words(words);
+    if (key == "mtllib") {
+      if (!name.empty()) io::read_mtl(path_, name, mesh_, library_, report_);
+      return;
+    }
+    if (!library_.by_name.count(name)) {
+      library_.by_name[name] = static_cast<std::uint32_t>(mesh_.materials.size());
+      mesh_.materials.push_back({});
+      mesh_.materials.back().name = name;
+    }
+    material_ = library_.by_name[name];
+    any_material_ = true;
+  }
+
+  // f with corners v, v/vt, v/vt/vn or v//vn; polygons split into fans.
+  void face(std::size_t line) {
+    face_.clear();
+    for (std::string_view t = tok_.next_on_line(); !t.empty(); t = tok_.next_on_line()) {
+      const std::size_t s1 = t.find('/');
+      long long n = -1, c = -1;
+      if (s1 != std::string_view::npos) {
+        const std::size_t s2 = t.find('/', s1 + 1);
+        const std::string_view tt = t.substr(s1 + 1, s2 == std::string_view::npos ? std::string_view::npos : s2 - s1 - 1);
+        if (!tt.empty()) c = resolve(tt, vt_.size(), line, "texture coordinate");
+        if (s2 != std::string_view::npos && s2 + 1 < t.size()) n = resolve(t.substr(s2 + 1), vn_.size(), line, "normal");
+      }
+      face_.push_back({resolve(t.substr(0, s1), mesh_.positions.size(), line, "vertex"), c, n});
+      if (c >= 0) any_vt_ = true;
+    }
+    if (face_.size() < 3)
+      throw InputError("obj.face", path_, at_line(line), "face with " + std::to_string(face_.size()) + " corners, expected at least 3");
+    for (const Corner& c : face_)
+      if (c.n >= 0 && normal_of_[static_cast<std::size_t>(c.v)] < 0) normal_of_[static_cast<std::size_t>(c.v)] = c.n;
+    if (face_.size() > 3 && report_) ++report_->polygons_triangulated;
+    for (std::size_t k = 1; k + 1 < face_.size(); ++k) {
+      mesh_.triangles.push_back({static_cast<std::uint32_t>(face_[0].v), static_cast<std::uint32_t>(face_[k].v),
+                                 static_cast<std::uint32_t>(face_[k + 1].v)});
+      triangle_vt_.push_back({face_[0].t, face_[k].t, face_[k + 1].t});
+      triangle_material_.push_back(material_);
+    }
+  }
+
   // OBJ indices are 1-based; negative ones count back from the last element defined so far.
-  auto resolve = [&](std::string_view t, std::size_t count, std::size_t line, const char* what) -> long long {
+  long long resolve(std::string_view t, std::size_t count, std::size_t line, const char* what) const {
     long long i;
     if (!io::parse_int64(t, i) || i == 0)
-      throw InputError("obj.face", path, at_line(line), std::string("expected a ") + what + " index, found " + quote_token(t));
+      throw InputError("obj.face", path_, at_line(line), std::string("expected a ") + what + " index, found " + quote_token(t));
     const long long r = i > 0 ? i - 1 : static_cast<long long>(count) + i;
     if (r < 0 || static_cast<std::size_t>(r) >= count)
-      throw InputError("obj.face_index", path, at_line(line),
+      throw InputError("obj.face_index", path_, at_line(line),
                        std::string(what) + " index " + std::to_string(i) + " out of range: " + std::to_string(count) +
                            " defined so far");
     return r;
-  };
-  while (!tok.at_end()) {
-    const std::size_t line = tok.line();
-    const std::string_view key = tok.next_on_line();
-    if (key == "v") {
-      float v[7];
-      int n = 0;
-      for (std::string_view t = tok.next_on_line(); !t.empty(); t = tok.next_on_line()) {
-        if (n == 7) throw InputError("obj.vertex", path, at_line(line), "more than 7 values after 'v'");
-        v[n++] = number(t, path, line, "obj.bad_number", "a vertex coordinate");
-      }
-      if (n < 3) throw InputError("obj.vertex", path, at_line(line), "expected 'v x y z [r g b]', found " + std::to_string(n) + " values");
-      const Vec3f p{v[0], v[1], v[2]};
-      nonfinite.check(mesh.positions.size(), p, "obj.nonfinite", [&] { return at_line(line); });
-      mesh.positions.push_back(p);
-      normal_of.push_back(-1);
-      // "v x y z r g b" (a common extension) carries a colour in [0,1]; "v x y z w" a weight.
-      Rgb8 c{255, 255, 255};
-      if (n >= 6) {
-        any_color = true;
-        auto q = [](float x) { return static_cast<std::uint8_t>(std::lround(std::clamp(x, 0.0f, 1.0f) * 255.0f)); };
-        c = {q(v[3]), q(v[4]), q(v[5])};
-      }
-      mesh.colors.push_back(c);
-    } else if (key == "vn") {
-      float n[3];
-      for (float& x : n) x = number(tok.next_on_line(), path, line, "obj.bad_number", "a normal component");
-      vn.push_back(as_unit({n[0], n[1], n[2]}));
-    } else if (key == "vt") {
-      float uv[2];
-      for (float& x : uv) x = number(tok.next_on_line(), path, line, "obj.bad_number", "a texture coordinate");
-      vt.push_back({uv[0], 1 - uv[1]});  // OBJ's v runs up the image, glTF's (ours) down
-    } else if (key == "mtllib" || key == "usemtl") {
-      std::vector<std::string_view> words;
-      for (std::string_view t = tok.next_on_line(); !t.empty(); t = tok.next_on_line()) words.push_back(t);
-      if (key == "mtllib") {
-        // One file per word is the format; a name with spaces is far more common in practice.
-        const std::string whole = io::join_words(words);
-        if (!whole.empty()) io::read_mtl(path, whole, mesh, library, report);
-      } else {
-        const std::string name = io::join_words(words);
-        if (!library.by_name.count(name)) {
-          library.by_name[name] = static_cast<std::uint32_t>(mesh.materials.size());
-          mesh.materials.push_back({});
-          mesh.materials.back().name = name;
-        }
-        material = library.by_name[name];
-        any_material = true;
-      }
-    } else if (key == "f") {
-      face.clear();
-      for (std::string_view t = tok.next_on_line(); !t.empty(); t = tok.next_on_line()) {
-        // v, v/vt, v/vt/vn or v//vn
-        const std::size_t s1 = t.find('/');
-        const std::string_view tv = t.substr(0, s1);
-        long long n = -1, c = -1;
-        if (s1 != std::string_view::npos) {
-          const std::size_t s2 = t.find('/', s1 + 1);
-          const std::string_view tt = t.substr(s1 + 1, s2 == std::string_view::npos ? std::string_view::npos : s2 - s1 - 1);
-          if (!tt.empty()) c = resolve(tt, vt.size(), line, "texture coordinate");
-          if (s2 != std::string_view::npos && s2 + 1 < t.size()) n = resolve(t.substr(s2 + 1), vn.size(), line, "normal");
-        }
-        face.push_back({resolve(tv, mesh.positions.size(), line, "vertex"), c, n});
-        if (c >= 0) any_vt = true;
-      }
-      if (face.size() < 3)
-        throw InputError("obj.face", path, at_line(line), "face with " + std::to_string(face.size()) + " corners, expected at least 3");
-      for (const Corner& c : face)
-        if (c.n >= 0 && normal_of[static_cast<std::size_t>(c.v)] < 0) normal_of[static_cast<std::size_t>(c.v)] = c.n;
-      if (face.size() > 3 && report) ++report->polygons_triangulated;
-      for (std::size_t k = 1; k + 1 < face.size(); ++k) {
-        mesh.triangles.push_back({static_cast<std::uint32_t>(face[0].v), static_cast<std::uint32_t>(face[k].v),
-                                  static_cast<std::uint32_t>(face[k + 1].v)});
-        triangle_vt.push_back({face[0].t, face[k].t, face[k + 1].t});
-        triangle_material.push_back(material);
-      }
-    }
-    // Everything else (o, g, s, l, p, comments) carries nothing we use.
-    tok.skip_line();
   }
-  if (mesh.positions.empty())
-    throw InputError("obj.no_vertices", path, at_line(tok.line()), "no vertices in the file, expected 'v x y z' lines");
-  if (!any_color) mesh.colors.clear();
-  // Per-vertex normals: the normal of the first corner that names one. Used only if every vertex has one.
-  if (!vn.empty() && std::all_of(normal_of.begin(), normal_of.end(), [](std::int64_t n) { return n >= 0; })) {
-    mesh.normals.reserve(normal_of.size());
-    for (std::int64_t n : normal_of) mesh.normals.push_back(vn[static_cast<std::size_t>(n)]);
-  }
-  // Materials and texture coordinates per triangle, when the file names any (a default material
-  // for triangles before the first usemtl).
-  if (any_material) {
-    std::uint32_t fallback = UINT32_MAX;
-    for (long long m : triangle_material) {
-      if (m < 0 && fallback == UINT32_MAX) fallback = static_cast<std::uint32_t>(mesh.materials.size()), mesh.materials.push_back({});
-      mesh.triangle_materials.push_back(m < 0 ? fallback : static_cast<std::uint32_t>(m));
-    }
-  }
-  if (any_vt)
-    for (const auto& t : triangle_vt) {
-      std::array<Vec2f, 3> uv{};
-      for (int k = 0; k < 3; ++k)
-        if (t[static_cast<std::size_t>(k)] >= 0) uv[static_cast<std::size_t>(k)] = vt[static_cast<std::size_t>(t[static_cast<std::size_t>(k)])];
-      mesh.corner_uvs.push_back(uv);
-    }
-  nonfinite.apply(mesh, report);
-  if (report) report->format = "obj";
-  return mesh;
+
+  io::Tokenizer tok_;
+  const std::string& path_;
+  io::NonFiniteFilter nonfinite_;
+  ReadReport* report_;
+  TriangleMesh mesh_;
+  std::vector<Vec3f> vn_;                // the file's normals, by vn index
+  std::vector<std::int64_t> normal_of_;  // per vertex: index into vn of its first corner's normal, or -1
+  std::vector<Vec2f> vt_;
+  std::vector<Corner> face_;
+  std::vector<std::array<long long, 3>> triangle_vt_;  // per triangle, -1 where a corner names none
+  std::vector<long long> triangle_material_;           // per triangle, -1 before the first usemtl
+  io::MaterialLibrary library_;
+  long long material_ = -1;
+  bool any_color_ = false, any_vt_ = false, any_material_ = false;
+};
+
+}  // namespace
+
+TriangleMesh decode_obj(ByteView bytes, const std::string& path, const ReadOptions& options, ReadReport* report) {
+  check_text(bytes, path, "obj", "'v x y z' lines");
+  ObjReader reader(bytes, path, options, report);
+  reader.read_lines();
+  return reader.finish();
 }
 
 }  // namespace qf
