@@ -128,6 +128,27 @@ EngineMaterial engine_material(const tinygltf::Model& m, int index, int& uv_set)
   return out;
 }
 
+// KHR_texture_transform applied to uv pairs: u' = a u + b v + c, v' = d u + e v + f.
+void transform_uvs(const std::array<float, 6>& k, std::vector<float>& uvs) {
+  for (std::size_t v = 0; v + 1 < uvs.size(); v += 2) {
+    const float u0 = uvs[v], v0 = uvs[v + 1];
+    uvs[v] = k[0] * u0 + k[1] * v0 + k[2];
+    uvs[v + 1] = k[3] * u0 + k[4] * v0 + k[5];
+  }
+}
+
+// A strip's or fan's indices as a triangle list (every other strip triangle turned back to the
+// first's winding).
+std::vector<std::uint32_t> triangle_list(int mode, const std::vector<std::uint32_t>& idx) {
+  std::vector<std::uint32_t> list;
+  for (std::size_t i = 0; i + 2 < idx.size(); ++i) {
+    if (mode == TINYGLTF_MODE_TRIANGLE_FAN) list.insert(list.end(), {idx[0], idx[i + 1], idx[i + 2]});
+    else if (i % 2 == 0) list.insert(list.end(), {idx[i], idx[i + 1], idx[i + 2]});
+    else list.insert(list.end(), {idx[i + 1], idx[i], idx[i + 2]});
+  }
+  return list;
+}
+
 // One primitive of a mesh, placed by `world`.
 EnginePrimitive engine_primitive(const AccessorReader& read, const tinygltf::Primitive& prim, const Mat4d& world) {
   EnginePrimitive p;
@@ -148,12 +169,7 @@ EnginePrimitive engine_primitive(const AccessorReader& read, const tinygltf::Pri
   if ((!p.normals.empty() && p.normals.size() != n * 3) || (!p.tangents.empty() && p.tangents.size() != n * 4) ||
       (!p.uvs.empty() && p.uvs.size() != n * 2) || (!p.colors.empty() && p.colors.size() != n * 4))
     fail(read.path, "mesh", "a primitive's attributes differ in count from POSITION");
-  const std::array<float, 6>& k = p.material.uv_transform;
-  for (std::size_t v = 0; v + 1 < p.uvs.size(); v += 2) {
-    const float u0 = p.uvs[v], v0 = p.uvs[v + 1];
-    p.uvs[v] = k[0] * u0 + k[1] * v0 + k[2];
-    p.uvs[v + 1] = k[3] * u0 + k[4] * v0 + k[5];
-  }
+  transform_uvs(p.material.uv_transform, p.uvs);
   if (prim.indices >= 0) {
     p.indices = read.indices(prim.indices);
     for (std::uint32_t i : p.indices)
@@ -161,16 +177,8 @@ EnginePrimitive engine_primitive(const AccessorReader& read, const tinygltf::Pri
   } else {
     for (std::uint32_t i = 0; i < n; ++i) p.indices.push_back(i);
   }
-  // Strips and fans as triangle lists (every other strip triangle turned back to the first's winding).
-  if (prim.mode == TINYGLTF_MODE_TRIANGLE_STRIP || prim.mode == TINYGLTF_MODE_TRIANGLE_FAN) {
-    std::vector<std::uint32_t> list;
-    for (std::size_t i = 0; i + 2 < p.indices.size(); ++i) {
-      if (prim.mode == TINYGLTF_MODE_TRIANGLE_FAN) list.insert(list.end(), {p.indices[0], p.indices[i + 1], p.indices[i + 2]});
-      else if (i % 2 == 0) list.insert(list.end(), {p.indices[i], p.indices[i + 1], p.indices[i + 2]});
-      else list.insert(list.end(), {p.indices[i + 1], p.indices[i], p.indices[i + 2]});
-    }
-    p.indices = std::move(list);
-  }
+  if (prim.mode == TINYGLTF_MODE_TRIANGLE_STRIP || prim.mode == TINYGLTF_MODE_TRIANGLE_FAN)
+    p.indices = triangle_list(prim.mode, p.indices);
   // World space: points by the matrix, normals by its inverse transpose (the cofactor matrix,
   // normalised), tangents by the matrix; a negative determinant mirrors, so flip the winding.
   const Mat4d& w = world;
