@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 
 #include "core/error.h"
@@ -107,6 +108,34 @@ TEST(TexturedObj, UntexturedMeshesStayUncoloured) {
   SampleOptions o;
   o.ldi_size = 16;
   EXPECT_FALSE(sample_mesh(m.mesh, o, path).has_colors());
+}
+
+// The files a model reads besides itself, as the batch's keys hash them.
+std::vector<std::string> dependency_names(const std::string& path) {
+  std::vector<std::string> out;
+  for (const InputDependency& d : input_dependencies(path)) out.push_back(d.name);
+  return out;
+}
+
+TEST(InputDependencies, ListTheExternalFilesTheReadersOpen) {
+  // The cube's buffer is a data: URI (inside the file), its image external.
+  EXPECT_EQ(dependency_names(asset("cube.gltf")), std::vector<std::string>{"cube.png"});
+  ASSERT_EQ(input_dependencies(asset("cube.gltf")).size(), 1u);
+  EXPECT_EQ(input_dependencies(asset("cube.gltf"))[0].path, asset("cube.png"));
+  EXPECT_EQ(dependency_names(asset("cube.obj")), (std::vector<std::string>{"cube.mtl", "cube.png"}));
+  test::TempDir dir;
+  // Buffers before images, percent-decoding, each once, missing files listed; an MTL in another
+  // folder names its images relative to itself, options before the image name skipped.
+  const std::string gltf = dir.write("a.gltf", R"({"asset":{"version":"2.0"},"buffers":[{"uri":"my%20data.bin","byteLength":4},
+    {"uri":"data:application/octet-stream;base64,AAAA","byteLength":3}],"images":[{"uri":"t.png"},{"uri":"t.png"},{"bufferView":0}]})");
+  EXPECT_EQ(dependency_names(gltf), (std::vector<std::string>{"my data.bin", "t.png"}));
+  std::filesystem::create_directories(dir.path("mat"));
+  dir.write("mat/m.mtl", "newmtl a\nmap_Kd -s 1 1 1 tex\\wood.png\n# map_Kd not.png\n");
+  const std::string obj = dir.write("b.obj", "mtllib mat/m.mtl\nmtllib gone.mtl\nv 0 0 0\n");
+  EXPECT_EQ(dependency_names(obj), (std::vector<std::string>{"mat/m.mtl", "mat/tex/wood.png", "gone.mtl"}));
+  // Formats without external files, and glTF text that does not parse, give none.
+  EXPECT_TRUE(input_dependencies(dir.write("c.off", "OFF\n0 0 0\n")).empty());
+  EXPECT_TRUE(input_dependencies(dir.write("d.gltf", "{not json")).empty());
 }
 
 // A one-triangle glTF in a string: `indices` is the base64 of its three u16 indices, `extra` more
