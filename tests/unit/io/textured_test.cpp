@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include "core/error.h"
@@ -179,6 +181,38 @@ TEST(MalformedGltf, ErrorsNameTheJsonPathAndWhatWasExpected) {
   textured.replace(textured.find(R"("indices":1})"), 12, R"("indices":1,"material":0})");
   const std::string image = error_of("image.gltf", textured);
   EXPECT_NE(image.find("images[0] (missing.png)"), std::string::npos) << image;
+}
+
+// A texture cut short is refused by the image plug-in before OpenImageIO reads it (whose PNG
+// reader leaked on it: tests/fuzz/README.md), for glTF and for OBJ + MTL alike.
+TEST(MalformedGltf, TruncatedPngTexturesAreRefused) {
+  test::TempDir dir;
+  std::ifstream in(asset("cube.png"), std::ios::binary);
+  const std::string png((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_GT(png.size(), 40u);
+  dir.write("cut.png", png.substr(0, png.size() - 20));  // IEND and part of IDAT gone
+  std::string textured = triangle_gltf(
+      "AAABAAIA", R"("materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0}}}],"textures":[{"source":0}],"images":[{"uri":"cut.png"}],)");
+  textured.replace(textured.find(R"("indices":1})"), 12, R"("indices":1,"material":0})");
+  const std::string gltf = dir.write("cut.gltf", textured);
+  try {
+    read_model(gltf);
+    ADD_FAILURE() << "a truncated PNG read";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("images[0] (cut.png): is a truncated PNG file"), std::string::npos) << e.what();
+  }
+  dir.write("cut.mtl", "newmtl m\nmap_Kd cut.png\n");
+  const std::string obj = dir.write("cut.obj", "mtllib cut.mtl\nusemtl m\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1\n");
+  try {
+    read_model(obj);
+    ADD_FAILURE() << "a truncated PNG read";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.code(), "mtl.image");
+    EXPECT_NE(std::string(e.what()).find("truncated PNG"), std::string::npos) << e.what();
+  }
+  // The whole file reads.
+  dir.write("cut.png", png);
+  EXPECT_EQ(read_model(gltf).mesh.textures.size(), 1u);
 }
 
 }  // namespace
