@@ -4,7 +4,8 @@
 # NormalEstimationOMP in the same run; the AMG stages; render
 # speed of every method on the baked levels of bunny00 and fandisk beside their point sets; the
 # whole bake (per stage: time, memory, resampler texels/s) on bunny00, kitten and a 1M-point torus.
-# mesh sampling (GL and CPU depth peeling at LDI 100 and 1000) on cow, elephant, fandisk, bunny00.
+# mesh sampling (GL and CPU depth peeling at LDI 100 and 1000) on cow, elephant, fandisk, bunny00,
+# and textured vs untextured sampling at LDI 256 and 1000 (the textured cube, the Cesium box).
 # vertex clustering (vertices/s per level) on bunny00, the dragon and a 1M-triangle sphere.
 # batch: assets per minute on the CGAL model set with -j 1 and -j 2 (cold and warm hierarchy
 # cache), and the per-asset overhead of a rerun with nothing to do (10 models, 200 small sets).
@@ -79,7 +80,12 @@ for w in "${what[@]}"; do
     sample)
       models=$(scripts/fetch-models.sh cow.off bunny00.off elephant.off fandisk.off | tail -1)
       echo "mesh sampling: layers per axis, points and seconds (best of 3) per backend and variant"
-      build/bin/qf-bench-sample "$models/cow.off" "$models/elephant.off" "$models/fandisk.off" "$models/bunny00.off" ;;
+      # Textured assets (issue 17): the committed cube, and the Cesium box of assimp-testmodels when
+      # installed (scripts/install-deps.sh), with and without their materials.
+      textured=(tests/data/textured/cube.gltf)
+      box=/usr/share/assimp/models/glTF2/BoxTextured-glTF/BoxTextured.gltf
+      if [[ -f $box ]]; then textured+=("$box"); else echo "(assimp-testmodels not installed: BoxTextured skipped)"; fi
+      build/bin/qf-bench-sample "$models/cow.off" "$models/elephant.off" "$models/fandisk.off" "$models/bunny00.off" --textured "${textured[@]}" ;;
     cluster)
       models=$(scripts/fetch-models.sh bunny00.off ChineseDragon-10kv.off | tail -1)
       echo "vertex clustering: per level (cell = diagonal / 128, 32, 8), one thread; grading + sort once per mesh"

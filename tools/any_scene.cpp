@@ -56,7 +56,9 @@ AnyScene load_scene(const std::string& path) {
   if (m.is_mesh) {
     s.kind = AnyScene::kMesh;
     s.mesh = mesh_scene(m.mesh, path);
-    s.engine = engine_scene(s.mesh);
+    s.engine = engine_scene(m.mesh, s.mesh);
+    // A mesh with materials (OBJ + MTL) is an asset as a glTF one is: its look is the engine's.
+    s.asset = has_material_look(m.mesh);
   } else {
     s.kind = AnyScene::kSplats;
     s.splats = splat_scene(std::move(m.points), path);

@@ -15,7 +15,10 @@ namespace qf::render {
 
 struct AnyScene {
   enum Kind { kImpostor, kSplats, kMesh, kPoints, kCluster } kind = kImpostor;
-  bool asset = false;  // a glTF file the baker did not write (no QF extension): an input's own look
+  // An input's own look, which only the engine method draws: a glTF file the baker did not write (no
+  // QF extension), or a mesh with materials (kMesh, e.g. OBJ + MTL; the GL 1.1 methods draw it
+  // without them).
+  bool asset = false;
   ClusterScene cluster;
   ImpostorScene impostor;
   SplatScene splats;

@@ -42,6 +42,41 @@ Image disc_image() {
   return img;
 }
 
+int wrap_code(TextureWrap w) {
+  return w == TextureWrap::kClampToEdge ? 33071 : w == TextureWrap::kMirroredRepeat ? 33648 : 10497;
+}
+
+// A surface material as an engine material: the reference's rough dielectric (double-sided: an
+// input's winding is not trusted) with the file's colour, texture, wraps and alpha.
+EngineMaterial engine_material(const SurfaceMaterial& m) {
+  EngineMaterial e = reference_material();
+  e.base_color = m.base_color;
+  e.base_texture = m.texture;
+  e.base_wrap_s = wrap_code(m.wrap_s);
+  e.base_wrap_t = wrap_code(m.wrap_t);
+  e.alpha = m.alpha_mode == AlphaMode::kMask ? EngineMaterial::Alpha::kMask
+            : m.alpha_mode == AlphaMode::kBlend ? EngineMaterial::Alpha::kBlend
+                                                : EngineMaterial::Alpha::kOpaque;
+  e.alpha_cutoff = m.alpha_cutoff;
+  return e;
+}
+
+// Triangle t's three corners appended to p as unshared vertices.
+void push_corners(EnginePrimitive& p, const TriangleMesh& mesh, const MeshScene& scene, std::size_t t) {
+  const Triangle& tri = mesh.triangles[t];
+  for (int k = 0; k < 3; ++k) {
+    const std::uint32_t v = tri[static_cast<std::size_t>(k)];
+    p.indices.push_back(static_cast<std::uint32_t>(p.positions.size() / 3));
+    p.positions.insert(p.positions.end(), {scene.positions[v].x, scene.positions[v].y, scene.positions[v].z});
+    p.normals.insert(p.normals.end(), {scene.normals[v].x, scene.normals[v].y, scene.normals[v].z});
+    if (!mesh.corner_uvs.empty()) {
+      const Vec2f uv = mesh.corner_uvs[t][static_cast<std::size_t>(k)];
+      p.uvs.insert(p.uvs.end(), {uv.x, uv.y});
+    }
+    if (!mesh.colors.empty()) push_linear(p.colors, mesh.colors[v]);
+  }
+}
+
 }  // namespace
 
 SplatScene splat_scene(PointSet points, const std::string& source) {
@@ -94,6 +129,25 @@ EngineScene engine_scene(const MeshScene& mesh) {
   p.indices = mesh.indices;
   s.primitives.push_back(std::move(p));
   s.bounds = mesh.bounds;
+  return s;
+}
+
+bool has_material_look(const TriangleMesh& mesh) {
+  return !mesh.triangle_materials.empty() && mesh.has_surface_color();
+}
+
+EngineScene engine_scene(const TriangleMesh& mesh, const MeshScene& scene) {
+  if (!has_material_look(mesh)) return engine_scene(scene);
+  EngineScene s;
+  for (const TextureImage& t : mesh.textures) s.images.push_back(Image{t.width, t.height, t.rgba});
+  // 1. Triangles bucketed by material, each bucket in file order (deterministic draw lists).
+  std::vector<EnginePrimitive> by_material(mesh.materials.size());
+  for (std::size_t m = 0; m < mesh.materials.size(); ++m) by_material[m].material = engine_material(mesh.materials[m]);
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) push_corners(by_material[mesh.triangle_materials[t]], mesh, scene, t);
+  // 2. Materials no triangle uses draw nothing.
+  for (EnginePrimitive& p : by_material)
+    if (!p.indices.empty()) s.primitives.push_back(std::move(p));
+  s.bounds = scene.bounds;
   return s;
 }
 

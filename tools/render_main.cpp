@@ -103,7 +103,8 @@ CommandSpec render_spec() {
       "The camera orbits the centre of FILE's bounding sphere (or --frame's): azimuth about +Y from +Z,\n"
       "elevation above the XZ plane; the default distance frames the sphere. --view i/N picks view i of\n"
       "N spread evenly over the sphere instead. --turntable N writes a contact sheet of N views around\n"
-      "the object at the given elevation.",
+      "the object at the given elevation. A mesh with materials (OBJ + MTL) is drawn with them by the\n"
+      "engine method unless --method says otherwise.",
       {{"output", 'o', "OUT.png", "", "the PNG to write (required)"},
        {"azimuth", 0, "DEG", "30", "camera azimuth"},
        {"elevation", 0, "DEG", "20", "camera elevation"},
@@ -149,10 +150,13 @@ std::pair<int, int> parse_view(const std::string& text) {
 int run_render(const ParsedArgs& a) {
   if (!a.has("output")) throw UsageError("render: -o OUT.png is required");
   const auto [w, h] = parse_size(a.get("size", "512"));
-  const DrawSettings settings = read_draw_settings(a);
+  DrawSettings settings = read_draw_settings(a);
   const float fov = static_cast<float>(a.get_double("fov", 30, 1, 170));
   const float distance = static_cast<float>(a.get_double("distance", 0, 0, 1e30));
   AnyScene scene = load_scene(a.positional[0]);
+  // A mesh's materials only the engine method draws (the others show it grey), so it is the
+  // default there. glTF files keep the plain-quads default (other tools' LODs are drawn so).
+  if (scene.kind == AnyScene::kMesh && scene.asset && !a.has("method")) settings.method = Method::kEngine;
   if (a.has("mesh")) {
     if (scene.kind != AnyScene::kPoints) throw UsageError("--mesh goes with a point impostor (.glb with QF_point_impostor)");
     AnyScene m = load_scene(a.get("mesh"));
@@ -214,8 +218,8 @@ CommandSpec eval_spec() {
       "renders over black and over white; colours are compared over --background. BAKED is a baked .glb\n"
       "(impostor level, cluster LOD, point impostor), or another point set or mesh: a second sampling of\n"
       "the reference's surface shows the metric's own floor (the splats' ragged edges differ).\n"
-      "REFERENCE may also be a glTF asset (textured, as an artist made it): it is then drawn, and BAKED\n"
-      "scored, by the engine method only.",
+      "REFERENCE may also be a glTF asset (textured, as an artist made it) or a mesh with materials (OBJ +\n"
+      "MTL, drawn with its textures): it is then drawn, and BAKED scored, by the engine method only.",
       {{"output", 'o', "REPORT.json", "", "write the report here (default: print it)"},
        {"views", 0, "N", "26", "number of viewpoints"},
        {"diff", 0, "PREFIX", "REPORT's path without .json", "write PREFIX.exr and PREFIX.png: per-view |difference| sheets (PNG x4)"},
@@ -380,7 +384,7 @@ int run_eval(const ParsedArgs& a) {
   // so both sides are drawn and scored by the engine method alone.
   if (reference.kind == AnyScene::kImpostor && !reference.asset)
     throw UsageError("eval: REFERENCE must be a point set, a mesh or a glTF asset, not a baked level");
-  if (reference.kind == AnyScene::kImpostor) settings.method = Method::kEngine;
+  if (reference.asset) settings.method = Method::kEngine;
   const Sphere sphere = bounding_sphere(reference.bounds());
   choose_lod(baked, a, orbit_camera(sphere, sphere_direction(0, views), 0, w, h));
   HeadlessContext context;

@@ -6,6 +6,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdint>
 #include <exception>
 #include <stdexcept>
@@ -39,8 +40,33 @@ std::string format_name(const std::uint8_t* bytes, std::size_t size, const std::
   return name;
 }
 
+bool is_png_name(const std::string& format) {
+  if (format.size() < 4) return false;
+  std::string ext = format.substr(format.size() - 4);
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext == ".png";
+}
+
+// OIIO 2.4 reports a PNG stream that ends early (its read callback got fewer bytes than libpng
+// asked for) by a longjmp out of libpng past a std::string temporary, which leaks (found by
+// fuzzing the glTF reader with truncated embedded textures). So the chunks are walked first:
+// the signature, then length, type, data and CRC of each chunk within the bytes, up to IEND.
+void check_png_chunks(const std::uint8_t* bytes, std::size_t size) {
+  static const std::uint8_t kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+  if (size < 8 || !std::equal(kSignature, kSignature + 8, bytes)) throw std::runtime_error("is not a PNG file (no PNG signature)");
+  for (std::size_t at = 8;;) {
+    if (size - at < 12) throw std::runtime_error("is a truncated PNG file (it ends within a chunk, before IEND)");
+    const std::size_t length = std::size_t{bytes[at]} << 24 | std::size_t{bytes[at + 1]} << 16 | std::size_t{bytes[at + 2]} << 8 | bytes[at + 3];
+    if (length > size - at - 12) throw std::runtime_error("is a truncated PNG file (a chunk of " + std::to_string(length) + " bytes ends past its end)");
+    const bool end = bytes[at + 4] == 'I' && bytes[at + 5] == 'E' && bytes[at + 6] == 'N' && bytes[at + 7] == 'D';
+    at += 12 + length;
+    if (end) return;
+  }
+}
+
 void decode(const std::uint8_t* bytes, std::size_t size, const std::string& name, int* width, int* height,
             std::vector<std::uint8_t>* rgba) {
+  if (is_png_name(format_name(bytes, size, name))) check_png_chunks(bytes, size);
   OIIO::Filesystem::IOMemReader proxy(bytes, size);
   // Straight alpha, as the files store it (OIIO would premultiply PNG colour by alpha otherwise).
   OIIO::ImageSpec config;

@@ -91,6 +91,19 @@ void write_xyz(const std::string& path, const PointSet& points, bool require_nor
 // when the set lacks what the format needs (normals for .qs and .pwn, radii for .qs).
 void write_point_set(const std::string& path, const PointSet& points);
 
+// A file a model reads besides itself: `name` as the model names it, relative to the model's
+// folder ('/'-separated, percent-decoding done), and `path` to open it (the model's folder joined).
+struct InputDependency {
+  std::string name, path;
+};
+// The external files `path` reads, found from its text without decoding geometry or images (for
+// content keys such as the batch's): a .gltf's or .glb's buffers[].uri and images[].uri that are
+// not data: URIs (in file order, buffers first), an .obj's mtllib files and each MTL's map_Kd
+// images (relative to the MTL, as the reader takes them). Each named once; files that do not exist
+// are listed too (the reader decides whether that is an error). Other formats, or a glTF whose
+// JSON does not parse, give none. Throws InputError (file.unreadable) when `path` cannot be read.
+std::vector<InputDependency> input_dependencies(const std::string& path);
+
 // The point-set and mesh extensions this build reads, for help texts.
 const std::vector<std::string>& point_set_extensions();
 const std::vector<std::string>& mesh_extensions();

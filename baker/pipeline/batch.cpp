@@ -11,12 +11,14 @@
 #include <algorithm>
 #include <cerrno>
 #include <filesystem>
+#include <system_error>
 #include <thread>
 
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/hash.h"
 #include "gltf/png.h"
+#include "io/model_io.h"
 #include "pipeline/batch_parts.h"
 
 extern char** environ;
@@ -32,7 +34,21 @@ std::string asset_key(const BatchAsset& a, const std::string& version) {
   Sha256 h;
   // Json objects iterate their keys in sorted order: the same settings always dump the same.
   h.update_field("quasiflat asset key 1").update_field(version).update_field(a.input).update_field(a.settings.dump());
-  return h.update(file.bytes()).hex();
+  h.update(file.bytes());
+  // The files the input reads (a glTF's buffers and images, an OBJ's MTL and textures): a changed
+  // texture is a changed asset. Added only when there are any, so other inputs keep their keys. A
+  // missing one is marked, not an error here: the bake then reports it as the reader words it.
+  for (const InputDependency& d : input_dependencies(a.path)) {
+    h.update_field("dependency").update_field(d.name);
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(d.path, ec)) {
+      h.update_field("missing");
+      continue;
+    }
+    const InputFile dep(d.path);
+    h.value(static_cast<std::uint64_t>(dep.bytes().size())).update(dep.bytes());
+  }
+  return h.hex();
 }
 
 bool asset_up_to_date(const std::string& folder, const std::string& key) {

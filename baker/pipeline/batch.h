@@ -72,7 +72,8 @@ struct BatchOptions {
 // The manifest indices shard `index` of `count` bakes: every count-th asset, from index - 1.
 std::vector<std::size_t> shard_assets(std::size_t assets, int index, int count);
 
-// The asset's key: SHA-256 of the tool version, its input name, its settings and its input bytes.
+// The asset's key: SHA-256 of the tool version, its input name, its settings, its input bytes and
+// (when it has any) the names and bytes of the files it reads (io/model_io.h, input_dependencies).
 // Throws InputError(file.unreadable) when the input cannot be read.
 std::string asset_key(const BatchAsset& asset, const std::string& version);
 

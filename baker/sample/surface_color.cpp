@@ -8,9 +8,13 @@
 namespace qf {
 namespace {
 
-// A texel index brought into 0..n-1 by the wrap mode.
+// A texel index brought into 0..n-1 by the wrap mode. Bilinear lookups inside the image, or one
+// texel past an edge (most of those at an edge), are answered before the divisions.
 int wrap_index(int i, int n, TextureWrap mode) {
-  if (mode == TextureWrap::kClampToEdge) return i < 0 ? 0 : i >= n ? n - 1 : i;
+  if (i >= 0 && i < n) return i;  // every mode leaves these alone
+  if (i == -1) return mode == TextureWrap::kRepeat ? n - 1 : 0;
+  if (i == n) return mode == TextureWrap::kRepeat ? 0 : n - 1;
+  if (mode == TextureWrap::kClampToEdge) return i < 0 ? 0 : n - 1;
   if (mode == TextureWrap::kMirroredRepeat) {
     const int m = ((i % (2 * n)) + 2 * n) % (2 * n);
     return m < n ? m : 2 * n - 1 - m;
@@ -18,28 +22,58 @@ int wrap_index(int i, int n, TextureWrap mode) {
   return ((i % n) + n) % n;
 }
 
-}  // namespace
+// std::floor, without the libm call it is on baseline x86-64 (no SSE4.1 rounding instruction):
+// the same value for |v| < 2^52 (beyond, every double is an integer and std::floor answers), but
+// for the sign of a zero result, which no lookup below depends on (a zero fraction or offset
+// gives the same texel and weights).
+double floor_of(double v) {
+  if (!(std::fabs(v) < 4503599627370496.0)) return std::floor(v);
+  const double t = static_cast<double>(static_cast<long long>(v));
+  return t > v ? t - 1 : t;
+}
 
-std::array<float, 4> sample_texture(const TextureImage& image, Vec2f uv, TextureWrap wrap_s, TextureWrap wrap_t) {
+// A texel column or row as an int: the floored coordinate bounded to +-1e9 (far outside any
+// image, and inside int).
+int texel_index(double floored) {
+  if (floored >= -1e9 && floored <= 1e9) return static_cast<int>(floored);
+  return static_cast<int>(std::fmax(std::fmin(floored, 1e9), -1e9));
+}
+
+// sample_texture, with the alpha sum only when `kAlpha` (only MASK materials look at it).
+template <bool kAlpha>
+std::array<float, 4> bilinear(const TextureImage& image, Vec2f uv, TextureWrap wrap_s, TextureWrap wrap_t) {
   // Texel centres lie at (i + 0.5) / width; repeating wraps work on any coordinate, so the
   // fraction is taken before the (float) product can lose precision far from 0..1.
-  const double fu = wrap_s == TextureWrap::kRepeat ? uv.x - std::floor(uv.x) : uv.x;
-  const double fv = wrap_t == TextureWrap::kRepeat ? uv.y - std::floor(uv.y) : uv.y;
+  // (The fraction in float arithmetic: a float's floor is a float, exactly.)
+  const double fu = wrap_s == TextureWrap::kRepeat ? uv.x - static_cast<float>(floor_of(uv.x)) : uv.x;
+  const double fv = wrap_t == TextureWrap::kRepeat ? uv.y - static_cast<float>(floor_of(uv.y)) : uv.y;
   const double x = std::isfinite(fu) ? fu * image.width - 0.5 : 0, y = std::isfinite(fv) ? fv * image.height - 0.5 : 0;
-  const double x0 = std::floor(x), y0 = std::floor(y);
+  const double x0 = floor_of(x), y0 = floor_of(y);
   const double ax = x - x0, ay = y - y0;
-  std::array<float, 4> out{0, 0, 0, 0};
+  // The two columns and rows, wrapped once (not per texel).
+  const int cx = texel_index(x0), cy = texel_index(y0);
+  const int ix[2] = {wrap_index(cx, image.width, wrap_s), wrap_index(cx + 1, image.width, wrap_s)};
+  const int iy[2] = {wrap_index(cy, image.height, wrap_t), wrap_index(cy + 1, image.height, wrap_t)};
+  // Sums in plain locals, not the array (which compilers keep in memory, a store and a load per
+  // add): the same float additions in the same order.
+  float r = 0, g = 0, b = 0, a = 0;
   for (int dy = 0; dy < 2; ++dy)
     for (int dx = 0; dx < 2; ++dx) {
       const double weight = (dx ? ax : 1 - ax) * (dy ? ay : 1 - ay);
       if (weight == 0) continue;
-      const int ix = wrap_index(static_cast<int>(std::fmax(std::fmin(x0, 1e9), -1e9)) + dx, image.width, wrap_s);
-      const int iy = wrap_index(static_cast<int>(std::fmax(std::fmin(y0, 1e9), -1e9)) + dy, image.height, wrap_t);
-      const std::uint8_t* t = &image.rgba[(static_cast<std::size_t>(iy) * static_cast<std::size_t>(image.width) + static_cast<std::size_t>(ix)) * 4];
-      for (int c = 0; c < 3; ++c) out[static_cast<std::size_t>(c)] += static_cast<float>(weight * srgb8_to_linear(t[c]));
-      out[3] += static_cast<float>(weight * t[3] / 255.0);
+      const std::uint8_t* t = &image.rgba[(static_cast<std::size_t>(iy[dy]) * static_cast<std::size_t>(image.width) + static_cast<std::size_t>(ix[dx])) * 4];
+      r += static_cast<float>(weight * srgb8_to_linear(t[0]));
+      g += static_cast<float>(weight * srgb8_to_linear(t[1]));
+      b += static_cast<float>(weight * srgb8_to_linear(t[2]));
+      if (kAlpha) a += static_cast<float>(weight * t[3] / 255.0);
     }
-  return out;
+  return {r, g, b, a};
+}
+
+}  // namespace
+
+std::array<float, 4> sample_texture(const TextureImage& image, Vec2f uv, TextureWrap wrap_s, TextureWrap wrap_t) {
+  return bilinear<true>(image, uv, wrap_s, wrap_t);
 }
 
 SurfaceColor surface_color(const TriangleMesh& mesh, std::size_t t, const double w[3]) {
@@ -53,8 +87,12 @@ SurfaceColor surface_color(const TriangleMesh& mesh, std::size_t t, const double
       const std::array<Vec2f, 3>& uv = mesh.corner_uvs[t];
       const Vec2f at{static_cast<float>(w[0] * uv[0].x + w[1] * uv[1].x + w[2] * uv[2].x),
                      static_cast<float>(w[0] * uv[0].y + w[1] * uv[1].y + w[2] * uv[2].y)};
-      const std::array<float, 4> texel = sample_texture(mesh.textures[static_cast<std::size_t>(m->texture)], at, m->wrap_s, m->wrap_t);
-      for (int c = 0; c < 4; ++c) rgba[c] *= texel[static_cast<std::size_t>(c)];
+      // Alpha decides nothing but MASK cut-outs (BLEND is kept as opaque surface, README).
+      const TextureImage& image = mesh.textures[static_cast<std::size_t>(m->texture)];
+      const bool mask = m->alpha_mode == AlphaMode::kMask;
+      const std::array<float, 4> texel =
+          mask ? bilinear<true>(image, at, m->wrap_s, m->wrap_t) : bilinear<false>(image, at, m->wrap_s, m->wrap_t);
+      for (int c = 0; c < (mask ? 4 : 3); ++c) rgba[c] *= texel[static_cast<std::size_t>(c)];
     }
   }
   // 2. The vertex colours, interpolated in linear light.

@@ -8,12 +8,15 @@
 #include <cstdlib>
 #include <filesystem>
 #include <map>
+#include <random>
 #include <tuple>
 
 #include "analysis/neighborhoods.h"
 #include "core/error.h"
 #include "io/model_io.h"
+#include "core/color.h"
 #include "sample/sample.h"
+#include "sample/surface_color.h"
 #include "shapes/shapes.h"
 
 namespace qf {
@@ -239,6 +242,68 @@ TEST(SampleModels, GlMatchesCpuOnCgalMeshes) {
     // same point unless the two triangles are sampled on different axes.
     EXPECT_LT(double(only_cpu + only_gl), 0.001 * double(pc.size())) << name;
     EXPECT_LT(share, 0.01) << name;
+  }
+}
+
+// linear_to_srgb8's tables give the formula's byte exactly: at and around every byte boundary (by
+// ulps, and by the margin where the tables hand over to the formula), at random, and at the edges.
+TEST(SurfaceColor, TabledSrgbEncodingIsTheFormulaBitForBit) {
+  const detail::SrgbTables& t = detail::srgb_tables();
+  std::vector<double> probes{0.0, -0.0, 1.0, -1e-300, 1e-300, 4.9e-324, 0.0031308, 0.5, 1 - 1e-17, 1 + 1e-16, -INFINITY, INFINITY, NAN};
+  for (int k = 1; k < 256; ++k) {
+    const double b = t.thresholds[static_cast<std::size_t>(k)];
+    ASSERT_EQ(linear_to_srgb8_formula(b), k);
+    ASSERT_EQ(linear_to_srgb8_formula(std::nextafter(b, 0.0)), k - 1);
+    for (double d : {detail::SrgbTables::kMargin, -detail::SrgbTables::kMargin}) {
+      double p = b + d;
+      for (int u = 0; u < 4; ++u) probes.push_back(p = std::nextafter(p, 2.0)), probes.push_back(b + d - u * 1e-17);
+    }
+    double up = b, down = b;
+    for (int u = 0; u < 40; ++u) probes.push_back(up = std::nextafter(up, 2.0)), probes.push_back(down = std::nextafter(down, -1.0));
+  }
+  for (int i = 0; i <= detail::SrgbTables::kBuckets; ++i) probes.push_back(double(i) / detail::SrgbTables::kBuckets);
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> any(-0.1, 1.1);
+  for (int i = 0; i < 2000000; ++i) probes.push_back(any(rng));
+  for (double p : probes) ASSERT_EQ(int(linear_to_srgb8(p)), int(linear_to_srgb8_formula(p))) << "l = " << p;
+}
+
+// sample_texture against a plain bilinear lookup with every wrap mode, inside and outside 0..1,
+// exactly (the sampled colours of every textured asset depend on it).
+TEST(SurfaceColor, TextureLookupIsPlainBilinearWithEveryWrap) {
+  TextureImage img{5, 3, {}};
+  for (int i = 0; i < 5 * 3 * 4; ++i) img.rgba.push_back(static_cast<std::uint8_t>(i * 37 % 256));
+  const auto wrap = [](int i, int n, TextureWrap m) {
+    if (m == TextureWrap::kClampToEdge) return std::clamp(i, 0, n - 1);
+    if (m == TextureWrap::kMirroredRepeat) {
+      const int r = ((i % (2 * n)) + 2 * n) % (2 * n);
+      return r < n ? r : 2 * n - 1 - r;
+    }
+    return ((i % n) + n) % n;
+  };
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> coord(-2.5, 3.5);
+  const TextureWrap modes[3] = {TextureWrap::kRepeat, TextureWrap::kClampToEdge, TextureWrap::kMirroredRepeat};
+  for (int i = 0; i < 30000; ++i) {
+    // Random, then texel centres and edges, signed zeros, integers and huge coordinates.
+    const float special[] = {-0.0f, 0.0f, 1.0f, -1.0f, 0.1f, 0.9f, 2.0f, -3.0f, 1e8f, -1e8f, 1e30f, -1e30f};
+    const Vec2f uv{i < 144 ? special[i % 12] : static_cast<float>(coord(rng)),
+                   i < 144 ? special[i / 12] : static_cast<float>(i % 7 == 0 ? 0.5 : coord(rng))};
+    const TextureWrap ws = modes[i % 3], wt = modes[(i / 3) % 3];
+    const double fu = ws == TextureWrap::kRepeat ? uv.x - std::floor(uv.x) : uv.x;
+    const double fv = wt == TextureWrap::kRepeat ? uv.y - std::floor(uv.y) : uv.y;
+    const double x = fu * img.width - 0.5, y = fv * img.height - 0.5, x0 = std::floor(x), y0 = std::floor(y);
+    std::array<float, 4> want{0, 0, 0, 0};
+    for (int dy = 0; dy < 2; ++dy)
+      for (int dx = 0; dx < 2; ++dx) {
+        const double w = (dx ? x - x0 : 1 - (x - x0)) * (dy ? y - y0 : 1 - (y - y0));
+        if (w == 0) continue;
+        const int cx = int(std::fmax(std::fmin(x0, 1e9), -1e9)), cy = int(std::fmax(std::fmin(y0, 1e9), -1e9));
+        const std::uint8_t* p = &img.rgba[static_cast<std::size_t>(wrap(cy + dy, img.height, wt) * img.width + wrap(cx + dx, img.width, ws)) * 4];
+        for (int c = 0; c < 3; ++c) want[static_cast<std::size_t>(c)] += static_cast<float>(w * srgb8_to_linear(p[c]));
+        want[3] += static_cast<float>(w * p[3] / 255.0);
+      }
+    ASSERT_EQ(sample_texture(img, uv, ws, wt), want) << uv.x << " " << uv.y;
   }
 }
 
