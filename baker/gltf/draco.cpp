@@ -6,6 +6,7 @@
 #include <draco/mesh/triangle_soup_mesh_builder.h>
 
 #include <algorithm>
+#include <memory>
 #include <string>
 #include <stdexcept>
 
@@ -63,13 +64,20 @@ DracoOutput draco_compress(const DracoInput& in) {
   return out;
 }
 
-DracoMesh draco_decode_mesh(const std::uint8_t* bytes, std::size_t size, const std::vector<std::pair<int, int>>& wanted) {
+namespace {
+
+// The mesh in `bytes`; throws std::runtime_error when it does not decode.
+std::unique_ptr<draco::Mesh> decode(const std::uint8_t* bytes, std::size_t size) {
   draco::DecoderBuffer buf;
   buf.Init(reinterpret_cast<const char*>(bytes), size);
   draco::Decoder decoder;
   auto decoded = decoder.DecodeMeshFromBuffer(&buf);
   if (!decoded.ok()) throw std::runtime_error("the Draco stream does not decode (" + decoded.status().error_msg_string() + ")");
-  const draco::Mesh& d = *decoded.value();
+  return std::move(decoded).value();
+}
+
+// The decoded mesh's corners and the attributes asked for, as floats.
+DracoMesh convert(const draco::Mesh& d, const std::vector<std::pair<int, int>>& wanted) {
   DracoMesh out;
   out.points = d.num_points();
   for (draco::FaceIndex f(0); f < d.num_faces(); ++f)
@@ -90,14 +98,16 @@ DracoMesh draco_decode_mesh(const std::uint8_t* bytes, std::size_t size, const s
   return out;
 }
 
+}  // namespace
+
+DracoMesh draco_decode_mesh(const std::uint8_t* bytes, std::size_t size, const std::vector<std::pair<int, int>>& wanted) {
+  return convert(*decode(bytes, size), wanted);
+}
+
 void draco_decode(const std::vector<std::uint8_t>& bytes, std::vector<float>& positions, std::vector<std::uint32_t>& corners) {
-  draco::DecoderBuffer buf;
-  buf.Init(reinterpret_cast<const char*>(bytes.data()), bytes.size());
-  draco::Decoder decoder;
-  auto decoded = decoder.DecodeMeshFromBuffer(&buf);
-  if (!decoded.ok()) throw std::runtime_error("draco: the stream does not decode");
-  const int id = decoded.value()->GetNamedAttribute(draco::GeometryAttribute::POSITION)->unique_id();
-  DracoMesh m = draco_decode_mesh(bytes.data(), bytes.size(), {{id, 3}});
+  const std::unique_ptr<draco::Mesh> d = decode(bytes.data(), bytes.size());
+  const int id = d->GetNamedAttribute(draco::GeometryAttribute::POSITION)->unique_id();
+  DracoMesh m = convert(*d, {{id, 3}});
   positions = std::move(m.attributes[id]);
   corners = std::move(m.corners);
 }

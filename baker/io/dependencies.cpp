@@ -1,13 +1,13 @@
 // The files a model reads besides itself (model_io.h, input_dependencies): a glTF's external
 // buffers and images, an OBJ's MTL libraries and their map_Kd images, found from the text alone.
 #include <algorithm>
-#include <cstring>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string_view>
 #include <system_error>
 
 #include "core/file_io.h"
+#include "io/gltf_json.h"
 #include "io/model_io.h"
 #include "io/mtl_read.h"
 #include "io/reader_util.h"
@@ -40,19 +40,8 @@ void add(std::vector<InputDependency>& out, const fs::path& folder, const fs::pa
   out.push_back({n, (folder / name).string()});
 }
 
-// A .gltf's JSON, or a .glb's first chunk (as the reader finds it); null when it does not parse.
-nlohmann::json gltf_json(ByteView bytes) {
-  const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
-  std::uint32_t length = 0;
-  if (binary && bytes.size() >= 20) std::memcpy(&length, bytes.data() + 12, 4);
-  if (binary && (bytes.size() < 20 || length > bytes.size() - 20)) return nullptr;
-  const char* text = reinterpret_cast<const char*>(bytes.data() + (binary ? 20 : 0));
-  nlohmann::json j = nlohmann::json::parse(text, text + (binary ? length : bytes.size()), nullptr, false);
-  return j.is_discarded() || !j.is_object() ? nlohmann::json() : j;
-}
-
 void gltf_dependencies(ByteView bytes, const fs::path& folder, std::vector<InputDependency>& out) {
-  const nlohmann::json j = gltf_json(bytes);
+  const nlohmann::json j = io::gltf_json(bytes);  // the JSON exactly as the reader sees it
   if (!j.is_object()) return;  // the reader will say what is wrong
   for (const char* array : {"buffers", "images"}) {
     const auto a = j.find(array);
