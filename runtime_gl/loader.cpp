@@ -197,10 +197,10 @@ BakedScene load_baked(const std::string& path) {
     s.cluster = cluster_scene(m, path);
   } else {
     s.impostor = impostor_scene(m, path);
-    // A file of someone else's (a game asset, not a baked level) may place its meshes by node
-    // transforms, which the item view ignores: frame it where an engine shows it.
+    // The item view ignores node transforms (a baked level has none; a game asset may): the file
+    // is framed where an engine shows it.
     s.asset = !m.extensions.count("QF_impostor_level");
-    if (s.asset && !s.engine.bounds.empty()) s.impostor.bounds = s.engine.bounds;
+    if (!s.engine.bounds.empty()) s.impostor.bounds = s.engine.bounds;
   }
   return s;
 }
