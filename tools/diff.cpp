@@ -285,6 +285,38 @@ ImageDiff image_diff(const AnyScene& a, const AnyScene& b, const std::string& na
 
 // --- one pair of files -------------------------------------------------------------------------
 
+// A bake manifest's impostor levels side by side, matched by file: texels, texel size and bytes
+// (null where a manifest lacks the level or the field: one written before qf-bake 0.2.0), and the
+// levels' bytes in total. Empty when neither JSON lists levels.
+OJson level_changes(const Json& a, const Json& b) {
+  const auto levels = [](const Json& m) {
+    std::map<std::string, Json> out;
+    if (m.is_object() && m.contains("levels") && m["levels"].is_array())
+      for (const Json& l : m["levels"])
+        if (l.is_object() && l.contains("file") && l["file"].is_string()) out[l["file"].get<std::string>()] = l;
+    return out;
+  };
+  const std::map<std::string, Json> la = levels(a), lb = levels(b);
+  std::set<std::string> files;
+  for (const auto& [f, l] : la) files.insert(f);
+  for (const auto& [f, l] : lb) files.insert(f);
+  const auto field = [](const std::map<std::string, Json>& m, const std::string& f, const char* key) {
+    const auto it = m.find(f);
+    return it != m.end() && it->second.contains(key) ? OJson(it->second[key]) : OJson();
+  };
+  OJson out = OJson::array();
+  std::size_t total[2] = {0, 0};
+  for (const std::string& f : files) {
+    OJson e{{"file", f}};
+    for (const char* key : {"primitives", "texels", "texel", "bytes"}) e[key] = {field(la, f, key), field(lb, f, key)};
+    for (int side = 0; side < 2; ++side)
+      if (e["bytes"][side].is_number_unsigned()) total[side] += e["bytes"][side].get<std::size_t>();
+    out.push_back(e);
+  }
+  if (out.empty()) return out;
+  return OJson{{"levels", out}, {"bytes_total", {total[0], total[1]}}};
+}
+
 // Keys whose values differ between two JSON values, as JSON pointers (at most `limit`).
 void json_changes(const Json& a, const Json& b, const std::string& at, OJson& out, std::size_t limit) {
   if (out.size() >= limit || a == b) return;
@@ -347,6 +379,8 @@ OJson diff_pair(const std::string& name, const std::string& pa, const std::strin
     OJson changes = OJson::array();
     json_changes(ja, jb, "", changes, 50);
     r["changed_keys"] = changes;
+    const OJson levels = level_changes(ja, jb);
+    if (!levels.empty()) r["impostor_levels"] = levels;
     r["within_thresholds"] = true;  // a manifest changes with its levels; those decide
     return r;
   }
@@ -424,6 +458,15 @@ std::string diff_text(const OJson& r) {
       out << "    keys:";
       for (const OJson& k : f["changed_keys"]) out << " " << k.get<std::string>();
       out << "\n";
+    }
+    if (f.contains("impostor_levels")) {
+      const OJson& il = f["impostor_levels"];
+      const auto text = [](const OJson& v) { return v.is_null() ? std::string("-") : v.dump(); };
+      for (const OJson& l : il["levels"])
+        out << "    " << l["file"].get<std::string>() << ": quads " << text(l["primitives"][0]) << " -> " << text(l["primitives"][1])
+            << ", texels " << text(l["texels"][0]) << " -> " << text(l["texels"][1]) << ", bytes " << text(l["bytes"][0]) << " -> "
+            << text(l["bytes"][1]) << "\n";
+      out << "    impostor levels: " << il["bytes_total"][0] << " -> " << il["bytes_total"][1] << " bytes\n";
     }
     if (f.contains("structure")) {
       const OJson& st = f["structure"];

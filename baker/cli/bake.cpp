@@ -31,7 +31,10 @@ CommandSpec bake_spec() {
                     {"tau", 0, "T", "0.05", "domain threshold"},
                     {"strict", 0, "", "", "strict domains: each point only in its strongest function's domain (thesis 2.5):\n"
                                           "alpha 1 on its own points' splats, no overlap between quads"},
-                    {"texel", 0, "F", "1", "texel size = F x the domain's mean point radius"},
+                    {"texel-density", 0, "D", "1", "texels per screen pixel where a level is drawn largest (its max_screen_pixels):\n"
+                                                  "coarse levels get coarse textures, never finer than --texel; 0 = from --texel alone"},
+                    {"texel", 0, "F", "1", "texels no smaller than F x the domain's mean point radius; given alone, it sets the\n"
+                                           "texel size at every level (as --texel-density 0)"},
                     {"max-texture", 0, "N", "1024", "largest texture side of one primitive, texels"},
                     {"margin", 0, "M", "0", "extra rectangle margin, in mean point radii"},
                     {"lod-file", 0, "", "", "also write STEM_lods.glb: every level in one file under MSFT_lod (finest in the scene,\n"
@@ -59,6 +62,9 @@ AssetOptions read_asset_options(const OptionValues& args) {
   o.merge = args.flag("merge");
   o.merge_options = read_merge_options(args, o.domains);
   o.texture.texel_factor = static_cast<float>(args.get_double("texel", o.texture.texel_factor, 0.01, 100.0));
+  // An explicit --texel is an override: the same texel size at every level, unless a density is
+  // asked for too.
+  o.texel_density = args.get_double("texel-density", args.has("texel") ? 0.0 : o.texel_density, 0.0, 1000.0);
   o.texture.max_side = static_cast<int>(args.get_int("max-texture", o.texture.max_side, 4, 4096 - 8));
   o.support.margin = static_cast<float>(args.get_double("margin", o.support.margin, 0.0, 100.0));
   if (args.has("levels") && args.has("primitives")) throw UsageError("give --levels or --primitives, not both");

@@ -89,11 +89,16 @@ nlohmann::json cluster_level_files(const std::vector<LodMesh>& lods, const std::
 namespace {
 
 nlohmann::json level_entry(const BakedLevel& l, const std::string& file) {
+  nlohmann::json atlas_sides = nlohmann::json::array();
+  for (std::size_t i = 0; i < l.atlas_widths.size(); ++i) atlas_sides.push_back({l.atlas_widths[i], l.atlas_heights[i]});
   return {{"file", file},
           {"level", l.level},
           {"primitives", l.primitives},
           {"texels", l.texels},
+          {"texel", canonical_double(static_cast<float>(l.texel))},
           {"atlas_images", l.atlas_images},
+          {"atlas_sides", atlas_sides},
+          {"bytes", l.glb.size()},
           {"error", canonical_double(static_cast<float>(l.error))},
           {"relative_error", canonical_double(static_cast<float>(l.relative_error))},
           {"max_screen_pixels", static_cast<long long>(l.max_screen_pixels)}};
@@ -205,6 +210,7 @@ AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::
                 {"strict", o.bake.domains.strict},
                 {"merge", o.bake.merge},
                 {"texel_factor", canonical_double(o.bake.texture.texel_factor)},
+                {"texel_density", canonical_double(static_cast<float>(o.bake.texel_density))},
                 {"max_texture", o.bake.texture.max_side},
                 {"lod_file", o.bake.lod_file},
                 {"mesh_lods", o.mesh_lods == AssetOptions::MeshLods::kSimplify     ? "simplify"

@@ -46,6 +46,16 @@ std::vector<std::size_t> chosen_levels(const AmgHierarchy& h, const BakeOptions&
   return unique;
 }
 
+// The texture options of a level drawn at most `max_screen_pixels` across the bounding-box
+// diagonal: there one screen pixel is diagonal / max_screen_pixels wide, and its texels are
+// texel_density times finer (but never finer than the points, TextureOptions::texel_factor).
+// Texels sized for the points alone gave a 16-px level of the bunny 65k texels.
+TextureOptions level_texture_options(const BakeOptions& o, double diagonal, double max_screen_pixels) {
+  TextureOptions t = o.texture;
+  if (o.texel_density > 0 && max_screen_pixels > 0) t.min_texel = diagonal / (max_screen_pixels * o.texel_density);
+  return t;
+}
+
 }  // namespace
 
 // --merge with --primitives counts the quads delivered, after merging: every level of up to
@@ -217,26 +227,36 @@ BakeResult bake(const PointSet& input, const BakeOptions& o, const std::string& 
     const std::vector<SupportRect> rects = support_rectangles(points.positions, normals, points.radii, psi, d, o.support);
     SparseMatrix alpha = domain_partition(psi, d);  // what the rendered sum adds up
     watch.lap("level " + std::to_string(level) + " domains");
-    std::vector<Texture> textures(rects.size());
-#pragma omp parallel for schedule(dynamic, 4)
-    for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(rects.size()); ++k)
-      textures[static_cast<std::size_t>(k)] = resample_texture(points.positions, points.colors, normals, points.radii, alpha, d,
-                                                               rects[static_cast<std::size_t>(k)], o.texture);
-    watch.lap("level " + std::to_string(level) + " textures");
     BakedLevel out;
     out.level = level;
     out.primitives = rects.size();
-    for (const Texture& t : textures) out.texels += static_cast<std::size_t>(t.width) * static_cast<std::size_t>(t.height);
     for (const SupportRect& q : rects) out.error += q.error;
     out.error = rects.empty() ? 0.0 : out.error / double(rects.size());
     out.relative_error = r.diagonal > 0 ? out.error / r.diagonal : 0.0;
     out.max_screen_pixels = out.error > 0 ? std::min(0.5 * r.diagonal / out.error, 1e9) : 1e9;
+    const TextureOptions texture = level_texture_options(o, r.diagonal, out.max_screen_pixels);
+    out.texel = texture.min_texel;
+    // Largest domains first, one at a time: a coarse level has a few big domains, and handed out
+    // in index order, in fours, one thread was left with most of the work.
+    std::vector<std::size_t> by_size(rects.size());
+    for (std::size_t k = 0; k < by_size.size(); ++k) by_size[k] = k;
+    const auto domain_points = [&](std::size_t k) { return d.offsets[rects[k].domain + 1] - d.offsets[rects[k].domain]; };
+    std::stable_sort(by_size.begin(), by_size.end(), [&](std::size_t a, std::size_t b) { return domain_points(a) > domain_points(b); });
+    std::vector<Texture> textures(rects.size());
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::ptrdiff_t q = 0; q < static_cast<std::ptrdiff_t>(by_size.size()); ++q) {
+      const std::size_t k = by_size[static_cast<std::size_t>(q)];
+      textures[k] = resample_texture(points.positions, points.colors, normals, points.radii, alpha, d, rects[k], texture);
+    }
+    watch.lap("level " + std::to_string(level) + " textures");
+    for (const Texture& t : textures) out.texels += static_cast<std::size_t>(t.width) * static_cast<std::size_t>(t.height);
     // The level's per-point matrices are done with; its textures once packed into the atlas (at
     // 10M sampled points a level's textures are ~0.8 GB, freed before the PNG encoding needs more).
     psi = SparseMatrix(), alpha = SparseMatrix();
     ImpostorLevel il = make_impostor_level(level, rects, textures, d, o.atlas);
     std::vector<Texture>().swap(textures);
     out.atlas_images = static_cast<int>(il.atlas.images.size());
+    out.atlas_widths = il.atlas.widths, out.atlas_heights = il.atlas.heights;
     out.glb = encode_glb(il, o.gltf);
     r.levels.push_back(std::move(out));
     if (o.lod_file) kept.push_back(std::move(il));

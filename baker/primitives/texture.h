@@ -19,6 +19,9 @@ enum class RadialNormalization { kWhenAtLeastOne, kWhenPositive };  // thesis eq
 
 struct TextureOptions {
   float texel_factor = 1.0f;  // texel size = factor x the domain's mean point radius (thesis 5.2.1)
+  // ... or this (world units) where larger: the bake sets it per level from the screen size the
+  // level is drawn at (BakeOptions::texel_density); 0 = the points' spacing alone.
+  double min_texel = 0;
   int max_side = 1024;        // texels; a bigger rectangle gets proportionally larger texels
   ResampleMethod method = ResampleMethod::kLinearAffine;
   RadialProfile profile = RadialProfile::kLinear;  // radial method

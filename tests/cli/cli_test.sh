@@ -201,6 +201,43 @@ for l in m["levels"]:
     assert l["primitives"] > 0 and l["texels"] > 0 and l["error"] > 0 and l["max_screen_pixels"] > 0
 assert m["levels"][0]["primitives"] > m["levels"][1]["primitives"]
 PY
+# Texels sized for the screen (--texel-density, default 1): each level's texel is at least one screen
+# pixel where it is drawn largest, so it holds at most (4 x max_screen_pixels)^2 texels; the manifest
+# gives texel, atlas sides and bytes. --texel alone fixes the texel at every level instead.
+# (The 7-quad level's domains straddle creases: a large error, drawn small.)
+expect 0 "bake, default texels" -- "$bake" "$work/oct.ply" -o "$work/tx0" --primitives 200,8 -q
+expect 0 "bake --texel (fixed texels)" -- "$bake" "$work/oct.ply" -o "$work/tx1" --primitives 200,8 --texel 1 -q
+expect 0 "bake --texel-density 4" -- "$bake" "$work/oct.ply" -o "$work/tx4" --primitives 200,8 --texel-density 4 -q
+/usr/bin/python3 - "$work/tx0" "$work/tx1" "$work/tx4" <<'PY' 2>"$work/err" && ok || bad "texel budget: $(tail -2 "$work/err")"
+import json, os, struct, sys
+def load(d):
+    return json.load(open(os.path.join(d, "manifest.json"))), json.load(open(os.path.join(d, "report.json")))
+(m1, r1), (mx, rx), (m4, r4) = (load(d) for d in sys.argv[1:4])
+diag = m1["bounding_box_diagonal"]
+assert r1["settings"]["texel_density"] == 1 and rx["settings"]["texel_density"] == 0 and r4["settings"]["texel_density"] == 4
+for l in m1["levels"]:
+    # (the manifest's max_screen_pixels is rounded down)
+    assert diag / (l["max_screen_pixels"] + 1) <= l["texel"] <= diag / l["max_screen_pixels"], (l["texel"], diag, l["max_screen_pixels"])
+    assert l["texels"] <= (4 * l["max_screen_pixels"]) ** 2, (l["texels"], l["max_screen_pixels"])
+    assert l["bytes"] == os.path.getsize(os.path.join(sys.argv[1], l["file"]))
+    assert len(l["atlas_sides"]) == l["atlas_images"] and all(w & (w - 1) == 0 and h & (h - 1) == 0 for w, h in l["atlas_sides"])
+assert all(l["texel"] == 0 for l in mx["levels"])
+coarse = [m["levels"][1] for m in (m1, mx, m4)]
+assert coarse[0]["texels"] < coarse[2]["texels"] < coarse[1]["texels"], [c["texels"] for c in coarse]
+assert coarse[0]["bytes"] < coarse[1]["bytes"]
+# PNG colour types in the finest level: colour atlases RGBA (6), normal maps RGB (2, no unused alpha).
+b = open(os.path.join(sys.argv[1], m1["levels"][0]["file"]), "rb").read()
+n = struct.unpack("<I", b[12:16])[0]
+g, binary = json.loads(b[20:20 + n]), 20 + n + 8
+def colour_type(texture):
+    v = g["bufferViews"][g["images"][g["textures"][texture]["source"]]["bufferView"]]
+    png = b[binary + v.get("byteOffset", 0):]
+    assert png[:8] == b"\x89PNG\r\n\x1a\n" and png[12:16] == b"IHDR"
+    return png[25]
+mat = g["materials"][0]
+assert colour_type(mat["pbrMetallicRoughness"]["baseColorTexture"]["index"]) == 6
+assert colour_type(mat["normalTexture"]["index"]) == 2
+PY
 # a mesh input: sampled, then baked; the report carries the sampling
 expect 0 "generate a finer mesh" -- "$bake" generate sphere --mesh --subdivisions 8 -o "$work/ball_mesh.ply" -q
 expect 0 "bake a mesh" -- "$bake" "$work/ball_mesh.ply" -o "$work/meshbake" --primitives 50 --ldi 64 -q

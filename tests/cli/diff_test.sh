@@ -34,8 +34,18 @@ f="[x for x in r['files'] if x['name'] == '$level'][0]"
 [[ -s $work/img/$level.diff.exr && -s $work/img/$level.diff.png ]] && ok || bad "difference images written: $(ls "$work/img")"
 [[ $(field "$work/j" "'/levels/0/error' in [x for x in r['files'] if x['name'] == 'manifest.json'][0]['changed_keys']") == True ]] && ok ||
   bad "manifest key changes listed"
+# the manifest's levels side by side (texels, bytes) with their total, from the two manifests
+m="[x for x in r['files'] if x['name'] == 'manifest.json'][0]['impostor_levels']"
+[[ $(field "$work/j" "len($m['levels']) >= 2 and all(isinstance(b, int) and b > 0 for l in $m['levels'] for b in l['bytes'] + l['texels'])") == True ]] && ok ||
+  bad "manifest levels side by side: $(field "$work/j" "$m")"
+[[ $(python3 -c 'import json, sys
+a, c = (json.load(open(sys.argv[i] + "/manifest.json"))["levels"] for i in (1, 2))
+r = json.load(open(sys.argv[3]))
+m = [x for x in r["files"] if x["name"] == "manifest.json"][0]["impostor_levels"]
+print(m["bytes_total"] == [sum(l["bytes"] for l in a), sum(l["bytes"] for l in c)])' "$work/a" "$work/c" "$work/j") == True ]] && ok || bad "manifest levels' total bytes"
 "$diff" "$work/a" "$work/c" >"$work/out"; rc=$?
-[[ $rc -eq 1 ]] && grep -q "BEYOND thresholds" "$work/out" && grep -q "PSNR min" "$work/out" && grep -q "^verdict: different" "$work/out" && ok ||
+[[ $rc -eq 1 ]] && grep -q "BEYOND thresholds" "$work/out" && grep -q "PSNR min" "$work/out" && grep -q "^verdict: different" "$work/out" &&
+  grep -q "^    impostor levels: [0-9]* -> [0-9]* bytes" "$work/out" && ok ||
   bad "text report: exit $rc: $(head -5 "$work/out")"
 # looser thresholds: within
 "$diff" "$work/a" "$work/c" --min-psnr 5 --max-changed 1 --max-quad-change 1 >"$work/out"; rc=$?
