@@ -3,13 +3,68 @@
 
 #include <meshoptimizer.h>
 
+#include "core/color.h"
+
+#include <algorithm>
+#include <cmath>
+#include <array>
+#include <map>
 #include <stdexcept>
+#include <tuple>
 
 namespace qf {
+namespace {
+
+// The corners of the input's triangles at each vertex: (triangle, corner) pairs.
+std::vector<std::vector<std::pair<std::uint32_t, std::uint8_t>>> corners_at(const TriangleMesh& mesh) {
+  std::vector<std::vector<std::pair<std::uint32_t, std::uint8_t>>> at(mesh.positions.size());
+  for (std::uint32_t t = 0; t < mesh.triangles.size(); ++t)
+    for (std::uint8_t k = 0; k < 3; ++k) at[mesh.triangles[t][k]].push_back({t, k});
+  return at;
+}
+
+// A kept triangle's material and corner UVs, from the input triangles around its corners: the
+// material of the input triangle sharing most of its corners (the lowest-numbered among ties); each
+// corner's UV from that triangle where it is one of its corners, else the corner's UV (in that
+// material) nearest that triangle's mean UV, so that a corner on a texture seam takes the side the
+// rest of the triangle lies on.
+void transfer_surface(const TriangleMesh& mesh, const std::vector<std::vector<std::pair<std::uint32_t, std::uint8_t>>>& at,
+                      const Triangle& kept, std::array<Vec2f, 3>& uv, std::uint32_t& material) {
+  std::uint32_t best = 0;
+  int best_shared = -1;
+  for (std::uint32_t v : kept)
+    for (const auto& [t, k] : at[v]) {
+      int shared = 0;
+      for (std::uint32_t w : mesh.triangles[t]) shared += w == kept[0] || w == kept[1] || w == kept[2];
+      if (shared > best_shared || (shared == best_shared && t < best)) best_shared = shared, best = t;
+    }
+  material = mesh.triangle_materials.empty() ? 0 : mesh.triangle_materials[best];
+  if (mesh.corner_uvs.empty()) return;
+  const std::array<Vec2f, 3>& own = mesh.corner_uvs[best];
+  const Vec2f mean{(own[0].x + own[1].x + own[2].x) / 3, (own[0].y + own[1].y + own[2].y) / 3};
+  for (std::size_t c = 0; c < 3; ++c) {
+    double nearest = INFINITY;
+    for (std::size_t k = 0; k < 3; ++k)
+      if (mesh.triangles[best][k] == kept[c]) uv[c] = own[k], nearest = -1;
+    for (const auto& [t, k] : at[kept[c]]) {
+      if (nearest < 0) break;
+      if (!mesh.triangle_materials.empty() && mesh.triangle_materials[t] != material) continue;
+      const Vec2f w = mesh.corner_uvs[t][k];
+      const double d = std::hypot(w.x - mean.x, w.y - mean.y);
+      if (d < nearest) nearest = d, uv[c] = w;
+    }
+    if (nearest == INFINITY) uv[c] = mesh.corner_uvs[at[kept[c]][0].first][at[kept[c]][0].second];
+  }
+}
+
+}  // namespace
 
 SimplifiedMesh simplify_mesh(const TriangleMesh& mesh, std::size_t target_triangles) {
   if (mesh.triangles.empty()) throw std::invalid_argument("simplify_mesh: a mesh without triangles");
-  // 1. Collapse: no error bound (the budget decides), so the target error is the whole extent.
+  // 1. Collapse on the shared vertices, texture seams and material borders ignored: keeping them
+  //    closed held the spider's legs (their many seams) at their triangles while its abdomen was
+  //    collapsed away to meet the budget, and cut the silhouette's IoU at the 4x level from 0.81
+  //    to 0.74. No error bound (the budget decides), so the target error is the whole extent.
   std::vector<unsigned> indices;
   indices.reserve(mesh.triangles.size() * 3);
   for (const Triangle& t : mesh.triangles) indices.insert(indices.end(), t.begin(), t.end());
@@ -28,9 +83,71 @@ SimplifiedMesh simplify_mesh(const TriangleMesh& mesh, std::size_t target_triang
     out.mesh.positions[remap[v]] = mesh.positions[v];
     if (!out.mesh.colors.empty()) out.mesh.colors[remap[v]] = mesh.colors[v];
   }
-  for (std::size_t i = 0; i + 2 < kept.size(); i += 3) out.mesh.triangles.push_back({remap[kept[i]], remap[kept[i + 1]], remap[kept[i + 2]]});
+  // 3. The triangles, with materials and texture coordinates taken over from the input's.
+  const bool surface = !mesh.corner_uvs.empty() || !mesh.triangle_materials.empty();
+  const auto at = surface ? corners_at(mesh) : std::vector<std::vector<std::pair<std::uint32_t, std::uint8_t>>>{};
+  for (std::size_t i = 0; i + 2 < kept.size(); i += 3) {
+    out.mesh.triangles.push_back({remap[kept[i]], remap[kept[i + 1]], remap[kept[i + 2]]});
+    if (!surface) continue;
+    std::array<Vec2f, 3> uv{};
+    std::uint32_t material = 0;
+    transfer_surface(mesh, at, {kept[i], kept[i + 1], kept[i + 2]}, uv, material);
+    if (!mesh.corner_uvs.empty()) out.mesh.corner_uvs.push_back(uv);
+    if (!mesh.triangle_materials.empty()) out.mesh.triangle_materials.push_back(material);
+  }
+  out.mesh.materials = mesh.materials;
+  out.mesh.textures = mesh.textures;
   out.error = relative_error * meshopt_simplifyScale(&mesh.positions[0].x, mesh.positions.size(), sizeof(Vec3f));
   return out;
+}
+
+TextureImage halve_texture(const TextureImage& t) {
+  TextureImage h;
+  h.width = std::max(1, (t.width + 1) / 2), h.height = std::max(1, (t.height + 1) / 2);
+  h.rgba.resize(4 * static_cast<std::size_t>(h.width) * static_cast<std::size_t>(h.height));
+  for (int j = 0; j < h.height; ++j)
+    for (int i = 0; i < h.width; ++i) {
+      // The 2 x 2 texels (the last row or column repeated on odd sides), colour weighted by alpha
+      // and averaged in linear light, as a GPU's mipmap filter would.
+      double sum[3] = {0, 0, 0}, alpha = 0;
+      for (int dj = 0; dj < 2; ++dj)
+        for (int di = 0; di < 2; ++di) {
+          const std::size_t x = static_cast<std::size_t>(std::min(2 * i + di, t.width - 1));
+          const std::size_t y = static_cast<std::size_t>(std::min(2 * j + dj, t.height - 1));
+          const std::uint8_t* p = &t.rgba[4 * (y * static_cast<std::size_t>(t.width) + x)];
+          const double a = p[3] / 255.0;
+          for (int c = 0; c < 3; ++c) sum[c] += a * srgb8_to_linear(p[c]);
+          alpha += a;
+        }
+      std::uint8_t* q = &h.rgba[4 * (static_cast<std::size_t>(j) * static_cast<std::size_t>(h.width) + static_cast<std::size_t>(i))];
+      for (int c = 0; c < 3; ++c) q[c] = alpha > 0 ? linear_to_srgb8(sum[c] / alpha) : 0;
+      q[3] = static_cast<std::uint8_t>(std::lround(alpha / 4 * 255));
+    }
+  return h;
+}
+
+void fit_textures(TriangleMesh& mesh, int max_side) {
+  for (TextureImage& t : mesh.textures)
+    while (std::max(t.width, t.height) > std::max(1, max_side)) t = halve_texture(t);
+}
+
+std::vector<Vec3f> smooth_normals(const TriangleMesh& mesh) {
+  // Area-weighted face normals summed per position, so vertices split at a seam share one normal.
+  std::map<std::tuple<float, float, float>, Vec3f> at;
+  const auto key = [](Vec3f p) { return std::make_tuple(p.x, p.y, p.z); };
+  for (const Triangle& t : mesh.triangles) {
+    const Vec3f n = cross(mesh.positions[t[1]] - mesh.positions[t[0]], mesh.positions[t[2]] - mesh.positions[t[0]]);
+    for (std::uint32_t v : t) {
+      Vec3f& s = at[key(mesh.positions[v])];
+      s = s + n;
+    }
+  }
+  std::vector<Vec3f> normals(mesh.positions.size());
+  for (std::size_t v = 0; v < normals.size(); ++v) {
+    const Vec3f n = at.count(key(mesh.positions[v])) ? at[key(mesh.positions[v])] : Vec3f{0, 0, 0};
+    normals[v] = dot(n, n) > 0 ? normalized(n) : Vec3f{0, 0, 1};
+  }
+  return normals;
 }
 
 }  // namespace qf

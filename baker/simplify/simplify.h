@@ -15,8 +15,21 @@ struct SimplifiedMesh {
 
 // Collapses edges until at most `target_triangles` remain (or no collapse keeps the topology:
 // then fewer are removed; the result says how many are left). Vertex colours follow their
-// vertices; normals are left to the writer. Deterministic. Throws std::invalid_argument on a
-// mesh without triangles.
+// vertices; a mesh with materials or texture coordinates keeps its materials and textures, and
+// each kept triangle takes its material and corner UVs from the input triangles around it (seams
+// are collapsed across; a corner on one takes the side of the rest of its triangle); normals are
+// left to the writer. Deterministic. Throws std::invalid_argument on a mesh without triangles.
 SimplifiedMesh simplify_mesh(const TriangleMesh& mesh, std::size_t target_triangles);
+
+// A texture at half its size (sides rounded up): each texel the mean of 2 x 2, colours weighted by
+// alpha and averaged in linear light.
+TextureImage halve_texture(const TextureImage& texture);
+
+// Halves each of the mesh's textures until its longer side is at most `max_side` texels.
+void fit_textures(TriangleMesh& mesh, int max_side);
+
+// Smooth vertex normals: area-weighted face normals summed over the vertices at one position (the
+// copies of a vertex split at a seam get the same normal).
+std::vector<Vec3f> smooth_normals(const TriangleMesh& mesh);
 
 }  // namespace qf

@@ -1,0 +1,97 @@
+// Mesh LODs by edge collapse (baker/simplify): a textured mesh keeps its materials and texture
+// coordinates, and its textures can be halved for small screens.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/color.h"
+#include "simplify/simplify.h"
+
+namespace qf {
+namespace {
+
+// A bumpy n x n grid over [0,1]^2 (z varies, so collapses have a cost), UV = (x, y) at every
+// corner; with `split`, the triangles left of x = 0.5 have material 0 and the others material 1.
+TriangleMesh textured_grid(int n, bool split) {
+  TriangleMesh m;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const float x = float(i) / float(n), y = float(j) / float(n);
+      m.positions.push_back({x, y, 0.05f * std::sin(7.0f * x) * std::cos(5.0f * y)});
+    }
+  const auto id = [&](int i, int j) { return static_cast<std::uint32_t>(j * (n + 1) + i); };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i)
+      for (const Triangle& t : {Triangle{id(i, j), id(i + 1, j), id(i + 1, j + 1)}, Triangle{id(i, j), id(i + 1, j + 1), id(i, j + 1)}}) {
+        m.triangles.push_back(t);
+        std::array<Vec2f, 3> uv;
+        for (std::size_t k = 0; k < 3; ++k) uv[k] = {m.positions[t[k]].x, m.positions[t[k]].y};
+        m.corner_uvs.push_back(uv);
+        m.triangle_materials.push_back(split && 2 * i + 1 > n ? 1u : 0u);
+      }
+  m.materials.resize(split ? 2 : 1);
+  m.materials[0].texture = 0;
+  m.textures.push_back({2, 2, std::vector<std::uint8_t>(16, 200)});
+  return m;
+}
+
+TEST(Simplify, TexturedMeshKeepsItsTextureCoordinates) {
+  const TriangleMesh in = textured_grid(24, false);
+  const SimplifiedMesh s = simplify_mesh(in, in.triangles.size() / 8);
+  ASSERT_LT(s.mesh.triangles.size(), in.triangles.size() / 4);
+  ASSERT_EQ(s.mesh.corner_uvs.size(), s.mesh.triangles.size());
+  ASSERT_EQ(s.mesh.triangle_materials.size(), s.mesh.triangles.size());
+  EXPECT_EQ(s.mesh.materials.size(), 1u);
+  EXPECT_EQ(s.mesh.textures.size(), 1u);
+  // No seam here: every kept corner has the UV the input had at that position.
+  for (std::size_t t = 0; t < s.mesh.triangles.size(); ++t)
+    for (std::size_t k = 0; k < 3; ++k) {
+      const Vec3f p = s.mesh.positions[s.mesh.triangles[t][k]];
+      EXPECT_FLOAT_EQ(s.mesh.corner_uvs[t][k].x, p.x);
+      EXPECT_FLOAT_EQ(s.mesh.corner_uvs[t][k].y, p.y);
+    }
+}
+
+TEST(Simplify, TrianglesTakeTheMaterialOfTheirSide) {
+  const TriangleMesh in = textured_grid(24, true);
+  const SimplifiedMesh s = simplify_mesh(in, in.triangles.size() / 8);
+  // Triangles well inside one half (centroid at least 0.2 from the border) have its material.
+  std::size_t checked = 0;
+  for (std::size_t t = 0; t < s.mesh.triangles.size(); ++t) {
+    float x = 0;
+    for (std::uint32_t v : s.mesh.triangles[t]) x += s.mesh.positions[v].x / 3;
+    if (x > 0.3f && x < 0.7f) continue;
+    EXPECT_EQ(s.mesh.triangle_materials[t], x <= 0.3f ? 0u : 1u) << "centroid x " << x;
+    ++checked;
+  }
+  EXPECT_GT(checked, s.mesh.triangles.size() / 4);
+}
+
+TEST(Simplify, UntexturedMeshGetsNoSurfaceAttributes) {
+  TriangleMesh in = textured_grid(16, false);
+  in.corner_uvs.clear(), in.triangle_materials.clear(), in.materials.clear(), in.textures.clear();
+  const SimplifiedMesh s = simplify_mesh(in, 64);
+  EXPECT_LE(s.mesh.triangles.size(), 64u);
+  EXPECT_TRUE(s.mesh.corner_uvs.empty() && s.mesh.triangle_materials.empty() && s.mesh.materials.empty());
+}
+
+TEST(Simplify, HalvedTextureAveragesInLinearLightWeightedByAlpha) {
+  // Red and blue opaque over two transparent texels: half coverage, the colours' linear mean.
+  TextureImage t{2, 2, {255, 0, 0, 255, 0, 0, 255, 255, 0, 255, 0, 0, 0, 255, 0, 0}};
+  const TextureImage h = halve_texture(t);
+  ASSERT_EQ(h.width, 1);
+  ASSERT_EQ(h.height, 1);
+  EXPECT_EQ(h.rgba[0], linear_to_srgb8(0.5));
+  EXPECT_EQ(h.rgba[1], 0);  // the transparent texels' green does not show
+  EXPECT_EQ(h.rgba[2], linear_to_srgb8(0.5));
+  EXPECT_EQ(h.rgba[3], 128);
+  // Odd sides round up; fit_textures halves until the longer side fits.
+  TriangleMesh m;
+  m.textures.push_back({5, 3, std::vector<std::uint8_t>(60, 255)});
+  fit_textures(m, 2);
+  EXPECT_EQ(m.textures[0].width, 2);
+  EXPECT_EQ(m.textures[0].height, 1);
+}
+
+}  // namespace
+}  // namespace qf
