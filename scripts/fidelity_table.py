@@ -4,9 +4,11 @@ level (engine method and the paper's overlap method) against meshoptimizer's sim
 many triangles (a quad is two triangles; flat and smooth normals) and the vertex-clustering LOD
 nearest that triangle count, all measured by `qf-render eval` against the input drawn the same way
 (the engine method: as three.js r187 draws glTF; tests/render/three_test.sh holds it to three.js).
-Prints one table per image size and a summary of the issue's targets.
+Prints one table per image size and a summary of the issue's targets. The size "own" draws each
+impostor level, and its peers, at the level's own max_screen_pixels (at least 16): the largest
+size it is meant for, where a LOD chain switching by the manifest shows it.
 
-usage: fidelity_table.py BIN_DIR MODELS_DIR WORK_DIR [--sizes 256,64] [--views 8]
+usage: fidelity_table.py BIN_DIR MODELS_DIR WORK_DIR [--sizes 256,64,own] [--views 8]
                          [--budgets 30,100,300,1000] [--models bunny00.off,...]
 """
 import argparse
@@ -39,7 +41,7 @@ def main():
     ap.add_argument("bins")
     ap.add_argument("models")
     ap.add_argument("work")
-    ap.add_argument("--sizes", default="256,64")
+    ap.add_argument("--sizes", default="256,64,own")
     ap.add_argument("--views", default="8")
     ap.add_argument("--budgets", default="30,100,300,1000")
     ap.add_argument("--models", dest="names", default="bunny00.off,fandisk.off,elephant.off,ChineseDragon-10kv.off,b9_training.ply")
@@ -67,10 +69,12 @@ def main():
                 c = min(clusters, key=lambda l: abs(l["triangles"] - 2 * quads))
                 peers["cluster"] = (os.path.join(out, c["file"]), c["triangles"])
             for size in sizes:
-                engine, overlap = evaluate(a.bins, src, glb, size, a.views, False)
-                row = {"model": stem, "quads": quads, "size": size, "bytes": os.path.getsize(glb), "engine": engine, "overlap": overlap}
+                px = str(max(16, min(1024, level["max_screen_pixels"]))) if size == "own" else size
+                engine, overlap = evaluate(a.bins, src, glb, px, a.views, False)
+                row = {"model": stem, "quads": quads, "size": size, "pixels": px, "bytes": os.path.getsize(glb), "engine": engine,
+                       "overlap": overlap}
                 for peer, (f, tris) in peers.items():
-                    m, _ = evaluate(a.bins, src, f, size, a.views, True)
+                    m, _ = evaluate(a.bins, src, f, px, a.views, True)
                     row[peer] = dict(m, triangles=tris, bytes=os.path.getsize(f))
                 rows.append(row)
 
@@ -80,12 +84,13 @@ def main():
         return f"{m['psnr']:5.2f} {m['iou']:.3f} {100 * m['holes']:4.1f}%"
 
     for size in sizes:
-        print(f"\n### {size}x{size}, {a.views} views: PSNR dB, IoU, holes; bytes (engine method unless named)\n")
-        print("| model | quads | impostor (engine) | overlap | bytes | simplify flat (tris) | simplify smooth | bytes | cluster (tris) |")
-        print("|---|---|---|---|---|---|---|---|---|")
+        what = "each level at its own max_screen_pixels (px)" if size == "own" else f"{size}x{size}"
+        print(f"\n### {what}, {a.views} views: PSNR dB, IoU, holes; bytes (engine method unless named)\n")
+        print("| model | quads | px | impostor (engine) | overlap | bytes | simplify flat (tris) | simplify smooth | bytes | cluster (tris) |")
+        print("|---|---|---|---|---|---|---|---|---|---|")
         for r in (r for r in rows if r["size"] == size):
             sf, ss, cl = r.get("simplify flat"), r.get("simplify smooth"), r.get("cluster")
-            print(f"| {r['model']} | {r['quads']} | {cell(r['engine'])} | {cell(r['overlap'])} | {r['bytes']:,} | "
+            print(f"| {r['model']} | {r['quads']} | {r['pixels']} | {cell(r['engine'])} | {cell(r['overlap'])} | {r['bytes']:,} | "
                   + (f"{cell(sf)} ({sf['triangles']}) | {cell(ss)} | {ss['bytes']:,} | {cell(cl)} ({cl['triangles']}) |" if sf else "- | - | - | - |"))
     # The issue's targets: per budget band, impostor (engine) vs the better simplify.
     print("\n### impostor (engine) vs the better of simplify flat/smooth (mesh inputs)\n")
