@@ -56,6 +56,24 @@ TextureOptions level_texture_options(const BakeOptions& o, double diagonal, doub
   return t;
 }
 
+// Every quad's texture (resample_texture), largest domains first, one at a time: a coarse level
+// has a few big domains, and handed out in index order, in fours, one thread was left with most of
+// the work. Each texture depends on its domain alone, so the order changes no byte.
+std::vector<Texture> level_textures(const PointSet& points, const std::vector<Vec3f>& normals, const SparseMatrix& alpha,
+                                    const Domains& d, const std::vector<SupportRect>& rects, const TextureOptions& texture) {
+  std::vector<std::size_t> by_size(rects.size());
+  for (std::size_t k = 0; k < by_size.size(); ++k) by_size[k] = k;
+  const auto domain_points = [&](std::size_t k) { return d.offsets[rects[k].domain + 1] - d.offsets[rects[k].domain]; };
+  std::stable_sort(by_size.begin(), by_size.end(), [&](std::size_t a, std::size_t b) { return domain_points(a) > domain_points(b); });
+  std::vector<Texture> textures(rects.size());
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::ptrdiff_t q = 0; q < static_cast<std::ptrdiff_t>(by_size.size()); ++q) {
+    const std::size_t k = by_size[static_cast<std::size_t>(q)];
+    textures[k] = resample_texture(points.positions, points.colors, normals, points.radii, alpha, d, rects[k], texture);
+  }
+  return textures;
+}
+
 }  // namespace
 
 // --merge with --primitives counts the quads delivered, after merging: every level of up to
@@ -236,18 +254,7 @@ BakeResult bake(const PointSet& input, const BakeOptions& o, const std::string& 
     out.max_screen_pixels = out.error > 0 ? std::min(0.5 * r.diagonal / out.error, 1e9) : 1e9;
     const TextureOptions texture = level_texture_options(o, r.diagonal, out.max_screen_pixels);
     out.texel = texture.min_texel;
-    // Largest domains first, one at a time: a coarse level has a few big domains, and handed out
-    // in index order, in fours, one thread was left with most of the work.
-    std::vector<std::size_t> by_size(rects.size());
-    for (std::size_t k = 0; k < by_size.size(); ++k) by_size[k] = k;
-    const auto domain_points = [&](std::size_t k) { return d.offsets[rects[k].domain + 1] - d.offsets[rects[k].domain]; };
-    std::stable_sort(by_size.begin(), by_size.end(), [&](std::size_t a, std::size_t b) { return domain_points(a) > domain_points(b); });
-    std::vector<Texture> textures(rects.size());
-#pragma omp parallel for schedule(dynamic, 1)
-    for (std::ptrdiff_t q = 0; q < static_cast<std::ptrdiff_t>(by_size.size()); ++q) {
-      const std::size_t k = by_size[static_cast<std::size_t>(q)];
-      textures[k] = resample_texture(points.positions, points.colors, normals, points.radii, alpha, d, rects[k], texture);
-    }
+    std::vector<Texture> textures = level_textures(points, normals, alpha, d, rects, texture);
     watch.lap("level " + std::to_string(level) + " textures");
     for (const Texture& t : textures) out.texels += static_cast<std::size_t>(t.width) * static_cast<std::size_t>(t.height);
     // The level's per-point matrices are done with; its textures once packed into the atlas (at

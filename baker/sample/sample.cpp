@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
+#include <type_traits>
 
 #include "core/error.h"
 #include "core/random.h"
@@ -63,88 +64,127 @@ SampleGrid sample_grid(const TriangleMesh& mesh, int ldi_size) {
   return g;
 }
 
-PointSet points_from_layers(const TriangleMesh& mesh, const SampleGrid& grid, const std::array<AxisLayers, 3>& layers,
-                            SampleStats* stats) {
-  std::vector<FaceNormal> normals(mesh.triangles.size());
-  std::vector<int> axis_of(mesh.triangles.size());
+namespace {
+
+// What every pixel of every axis needs about the mesh, computed once.
+struct MeshFacts {
+  std::vector<FaceNormal> normals;
+  std::vector<int> axis_of;  // sampling axis per triangle (-1: degenerate)
+  bool smooth, coloured, materials, shaded;
+};
+
+MeshFacts mesh_facts(const TriangleMesh& mesh) {
+  MeshFacts f;
+  f.normals.resize(mesh.triangles.size());
+  f.axis_of.resize(mesh.triangles.size());
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    normals[t] = face_normal(mesh, t);
-    axis_of[t] = largest_component(normals[t]);
+    f.normals[t] = face_normal(mesh, t);
+    f.axis_of[t] = largest_component(f.normals[t]);
   }
-  const bool smooth = mesh.normals.size() == mesh.positions.size();
-  const bool coloured = mesh.colors.size() == mesh.positions.size();
+  f.smooth = mesh.normals.size() == mesh.positions.size();
+  f.coloured = mesh.colors.size() == mesh.positions.size();
   // Material meshes (glTF, OBJ + MTL) take their colour as glTF defines it; meshes without
   // materials (PLY, OFF) keep their vertex colours interpolated as stored, as they always were.
-  const bool materials = !mesh.triangle_materials.empty();
-  const bool shaded = materials && mesh.has_surface_color();
+  f.materials = !mesh.triangle_materials.empty();
+  f.shaded = f.materials && mesh.has_surface_color();
+  return f;
+}
+
+// The points of image rows [j0, j1) of the layers `L`, in pixel order, appended to `out`.
+void row_points(const TriangleMesh& mesh, const SampleGrid& grid, const AxisLayers& L, const MeshFacts& m, int j0, int j1,
+                PointSet& out) {
+  const int a = L.axis, u = (a + 1) % 3, v = (a + 2) % 3;
   const double s = grid.pixel;
+  for (int j = j0; j < j1; ++j)
+    for (int i = 0; i < L.width; ++i) {
+      const std::size_t p = static_cast<std::size_t>(j) * static_cast<std::size_t>(L.width) + static_cast<std::size_t>(i);
+      for (std::uint32_t f = L.offsets[p]; f < L.offsets[p + 1]; ++f) {
+        const std::uint32_t t = L.triangles[f];
+        if (m.axis_of[t] != a) continue;  // another axis samples this patch
+        const Triangle& tri = mesh.triangles[t];
+        const FaceNormal& n = m.normals[t];
+        // 1. The pixel centre on the triangle's plane.
+        const double pu = grid.origin[u] + (i + 0.5) * s, pv = grid.origin[v] + (j + 0.5) * s;
+        const Vec3f A = mesh.positions[tri[0]];
+        const double pa = A[a] - (n.n[u] * (pu - A[u]) + n.n[v] * (pv - A[v])) / n.n[a];
+        Vec3f pos;
+        pos[a] = static_cast<float>(pa), pos[u] = static_cast<float>(pu), pos[v] = static_cast<float>(pv);
+        // 2. Barycentric weights in the image plane (clamped: GL may find a triangle for a
+        //    centre a hair outside it).
+        double w[3];
+        const Vec3f B = mesh.positions[tri[1]], C = mesh.positions[tri[2]];
+        const double det = (double(B[u]) - A[u]) * (double(C[v]) - A[v]) - (double(B[v]) - A[v]) * (double(C[u]) - A[u]);
+        w[1] = ((pu - A[u]) * (double(C[v]) - A[v]) - (pv - A[v]) * (double(C[u]) - A[u])) / det;
+        w[2] = ((double(B[u]) - A[u]) * (pv - A[v]) - (double(B[v]) - A[v]) * (pu - A[u])) / det;
+        w[0] = 1 - w[1] - w[2];
+        double sum = 0;
+        for (double& x : w) sum += (x = std::clamp(x, 0.0, 1.0));
+        for (double& x : w) x /= sum;
+        SurfaceColor material;
+        if (m.materials) {
+          material = surface_color(mesh, t, w);
+          if (!material.surface) continue;  // an alpha cut-out: no surface here
+        }
+        out.positions.push_back(pos);
+        // 3. Normal, colour, radius.
+        Vec3f normal{static_cast<float>(n.n[0]), static_cast<float>(n.n[1]), static_cast<float>(n.n[2])};
+        if (m.smooth) {
+          Vec3f sm{};
+          for (int k = 0; k < 3; ++k) sm = sm + mesh.normals[tri[static_cast<std::size_t>(k)]] * static_cast<float>(w[k]);
+          normal = normalized(sm, normal);
+        }
+        out.normals.push_back(normal);
+        if (m.shaded) {
+          out.colors.push_back(material.color);
+        } else if (m.coloured) {
+          double c[3] = {0, 0, 0};
+          for (int k = 0; k < 3; ++k) {
+            const Rgb8 col = mesh.colors[tri[static_cast<std::size_t>(k)]];
+            c[0] += w[k] * col.r, c[1] += w[k] * col.g, c[2] += w[k] * col.b;
+          }
+          out.colors.push_back({static_cast<std::uint8_t>(std::lround(c[0])), static_cast<std::uint8_t>(std::lround(c[1])),
+                                static_cast<std::uint8_t>(std::lround(c[2]))});
+        }
+        out.radii.push_back(static_cast<float>(0.5 * s * std::sqrt(1 + 1 / (n.n[a] * n.n[a]))));
+      }
+    }
+}
+
+// Moves `part`'s points to the end of `out`.
+void append_points(PointSet& out, PointSet& part) {
+  const auto move = [](auto& dst, auto& src) {
+    dst.insert(dst.end(), src.begin(), src.end());
+    std::decay_t<decltype(src)>().swap(src);
+  };
+  move(out.positions, part.positions), move(out.normals, part.normals), move(out.colors, part.colors), move(out.radii, part.radii);
+}
+
+}  // namespace
+
+PointSet points_from_layers(const TriangleMesh& mesh, const SampleGrid& grid, const std::array<AxisLayers, 3>& layers,
+                            SampleStats* stats) {
+  const MeshFacts facts = mesh_facts(mesh);
   PointSet out;
   for (const AxisLayers& L : layers) {
-    const int a = L.axis, u = (a + 1) % 3, v = (a + 2) % 3;
-    std::size_t kept = 0;
-    for (int j = 0; j < L.height; ++j)
-      for (int i = 0; i < L.width; ++i) {
-        const std::size_t p = static_cast<std::size_t>(j) * static_cast<std::size_t>(L.width) + static_cast<std::size_t>(i);
-        for (std::uint32_t f = L.offsets[p]; f < L.offsets[p + 1]; ++f) {
-          const std::uint32_t t = L.triangles[f];
-          if (axis_of[t] != a) continue;  // another axis samples this patch
-          const Triangle& tri = mesh.triangles[t];
-          const FaceNormal& n = normals[t];
-          // 1. The pixel centre on the triangle's plane.
-          const double pu = grid.origin[u] + (i + 0.5) * s, pv = grid.origin[v] + (j + 0.5) * s;
-          const Vec3f A = mesh.positions[tri[0]];
-          const double pa = A[a] - (n.n[u] * (pu - A[u]) + n.n[v] * (pv - A[v])) / n.n[a];
-          Vec3f pos;
-          pos[a] = static_cast<float>(pa), pos[u] = static_cast<float>(pu), pos[v] = static_cast<float>(pv);
-          // 2. Barycentric weights in the image plane (clamped: GL may find a triangle for a
-          //    centre a hair outside it).
-          double w[3];
-          const Vec3f B = mesh.positions[tri[1]], C = mesh.positions[tri[2]];
-          const double det = (double(B[u]) - A[u]) * (double(C[v]) - A[v]) - (double(B[v]) - A[v]) * (double(C[u]) - A[u]);
-          w[1] = ((pu - A[u]) * (double(C[v]) - A[v]) - (pv - A[v]) * (double(C[u]) - A[u])) / det;
-          w[2] = ((double(B[u]) - A[u]) * (pv - A[v]) - (double(B[v]) - A[v]) * (pu - A[u])) / det;
-          w[0] = 1 - w[1] - w[2];
-          double sum = 0;
-          for (double& x : w) sum += (x = std::clamp(x, 0.0, 1.0));
-          for (double& x : w) x /= sum;
-          SurfaceColor material;
-          if (materials) {
-            material = surface_color(mesh, t, w);
-            if (!material.surface) continue;  // an alpha cut-out: no surface here
-          }
-          out.positions.push_back(pos);
-          // 3. Normal, colour, radius.
-          Vec3f normal{static_cast<float>(n.n[0]), static_cast<float>(n.n[1]), static_cast<float>(n.n[2])};
-          if (smooth) {
-            Vec3f m{};
-            for (int k = 0; k < 3; ++k) m = m + mesh.normals[tri[static_cast<std::size_t>(k)]] * static_cast<float>(w[k]);
-            normal = normalized(m, normal);
-          }
-          out.normals.push_back(normal);
-          if (shaded) {
-            out.colors.push_back(material.color);
-          } else if (coloured) {
-            double c[3] = {0, 0, 0};
-            for (int k = 0; k < 3; ++k) {
-              const Rgb8 col = mesh.colors[tri[static_cast<std::size_t>(k)]];
-              c[0] += w[k] * col.r, c[1] += w[k] * col.g, c[2] += w[k] * col.b;
-            }
-            out.colors.push_back({static_cast<std::uint8_t>(std::lround(c[0])), static_cast<std::uint8_t>(std::lround(c[1])),
-                                  static_cast<std::uint8_t>(std::lround(c[2]))});
-          }
-          out.radii.push_back(static_cast<float>(0.5 * s * std::sqrt(1 + 1 / (n.n[a] * n.n[a]))));
-          ++kept;
-        }
-      }
+    // Blocks of rows on both cores (a textured mesh spends most of its sampling here, in texture
+    // lookups), joined in row order: the points do not depend on the thread count.
+    constexpr int kRows = 8;
+    const int blocks = (L.height + kRows - 1) / kRows;
+    std::vector<PointSet> parts(static_cast<std::size_t>(std::max(blocks, 0)));
+#pragma omp parallel for schedule(dynamic, 1)
+    for (int b = 0; b < blocks; ++b)
+      row_points(mesh, grid, L, facts, b * kRows, std::min(L.height, (b + 1) * kRows), parts[static_cast<std::size_t>(b)]);
+    const std::size_t before = out.size();
+    for (PointSet& part : parts) append_points(out, part);
     if (stats) {
-      stats->layers[static_cast<std::size_t>(a)] = L.layers;
-      stats->points[static_cast<std::size_t>(a)] = kept;
+      stats->layers[static_cast<std::size_t>(L.axis)] = L.layers;
+      stats->points[static_cast<std::size_t>(L.axis)] = out.size() - before;
       stats->fragments += L.triangles.size();
     }
   }
   if (stats) {
     stats->pixel = grid.pixel;
-    stats->degenerate_triangles = static_cast<std::size_t>(std::count(axis_of.begin(), axis_of.end(), -1));
+    stats->degenerate_triangles = static_cast<std::size_t>(std::count(facts.axis_of.begin(), facts.axis_of.end(), -1));
   }
   return out;
 }
