@@ -5,6 +5,8 @@
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
+#include <map>
+#include <tuple>
 
 namespace qf {
 
@@ -46,6 +48,25 @@ static Bounds bounds_of(const std::vector<Vec3f>& points) {
 
 Bounds PointSet::bounds() const { return bounds_of(positions); }
 Bounds TriangleMesh::bounds() const { return bounds_of(positions); }
+
+std::vector<Vec3f> TriangleMesh::smooth_normals() const {
+  // Area-weighted face normals summed per position, so vertices split at a seam share one normal.
+  std::map<std::tuple<float, float, float>, Vec3f> at;
+  const auto key = [](Vec3f p) { return std::make_tuple(p.x, p.y, p.z); };
+  for (const Triangle& t : triangles) {
+    const Vec3f n = cross(positions[t[1]] - positions[t[0]], positions[t[2]] - positions[t[0]]);
+    for (std::uint32_t v : t) {
+      Vec3f& s = at[key(positions[v])];
+      s = s + n;
+    }
+  }
+  std::vector<Vec3f> normals(positions.size(), Vec3f{0, 0, 1});
+  for (std::size_t v = 0; v < normals.size(); ++v) {
+    const auto it = at.find(key(positions[v]));
+    if (it != at.end() && dot(it->second, it->second) > 0) normals[v] = normalized(it->second);
+  }
+  return normals;
+}
 
 template <class T>
 static std::size_t bytes(const std::vector<T>& v) {

@@ -132,6 +132,10 @@ struct TriangleMesh {
   // a base colour other than white.
   bool has_surface_color() const;
 
+  // Smooth vertex normals: area-weighted face normals summed over the vertices at one position
+  // (copies of a vertex split at a texture seam get the same normal); (0, 0, 1) where they cancel.
+  std::vector<Vec3f> smooth_normals() const;
+
   Bounds bounds() const;
   std::size_t memory_bytes() const;
 };

@@ -511,16 +511,8 @@ std::vector<std::uint8_t> encode_mesh_glb(const TriangleMesh& mesh, bool smooth_
   prim.material = 0;
   prim.attributes["POSITION"] = add_floats(m, pos, 3, TINYGLTF_TYPE_VEC3, true);
   if (smooth_normals) {
-    std::vector<Vec3f> vn(mesh.positions.size());
-    for (const Triangle& t : mesh.triangles) {
-      const Vec3f n = cross(mesh.positions[t[1]] - mesh.positions[t[0]], mesh.positions[t[2]] - mesh.positions[t[0]]);
-      for (std::uint32_t v : t) vn[v] = vn[v] + n;
-    }
     std::vector<float> nrm;
-    for (Vec3f n : vn) {
-      const Vec3f u = dot(n, n) > 0 ? normalized(n) : Vec3f{0, 0, 1};
-      nrm.insert(nrm.end(), {u.x, u.y, u.z});
-    }
+    for (Vec3f n : mesh.smooth_normals()) nrm.insert(nrm.end(), {n.x, n.y, n.z});
     prim.attributes["NORMAL"] = add_floats(m, nrm, 3, TINYGLTF_TYPE_VEC3, false);
   }
   if (coloured) prim.attributes["COLOR_0"] = add_colors(m, mesh.colors);

@@ -55,7 +55,7 @@ nlohmann::json simplify_level_files(const TriangleMesh& mesh, const std::vector<
     // and 1x scored 16.25, 16.24 and 16.12 dB in 100, 39 and 22 KB); others get the LOD material.
     const double max_screen_pixels = s.error > 0 ? std::min(0.5 * diagonal / s.error, 1e9) : 1e9;
     const bool own_materials = !s.mesh.materials.empty();
-    if (own_materials && smooth) s.mesh.normals = smooth_normals(s.mesh);
+    if (own_materials && smooth) s.mesh.normals = s.mesh.smooth_normals();
     if (own_materials) fit_textures(s.mesh, static_cast<int>(std::min(2 * max_screen_pixels, 16384.0)));
     // Double-sided, as the LOD material and the impostor levels are: a collapsed thin part (a leg,
     // a leaf) may show its back faces.

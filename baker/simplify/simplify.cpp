@@ -131,23 +131,4 @@ void fit_textures(TriangleMesh& mesh, int max_side) {
     while (std::max(t.width, t.height) > std::max(1, max_side)) t = halve_texture(t);
 }
 
-std::vector<Vec3f> smooth_normals(const TriangleMesh& mesh) {
-  // Area-weighted face normals summed per position, so vertices split at a seam share one normal.
-  std::map<std::tuple<float, float, float>, Vec3f> at;
-  const auto key = [](Vec3f p) { return std::make_tuple(p.x, p.y, p.z); };
-  for (const Triangle& t : mesh.triangles) {
-    const Vec3f n = cross(mesh.positions[t[1]] - mesh.positions[t[0]], mesh.positions[t[2]] - mesh.positions[t[0]]);
-    for (std::uint32_t v : t) {
-      Vec3f& s = at[key(mesh.positions[v])];
-      s = s + n;
-    }
-  }
-  std::vector<Vec3f> normals(mesh.positions.size());
-  for (std::size_t v = 0; v < normals.size(); ++v) {
-    const Vec3f n = at.count(key(mesh.positions[v])) ? at[key(mesh.positions[v])] : Vec3f{0, 0, 0};
-    normals[v] = dot(n, n) > 0 ? normalized(n) : Vec3f{0, 0, 1};
-  }
-  return normals;
-}
-
 }  // namespace qf

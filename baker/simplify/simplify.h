@@ -28,8 +28,5 @@ TextureImage halve_texture(const TextureImage& texture);
 // Halves each of the mesh's textures until its longer side is at most `max_side` texels.
 void fit_textures(TriangleMesh& mesh, int max_side);
 
-// Smooth vertex normals: area-weighted face normals summed over the vertices at one position (the
-// copies of a vertex split at a seam get the same normal).
-std::vector<Vec3f> smooth_normals(const TriangleMesh& mesh);
 
 }  // namespace qf
