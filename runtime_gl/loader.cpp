@@ -48,24 +48,34 @@ bool load_image_checked(tinygltf::Image* image, const int index, std::string* er
   return tinygltf::LoadImageData(image, index, err, warn, width, height, bytes, size, nullptr);
 }
 
-tinygltf::Model read_gltf(const std::string& path) {
-  if (!std::filesystem::is_regular_file(path)) throw InputError("file.unreadable", path, "", "cannot open: no such file");
+// Parses a glTF file, or (`glb`, a .glb file's bytes) the same from memory; errors name `path`.
+tinygltf::Model parse_gltf(const std::string& path, const std::vector<std::uint8_t>* glb) {
+  if (!glb && !std::filesystem::is_regular_file(path)) throw InputError("file.unreadable", path, "", "cannot open: no such file");
   tinygltf::Model m;
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(&load_image_checked, &m);
   std::string err, warn;
-  const bool binary = path.size() >= 4 && path.compare(path.size() - 4, 4, ".glb") == 0;
-  const bool ok = binary ? loader.LoadBinaryFromFile(&m, &err, &warn, path) : loader.LoadASCIIFromFile(&m, &err, &warn, path);
+  const bool binary = glb || (path.size() >= 4 && path.compare(path.size() - 4, 4, ".glb") == 0);
+  const bool ok = glb ? loader.LoadBinaryFromMemory(&m, &err, &warn, glb->data(), static_cast<unsigned int>(glb->size()))
+                  : binary ? loader.LoadBinaryFromFile(&m, &err, &warn, path)
+                           : loader.LoadASCIIFromFile(&m, &err, &warn, path);
   if (!ok) {
     while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
-    std::ifstream raw(path, std::ios::binary);
-    const std::string head(std::istreambuf_iterator<char>(raw), {});
+    std::string head;
+    if (glb) {
+      head.assign(glb->begin(), glb->end());
+    } else {
+      std::ifstream raw(path, std::ios::binary);
+      head.assign(std::istreambuf_iterator<char>(raw), {});
+    }
     if (head.find("KHR_draco_mesh_compression") != std::string::npos)
       fail(path, "draco", "requires KHR_draco_mesh_compression, which qf-render does not decode; render the uncompressed .glb");
     fail(path, "parse", err.empty() ? "not a readable glTF file" : err);
   }
   return m;
 }
+
+tinygltf::Model read_gltf(const std::string& path) { return parse_gltf(path, nullptr); }
 
 // COLOR_0 as the baker writes it (normalized 16-bit linear RGBA) -> sRGB bytes; the base colour
 // when absent.
@@ -168,8 +178,10 @@ std::vector<int> lod_nodes(const tinygltf::Model& m, const std::vector<int>& roo
   return nodes;
 }
 
-BakedScene load_baked(const std::string& path) {
-  const tinygltf::Model m = read_gltf(path);  // parsed once, whatever it holds
+namespace {
+
+// The scene of a parsed file, whatever it holds.
+BakedScene baked_scene(const tinygltf::Model& m, const std::string& path) {
   BakedScene s;
   const std::vector<int> roots = scene_roots(m);
   std::vector<double> coverage;
@@ -204,6 +216,12 @@ BakedScene load_baked(const std::string& path) {
   }
   return s;
 }
+
+}  // namespace
+
+BakedScene load_baked(const std::string& path) { return baked_scene(read_gltf(path), path); }  // parsed once
+
+BakedScene load_baked(const std::vector<std::uint8_t>& glb, const std::string& name) { return baked_scene(parse_gltf(name, &glb), name); }
 
 ImpostorScene load_gltf(const std::string& path) { return impostor_scene(read_gltf(path), path); }
 

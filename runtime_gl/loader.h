@@ -2,6 +2,7 @@
 // present). References made from input files are tools/reference_scene.h.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -32,5 +33,7 @@ struct BakedScene {
   std::vector<double> lod_coverage;
 };
 BakedScene load_baked(const std::string& path);
+// The same from a .glb file's bytes in memory (images embedded); errors name `name`.
+BakedScene load_baked(const std::vector<std::uint8_t>& glb, const std::string& name);
 
 }  // namespace qf::render

@@ -37,21 +37,33 @@ void AnyScene::attach(Renderer& r) const {
   r.set_engine_scene(engine);
 }
 
-AnyScene load_scene(const std::string& path) {
+namespace {
+
+AnyScene from_baked(BakedScene b) {
   AnyScene s;
+  s.kind = b.kind == BakedScene::kPoints ? AnyScene::kPoints : b.kind == BakedScene::kCluster ? AnyScene::kCluster : AnyScene::kImpostor;
+  s.impostor = std::move(b.impostor);
+  s.points = std::move(b.points);
+  s.cluster = std::move(b.cluster);
+  s.engine = std::move(b.engine);
+  s.asset = b.asset;
+  s.lods = std::move(b.lods);
+  s.lod_coverage = std::move(b.lod_coverage);
+  return s;
+}
+
+}  // namespace
+
+AnyScene load_scene(const std::vector<std::uint8_t>& glb, const std::string& name) { return from_baked(load_baked(glb, name)); }
+
+AnyScene load_scene(const std::string& path) {
   const std::string ext = file_extension(path);
-  if (ext == "glb" || ext == "gltf") {
-    BakedScene b = load_baked(path);
-    s.kind = b.kind == BakedScene::kPoints ? AnyScene::kPoints : b.kind == BakedScene::kCluster ? AnyScene::kCluster : AnyScene::kImpostor;
-    s.impostor = std::move(b.impostor);
-    s.points = std::move(b.points);
-    s.cluster = std::move(b.cluster);
-    s.engine = std::move(b.engine);
-    s.asset = b.asset;
-    s.lods = std::move(b.lods);
-    s.lod_coverage = std::move(b.lod_coverage);
-    return s;
-  }
+  if (ext == "glb" || ext == "gltf") return from_baked(load_baked(path));
+  return load_input(path);
+}
+
+AnyScene load_input(const std::string& path) {
+  AnyScene s;
   Model m = read_model(path);
   if (m.is_mesh) {
     s.kind = AnyScene::kMesh;

@@ -3,6 +3,7 @@
 // are computed from (image_ops compare_renders).
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -43,6 +44,11 @@ struct AnyScene {
 // By extension: .glb/.gltf through load_baked, anything else through the model readers. Throws
 // InputError naming the file.
 AnyScene load_scene(const std::string& path);
+// An input file as the baker's readers read it (any format they take, glTF assets with their
+// materials too): a mesh, else a point set as splats.
+AnyScene load_input(const std::string& path);
+// A .glb file's bytes in memory, as load_scene reads the file; errors name `name`.
+AnyScene load_scene(const std::vector<std::uint8_t>& glb, const std::string& name);
 
 // The scene drawn from `c` over black and over white (coverage = 1 - (W - B) / 255).
 RenderPair render_pair(Renderer& r, const Camera& c, DrawSettings s);

@@ -317,6 +317,25 @@ OJson level_changes(const Json& a, const Json& b) {
   return OJson{{"levels", out}, {"bytes_total", {total[0], total[1]}}};
 }
 
+// A manifest's recommended chain as one line per side ("FILE to N px, P dB -> ..."), null on a side
+// without one; empty when the two chains are the same (or neither has one).
+OJson chain_changes(const Json& a, const Json& b) {
+  const auto line = [](const Json& m) {
+    if (!m.is_object() || !m.contains("recommended_chain") || !m["recommended_chain"].is_object()) return OJson();
+    std::string text;
+    for (const Json& e : m["recommended_chain"].value("chain", Json::array())) {
+      if (!e.is_object()) continue;
+      if (!text.empty()) text += " -> ";
+      text += e.value("file", std::string("?")) + " to " + e.value("min_pixels", Json(0)).dump() + " px, " +
+              e.value("error", Json::object()).value("psnr", Json(0)).dump() + " dB";
+    }
+    return OJson(text);
+  };
+  const OJson la = line(a), lb = line(b);
+  if (la == lb) return OJson();
+  return OJson{{"old", la}, {"new", lb}};
+}
+
 // Keys whose values differ between two JSON values, as JSON pointers (at most `limit`).
 void json_changes(const Json& a, const Json& b, const std::string& at, OJson& out, std::size_t limit) {
   if (out.size() >= limit || a == b) return;
@@ -381,6 +400,8 @@ OJson diff_pair(const std::string& name, const std::string& pa, const std::strin
     r["changed_keys"] = changes;
     const OJson levels = level_changes(ja, jb);
     if (!levels.empty()) r["impostor_levels"] = levels;
+    const OJson chain = chain_changes(ja, jb);
+    if (!chain.is_null()) r["recommended_chain"] = chain;
     r["within_thresholds"] = true;  // a manifest changes with its levels; those decide
     return r;
   }
@@ -400,6 +421,64 @@ OJson diff_pair(const std::string& name, const std::string& pa, const std::strin
   }
   r["within_thresholds"] = drawn_glb_diff(r, name, pa, pb, ja, jb, o);
   return r;
+}
+
+// --- text --------------------------------------------------------------------------------------
+
+// A manifest's levels: quads, texels and bytes before -> after ("-" where a side has none).
+void levels_text(std::ostream& out, const OJson& il) {
+  const auto text = [](const OJson& v) { return v.is_null() ? std::string("-") : v.dump(); };
+  for (const OJson& l : il["levels"])
+    out << "    " << l["file"].get<std::string>() << ": quads " << text(l["primitives"][0]) << " -> " << text(l["primitives"][1])
+        << ", texels " << text(l["texels"][0]) << " -> " << text(l["texels"][1]) << ", bytes " << text(l["bytes"][0]) << " -> "
+        << text(l["bytes"][1]) << "\n";
+  out << "    impostor levels: " << il["bytes_total"][0] << " -> " << il["bytes_total"][1] << " bytes\n";
+}
+
+// A .glb's structure: quads matched by domain and the neighbour graph when both sides are impostor
+// levels, else what each side holds.
+void structure_text(std::ostream& out, const OJson& st) {
+  if (st.contains("quads")) {
+    out << "    level " << st["level"][0] << " -> " << st["level"][1] << ", quads " << st["quads"][0] << " -> " << st["quads"][1] << " (+"
+        << st["quads_added"] << " -" << st["quads_removed"] << " by domain), neighbour edges " << st["neighbor_edges"][0] << " -> "
+        << st["neighbor_edges"][1] << " (+" << st["edges_added"] << " -" << st["edges_removed"] << ")\n";
+    out << "    planes of matched quads: centre shift max " << st["center_shift_max"] << " (" << st["center_shift_max_of_diagonal"]
+        << " of the diagonal), normal angle max " << st["normal_angle_max_degrees"] << " deg; mean error " << st["mean_error"][0]
+        << " -> " << st["mean_error"][1] << "\n";
+  } else {
+    out << "    " << st["old"].dump() << " -> " << st["new"].dump() << "\n";
+  }
+}
+
+// The rest of a changed file's block, after its name: its verdict, then each part diff_pair measured.
+void changed_file_text(std::ostream& out, const OJson& f) {
+  out << (f["within_thresholds"].get<bool>() ? " (within thresholds)" : " (BEYOND thresholds)") << "\n";
+  if (f.contains("note")) out << "    " << f["note"].get<std::string>() << "\n";
+  if (f.contains("changed_keys")) {
+    out << "    keys:";
+    for (const OJson& k : f["changed_keys"]) out << " " << k.get<std::string>();
+    out << "\n";
+  }
+  if (f.contains("impostor_levels")) levels_text(out, f["impostor_levels"]);
+  if (f.contains("recommended_chain")) {
+    const auto side = [](const OJson& v) { return v.is_null() ? std::string("none") : v.get<std::string>(); };
+    out << "    recommended chain: " << side(f["recommended_chain"]["old"]) << "\n      now: " << side(f["recommended_chain"]["new"]) << "\n";
+  }
+  if (f.contains("structure")) structure_text(out, f["structure"]);
+  if (f.contains("texels")) {
+    const OJson& t = f["texels"];
+    out << "    texels " << t["old"]["texels"] << " -> " << t["new"]["texels"] << ", covered " << t["old"]["covered_share"] << " -> "
+        << t["new"]["covered_share"];
+    if (t.contains("changed_share")) out << ", changed " << t["changed_share"];
+    out << "\n";
+  }
+  if (f.contains("images")) {
+    const OJson& im = f["images"];
+    out << "    images (" << im["views"] << " views, " << im["size"] << " px): PSNR min " << im["psnr_min"] << " dB, mean " << im["psnr_mean"]
+        << " dB; changed pixels max " << im["changed_share_max"];
+    if (im.contains("images")) out << "; " << im["images"][1].get<std::string>();
+    out << "\n";
+  }
 }
 
 }  // namespace
@@ -439,6 +518,8 @@ OJson diff_bakes(const std::string& old_path, const std::string& new_path, const
   return report;
 }
 
+// The summary line, one block per file that is not identical (a changed file with what changed,
+// as far as diff_pair measured it), and the verdict with its thresholds.
 std::string diff_text(const OJson& r) {
   std::ostringstream out;
   const OJson& s = r["summary"];
@@ -452,49 +533,7 @@ std::string diff_text(const OJson& r) {
       out << "\n";
       continue;
     }
-    out << (f["within_thresholds"].get<bool>() ? " (within thresholds)" : " (BEYOND thresholds)") << "\n";
-    if (f.contains("note")) out << "    " << f["note"].get<std::string>() << "\n";
-    if (f.contains("changed_keys")) {
-      out << "    keys:";
-      for (const OJson& k : f["changed_keys"]) out << " " << k.get<std::string>();
-      out << "\n";
-    }
-    if (f.contains("impostor_levels")) {
-      const OJson& il = f["impostor_levels"];
-      const auto text = [](const OJson& v) { return v.is_null() ? std::string("-") : v.dump(); };
-      for (const OJson& l : il["levels"])
-        out << "    " << l["file"].get<std::string>() << ": quads " << text(l["primitives"][0]) << " -> " << text(l["primitives"][1])
-            << ", texels " << text(l["texels"][0]) << " -> " << text(l["texels"][1]) << ", bytes " << text(l["bytes"][0]) << " -> "
-            << text(l["bytes"][1]) << "\n";
-      out << "    impostor levels: " << il["bytes_total"][0] << " -> " << il["bytes_total"][1] << " bytes\n";
-    }
-    if (f.contains("structure")) {
-      const OJson& st = f["structure"];
-      if (st.contains("quads")) {
-        out << "    level " << st["level"][0] << " -> " << st["level"][1] << ", quads " << st["quads"][0] << " -> " << st["quads"][1] << " (+"
-            << st["quads_added"] << " -" << st["quads_removed"] << " by domain), neighbour edges " << st["neighbor_edges"][0] << " -> "
-            << st["neighbor_edges"][1] << " (+" << st["edges_added"] << " -" << st["edges_removed"] << ")\n";
-        out << "    planes of matched quads: centre shift max " << st["center_shift_max"] << " (" << st["center_shift_max_of_diagonal"]
-            << " of the diagonal), normal angle max " << st["normal_angle_max_degrees"] << " deg; mean error " << st["mean_error"][0]
-            << " -> " << st["mean_error"][1] << "\n";
-      } else {
-        out << "    " << st["old"].dump() << " -> " << st["new"].dump() << "\n";
-      }
-    }
-    if (f.contains("texels")) {
-      const OJson& t = f["texels"];
-      out << "    texels " << t["old"]["texels"] << " -> " << t["new"]["texels"] << ", covered " << t["old"]["covered_share"] << " -> "
-          << t["new"]["covered_share"];
-      if (t.contains("changed_share")) out << ", changed " << t["changed_share"];
-      out << "\n";
-    }
-    if (f.contains("images")) {
-      const OJson& im = f["images"];
-      out << "    images (" << im["views"] << " views, " << im["size"] << " px): PSNR min " << im["psnr_min"] << " dB, mean " << im["psnr_mean"]
-          << " dB; changed pixels max " << im["changed_share_max"];
-      if (im.contains("images")) out << "; " << im["images"][1].get<std::string>();
-      out << "\n";
-    }
+    changed_file_text(out, f);
   }
   const OJson& t = r["thresholds"];
   out << "verdict: " << r["verdict"].get<std::string>() << " (thresholds: PSNR >= " << t["min_psnr"] << " dB, changed pixels <= "

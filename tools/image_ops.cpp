@@ -160,4 +160,25 @@ Image to_8bit(const std::vector<float>& rgb, int width, int height, float gain) 
   return out;
 }
 
+// A plain loop: OIIO's resize (a general filter through pixel iterators) took 27% of a mesh bake
+// with its recommended chain, most of the chain's time.
+Image box_downsample(const Image& image, int factor) {
+  if (factor <= 1) return image;
+  const std::size_t f = static_cast<std::size_t>(factor), in_w = static_cast<std::size_t>(image.width);
+  Image out{image.width / factor, image.height / factor, {}};
+  const std::size_t w = static_cast<std::size_t>(out.width), h = static_cast<std::size_t>(out.height);
+  std::vector<std::uint32_t> sums(w * 4);
+  out.rgba.resize(w * h * 4);
+  for (std::size_t y = 0; y < h; ++y) {
+    std::fill(sums.begin(), sums.end(), 0u);
+    for (std::size_t j = 0; j < f; ++j) {
+      const std::uint8_t* row = image.rgba.data() + (y * f + j) * in_w * 4;
+      for (std::size_t x = 0; x < w * f; ++x)
+        for (std::size_t c = 0; c < 4; ++c) sums[(x / f) * 4 + c] += row[x * 4 + c];
+    }
+    for (std::size_t i = 0; i < w * 4; ++i) out.rgba[y * w * 4 + i] = static_cast<std::uint8_t>((sums[i] + f * f / 2) / (f * f));
+  }
+  return out;
+}
+
 }  // namespace qf::render

@@ -59,6 +59,79 @@ class Reader {
 
 std::string path_of(const std::string& dir, const std::string& key) { return dir + "/" + key + ".qfamg"; }
 
+// 1. The header: magic, version, key, payload size and checksum. Returns null when it holds (the
+//    payload then lies at [start, start + size)), else why not.
+const char* check_header(ByteView bytes, const std::string& key, std::size_t& start, std::uint64_t& size) {
+  Reader header(bytes.data(), bytes.size());
+  char magic[sizeof kMagic];
+  std::uint32_t version = 0;
+  std::string stored_key(key.size(), '\0');
+  std::uint64_t sum = 0;
+  if (bytes.size() < sizeof kMagic || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0) return "not a cache file";
+  for (char& c : magic) header.get(c);
+  if (!header.get(version)) return "truncated";
+  if (version != kVersion) return "another format version";
+  for (char& c : stored_key)
+    if (!header.get(c)) return "truncated";
+  if (stored_key != key) return "another key";
+  if (!header.get(size) || !header.get(sum)) return "truncated";
+  start = sizeof kMagic + sizeof version + key.size() + 2 * sizeof(std::uint64_t);
+  if (bytes.size() - start != size) return "truncated";
+  const std::string payload(reinterpret_cast<const char*>(bytes.data() + start), static_cast<std::size_t>(size));
+  if (checksum(payload) != sum) return "corrupt (checksum)";
+  return nullptr;
+}
+
+// 2. The counts and the levels. A level's size counts entries stored below (fine_order, P's rows):
+//    no more than the payload's bytes.
+bool read_levels(Reader& r, std::uint64_t size, AmgHierarchy& h) {
+  std::uint64_t components = 0, isolated = 0, levels = 0;
+  if (!r.get(components) || !r.get(isolated) || !r.get(levels) || levels == 0 || levels > 64) return false;
+  h.components = components, h.isolated = isolated;
+  for (std::uint64_t l = 0; l < levels; ++l) {
+    std::uint64_t s = 0;
+    AmgLevel lv;
+    if (!r.get(s) || !r.get(lv.theta) || !r.get(lv.ratio) || s > size) return false;
+    lv.size = s;
+    h.levels.push_back(lv);
+  }
+  return true;
+}
+
+// 3. The fine order: a permutation of the points, since the basis scatters P[0]'s rows through it
+//    (sparse.h scatter_rows).
+bool read_fine_order(Reader& r, AmgHierarchy& h) {
+  if (!r.get_array(h.fine_order, h.levels[0].size) || h.fine_order.size() != h.levels[0].size) return false;
+  std::vector<char> seen(h.fine_order.size(), 0);
+  for (std::uint32_t i : h.fine_order) {
+    if (i >= seen.size() || seen[i]) return false;
+    seen[i] = 1;
+  }
+  return true;
+}
+
+// 4. P of level l (l >= 1): rows of level l - 1, columns of level l, a well-formed compressed matrix.
+bool read_prolongation(Reader& r, std::size_t l, std::uint64_t size, AmgHierarchy& h) {
+  std::uint64_t rows = 0, cols = 0;
+  std::vector<std::int32_t> outer, inner;
+  std::vector<double> values;
+  if (!r.get(rows) || !r.get(cols) || rows != h.levels[l - 1].size || cols != h.levels[l].size) return false;
+  if (!r.get_array(outer, rows + 1) || !r.get_array(inner, size) || !r.get_array(values, size)) return false;
+  if (outer.size() != rows + 1 || inner.size() != values.size() || outer.front() != 0 ||
+      outer.back() != static_cast<std::int32_t>(inner.size()))
+    return false;
+  for (std::size_t i = 0; i + 1 < outer.size(); ++i)
+    if (outer[i] > outer[i + 1]) return false;
+  for (std::int32_t c : inner)
+    if (c < 0 || static_cast<std::uint64_t>(c) >= cols) return false;
+  // Columns strictly increasing within a row, as Eigen's compressed matrices (which wrote them) keep them.
+  for (std::size_t i = 0; i + 1 < outer.size(); ++i)
+    for (std::int32_t k = outer[i] + 1; k < outer[i + 1]; ++k)
+      if (inner[static_cast<std::size_t>(k - 1)] >= inner[static_cast<std::size_t>(k)]) return false;
+  h.P.push_back(from_rows(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(cols), outer, inner, values));
+  return true;
+}
+
 }  // namespace
 
 std::string hierarchy_cache_key(const PointSet& points, const AnalysisOptions& ao, const AmgOptions& amg) {
@@ -121,71 +194,25 @@ std::optional<AmgHierarchy> load_hierarchy(const std::string& dir, const std::st
   return decode_hierarchy(file->bytes(), key, why, normals);
 }
 
+// The hierarchy in a cache file's bytes, or nullopt with `why` (when given) saying why not: not a
+// cache file, another version or key, truncated, or corrupt. Counts, sizes and indices are checked
+// before they are used (tests/fuzz feeds it arbitrary bytes). `normals` receives the stored point
+// normals (empty if none were).
 std::optional<AmgHierarchy> decode_hierarchy(ByteView bytes, const std::string& key, std::string* why,
                                              std::vector<Vec3f>* normals) {
   auto fail = [&](const char* reason) -> std::optional<AmgHierarchy> {
     if (why) *why = reason;
     return std::nullopt;
   };
-  Reader header(bytes.data(), bytes.size());
-  char magic[sizeof kMagic];
-  std::uint32_t version = 0;
-  std::string stored_key(key.size(), '\0');
-  std::uint64_t size = 0, sum = 0;
-  if (bytes.size() < sizeof kMagic || std::memcmp(bytes.data(), kMagic, sizeof kMagic) != 0) return fail("not a cache file");
-  for (char& c : magic) header.get(c);
-  if (!header.get(version)) return fail("truncated");
-  if (version != kVersion) return fail("another format version");
-  for (char& c : stored_key)
-    if (!header.get(c)) return fail("truncated");
-  if (stored_key != key) return fail("another key");
-  if (!header.get(size) || !header.get(sum)) return fail("truncated");
-  const std::size_t start = sizeof kMagic + sizeof version + key.size() + 2 * sizeof(std::uint64_t);
-  if (bytes.size() - start != size) return fail("truncated");
-  const std::string payload(reinterpret_cast<const char*>(bytes.data() + start), static_cast<std::size_t>(size));
-  if (checksum(payload) != sum) return fail("corrupt (checksum)");
-
+  std::size_t start = 0;
+  std::uint64_t size = 0;
+  if (const char* reason = check_header(bytes, key, start, size)) return fail(reason);
   Reader r(bytes.data() + start, static_cast<std::size_t>(size));
   AmgHierarchy h;
-  std::uint64_t components = 0, isolated = 0, levels = 0;
-  if (!r.get(components) || !r.get(isolated) || !r.get(levels) || levels == 0 || levels > 64) return fail("corrupt");
-  h.components = components, h.isolated = isolated;
-  for (std::uint64_t l = 0; l < levels; ++l) {
-    std::uint64_t s = 0;
-    AmgLevel lv;
-    // A level's size counts entries stored below (fine_order, P's rows): no more than the payload's bytes.
-    if (!r.get(s) || !r.get(lv.theta) || !r.get(lv.ratio) || s > size) return fail("corrupt");
-    lv.size = s;
-    h.levels.push_back(lv);
-  }
-  if (!r.get_array(h.fine_order, h.levels[0].size) || h.fine_order.size() != h.levels[0].size) return fail("corrupt");
-  // A permutation of the points: the basis scatters P[0]'s rows through it (sparse.h scatter_rows).
-  {
-    std::vector<char> seen(h.fine_order.size(), 0);
-    for (std::uint32_t i : h.fine_order) {
-      if (i >= seen.size() || seen[i]) return fail("corrupt");
-      seen[i] = 1;
-    }
-  }
-  for (std::uint64_t l = 1; l < levels; ++l) {
-    std::uint64_t rows = 0, cols = 0;
-    std::vector<std::int32_t> outer, inner;
-    std::vector<double> values;
-    if (!r.get(rows) || !r.get(cols) || rows != h.levels[l - 1].size || cols != h.levels[l].size) return fail("corrupt");
-    if (!r.get_array(outer, rows + 1) || !r.get_array(inner, size) || !r.get_array(values, size)) return fail("corrupt");
-    if (outer.size() != rows + 1 || inner.size() != values.size() || outer.front() != 0 ||
-        outer.back() != static_cast<std::int32_t>(inner.size()))
-      return fail("corrupt");
-    for (std::size_t i = 0; i + 1 < outer.size(); ++i)
-      if (outer[i] > outer[i + 1]) return fail("corrupt");
-    for (std::int32_t c : inner)
-      if (c < 0 || static_cast<std::uint64_t>(c) >= cols) return fail("corrupt");
-    // Columns strictly increasing within a row, as Eigen's compressed matrices (which wrote them) keep them.
-    for (std::size_t i = 0; i + 1 < outer.size(); ++i)
-      for (std::int32_t k = outer[i] + 1; k < outer[i + 1]; ++k)
-        if (inner[static_cast<std::size_t>(k - 1)] >= inner[static_cast<std::size_t>(k)]) return fail("corrupt");
-    h.P.push_back(from_rows(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(cols), outer, inner, values));
-  }
+  if (!read_levels(r, size, h) || !read_fine_order(r, h)) return fail("corrupt");
+  for (std::size_t l = 1; l < h.levels.size(); ++l)
+    if (!read_prolongation(r, l, size, h)) return fail("corrupt");
+  // 5. The point normals (none, or one per point), and nothing after them.
   std::vector<Vec3f> stored;
   if (!r.get_array(stored, h.levels[0].size) || (!stored.empty() && stored.size() != h.levels[0].size)) return fail("corrupt");
   if (!r.done()) return fail("corrupt");

@@ -134,8 +134,106 @@ class Searcher {
   mutable flann::KDTreeSingleIndex<flann::L2_Simple<float>> tree_;
 };
 
+// Queries go in blocks of consecutive points along the Morton curve; blocks are handed out to the
+// threads dynamically (a thread slowed by the machine's other jobs does not hold the other up),
+// and each block's answer depends only on the block, so any thread count gives the same.
+constexpr std::size_t kBlock = 512;
+
+// The points in Morton order, xyz interleaved: the Searcher's cloud.
+std::vector<float> morton_cloud(const std::vector<Vec3f>& positions, const std::vector<std::uint32_t>& order) {
+  std::vector<float> cloud(3 * positions.size());
+  for (std::size_t s = 0; s < positions.size(); ++s)
+    for (int a = 0; a < 3; ++a) cloud[3 * s + static_cast<std::size_t>(a)] = positions[order[s]][a];
+  return cloud;
+}
+
+// Plain k nearest: every point has exactly min(k, n-1) neighbours, so each point's slots in the
+// final arrays are known and written directly (fresh pages are costly here).
+void k_nearest_lists(const Searcher& search, const std::vector<std::uint32_t>& order, int k, int max_neighbors, Neighborhoods& nb) {
+  const std::size_t n = order.size(), blocks = (n + kBlock - 1) / kBlock;
+  const std::size_t kk = std::min<std::size_t>(static_cast<std::size_t>(k), n - 1);
+  for (std::size_t i = 0; i <= n; ++i) nb.offsets[i] = static_cast<std::uint32_t>(i * kk);
+  reserve_huge(nb.indices, n * kk);
+  reserve_huge(nb.distances, n * kk);
+  nb.indices.resize(n * kk);
+  nb.distances.resize(n * kk);
+#pragma omp parallel
+  {
+    Searcher::Scratch sc;
+    std::size_t unused = 0;
+#pragma omp for schedule(dynamic)
+    for (std::ptrdiff_t b = 0; b < static_cast<std::ptrdiff_t>(blocks); ++b) {
+      const std::size_t first = static_cast<std::size_t>(b) * kBlock, count = std::min(kBlock, n - first);
+      search.query_block(first, count, k, 0.0f, max_neighbors, sc, unused, unused);
+      for (std::size_t q = 0; q < count; ++q) {
+        const std::size_t base = order[first + q] * kk;
+        for (std::size_t r = 0; r < kk; ++r) {
+          nb.indices[base + r] = sc.lists[q][r].second;
+          nb.distances[base + r] = std::sqrt(sc.lists[q][r].first);
+        }
+      }
+    }
+  }
+}
+
+// Ball mode's answers, per block of the Morton order: the lists one after the other, and their sizes.
+struct BlockAnswers {
+  std::vector<std::vector<Candidate>> lists;
+  std::vector<std::vector<std::uint32_t>> counts;
+};
+
+// Ball mode, first pass: counts vary, so each block keeps its answers until all counts are known.
+BlockAnswers query_balls(const Searcher& search, std::size_t n, int k, float epsilon, int max_neighbors,
+                         NeighborhoodReport& tally) {
+  const std::size_t blocks = (n + kBlock - 1) / kBlock;
+  BlockAnswers out{std::vector<std::vector<Candidate>>(blocks), std::vector<std::vector<std::uint32_t>>(blocks)};
+  std::size_t widened = 0, capped = 0;
+#pragma omp parallel reduction(+ : widened, capped)
+  {
+    Searcher::Scratch sc;
+#pragma omp for schedule(dynamic)
+    for (std::ptrdiff_t b = 0; b < static_cast<std::ptrdiff_t>(blocks); ++b) {
+      const auto bi = static_cast<std::size_t>(b);
+      const std::size_t first = bi * kBlock, count = std::min(kBlock, n - first);
+      search.query_block(first, count, k, epsilon, max_neighbors, sc, widened, capped);
+      for (std::size_t q = 0; q < count; ++q) {
+        out.counts[bi].push_back(static_cast<std::uint32_t>(sc.lists[q].size()));
+        out.lists[bi].insert(out.lists[bi].end(), sc.lists[q].begin(), sc.lists[q].end());
+      }
+    }
+  }
+  tally.widened = widened, tally.capped = capped;
+  return out;
+}
+
+// Ball mode, second pass: the blocks' answers scattered to input order (each block freed once done).
+void scatter_balls(BlockAnswers& answers, const std::vector<std::uint32_t>& order, Neighborhoods& nb) {
+  const std::size_t n = order.size(), blocks = answers.lists.size();
+  for (std::size_t b = 0; b < blocks; ++b)
+    for (std::size_t q = 0; q < answers.counts[b].size(); ++q) nb.offsets[order[b * kBlock + q] + 1] = answers.counts[b][q];
+  for (std::size_t i = 0; i < n; ++i) nb.offsets[i + 1] += nb.offsets[i];
+  reserve_huge(nb.indices, nb.offsets[n]);
+  reserve_huge(nb.distances, nb.offsets[n]);
+  nb.indices.resize(nb.offsets[n]);
+  nb.distances.resize(nb.offsets[n]);
+  for (std::size_t b = 0; b < blocks; ++b) {
+    std::size_t r = 0;
+    for (std::size_t q = 0; q < answers.counts[b].size(); ++q) {
+      const std::uint32_t i = order[b * kBlock + q];
+      for (std::uint32_t dst = nb.offsets[i]; dst < nb.offsets[i + 1]; ++dst, ++r) {
+        nb.indices[dst] = answers.lists[b][r].second;
+        nb.distances[dst] = std::sqrt(answers.lists[b][r].first);
+      }
+    }
+    std::vector<Candidate>().swap(answers.lists[b]);
+  }
+}
+
 }  // namespace
 
+// Every point's k nearest neighbours, or with epsilon > 0 and the k-th inside B_eps, all of B_eps
+// (at most max_neighbors): a kd-tree over the points in Morton order, queried in blocks on every
+// core. Fewer than 2 points: empty lists. Only ball mode fills the report.
 Neighborhoods compute_neighborhoods(const std::vector<Vec3f>& positions, const NeighborhoodOptions& options,
                                     NeighborhoodReport* report) {
   const std::size_t n = positions.size();
@@ -144,85 +242,17 @@ Neighborhoods compute_neighborhoods(const std::vector<Vec3f>& positions, const N
   const int k = std::max(1, options.k);
   const int max_neighbors = std::max(options.max_neighbors, k);
   if (n < 2) return nb;
-
-  // Queries go in blocks of consecutive points along the Morton curve; blocks are handed out to the
-  // threads dynamically (a thread slowed by the machine's other jobs does not hold the other up),
-  // and each block's answer depends only on the block, so any thread count gives the same.
   const std::vector<std::uint32_t> order = morton_order(positions);
-  std::vector<float> cloud(3 * n);
-  for (std::size_t s = 0; s < n; ++s)
-    for (int a = 0; a < 3; ++a) cloud[3 * s + static_cast<std::size_t>(a)] = positions[order[s]][a];
+  const std::vector<float> cloud = morton_cloud(positions, order);
   const Searcher search(cloud, order);
-  constexpr std::size_t kBlock = 512;
-  const std::size_t blocks = (n + kBlock - 1) / kBlock;
-  std::size_t widened = 0, capped = 0;
-
   if (!(options.epsilon > 0)) {
-    // Plain k nearest: every point has exactly min(k, n-1) neighbours, so each point's slots in
-    // the final arrays are known and written directly (fresh pages are costly here).
-    const std::size_t kk = std::min<std::size_t>(static_cast<std::size_t>(k), n - 1);
-    for (std::size_t i = 0; i <= n; ++i) nb.offsets[i] = static_cast<std::uint32_t>(i * kk);
-    reserve_huge(nb.indices, n * kk);
-    reserve_huge(nb.distances, n * kk);
-    nb.indices.resize(n * kk);
-    nb.distances.resize(n * kk);
-#pragma omp parallel
-    {
-      Searcher::Scratch sc;
-      std::size_t unused = 0;
-#pragma omp for schedule(dynamic)
-      for (std::ptrdiff_t b = 0; b < static_cast<std::ptrdiff_t>(blocks); ++b) {
-        const std::size_t first = static_cast<std::size_t>(b) * kBlock, count = std::min(kBlock, n - first);
-        search.query_block(first, count, k, 0.0f, max_neighbors, sc, unused, unused);
-        for (std::size_t q = 0; q < count; ++q) {
-          const std::size_t base = order[first + q] * kk;
-          for (std::size_t r = 0; r < kk; ++r) {
-            nb.indices[base + r] = sc.lists[q][r].second;
-            nb.distances[base + r] = std::sqrt(sc.lists[q][r].first);
-          }
-        }
-      }
-    }
+    k_nearest_lists(search, order, k, max_neighbors, nb);
     return nb;
   }
-
-  // Ball mode: counts vary. Each block keeps its answers until all counts are known, then they
-  // are scattered to input order.
-  std::vector<std::vector<Candidate>> block_lists(blocks);
-  std::vector<std::vector<std::uint32_t>> block_counts(blocks);
-#pragma omp parallel reduction(+ : widened, capped)
-  {
-    Searcher::Scratch sc;
-#pragma omp for schedule(dynamic)
-    for (std::ptrdiff_t b = 0; b < static_cast<std::ptrdiff_t>(blocks); ++b) {
-      const auto bi = static_cast<std::size_t>(b);
-      const std::size_t first = bi * kBlock, count = std::min(kBlock, n - first);
-      search.query_block(first, count, k, options.epsilon, max_neighbors, sc, widened, capped);
-      for (std::size_t q = 0; q < count; ++q) {
-        block_counts[bi].push_back(static_cast<std::uint32_t>(sc.lists[q].size()));
-        block_lists[bi].insert(block_lists[bi].end(), sc.lists[q].begin(), sc.lists[q].end());
-      }
-    }
-  }
-  for (std::size_t b = 0; b < blocks; ++b)
-    for (std::size_t q = 0; q < block_counts[b].size(); ++q) nb.offsets[order[b * kBlock + q] + 1] = block_counts[b][q];
-  for (std::size_t i = 0; i < n; ++i) nb.offsets[i + 1] += nb.offsets[i];
-  reserve_huge(nb.indices, nb.offsets[n]);
-  reserve_huge(nb.distances, nb.offsets[n]);
-  nb.indices.resize(nb.offsets[n]);
-  nb.distances.resize(nb.offsets[n]);
-  for (std::size_t b = 0; b < blocks; ++b) {
-    std::size_t r = 0;
-    for (std::size_t q = 0; q < block_counts[b].size(); ++q) {
-      const std::uint32_t i = order[b * kBlock + q];
-      for (std::uint32_t dst = nb.offsets[i]; dst < nb.offsets[i + 1]; ++dst, ++r) {
-        nb.indices[dst] = block_lists[b][r].second;
-        nb.distances[dst] = std::sqrt(block_lists[b][r].first);
-      }
-    }
-    std::vector<Candidate>().swap(block_lists[b]);
-  }
-  if (report) report->widened = widened, report->capped = capped;
+  NeighborhoodReport tally;
+  BlockAnswers answers = query_balls(search, n, k, options.epsilon, max_neighbors, tally);
+  scatter_balls(answers, order, nb);
+  if (report) report->widened = tally.widened, report->capped = tally.capped;
   return nb;
 }
 

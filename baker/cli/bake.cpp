@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "core/file_io.h"
 #include "pipeline/asset.h"
+#include "tools/chain.h"
 
 namespace qf::cli {
 
@@ -47,6 +48,13 @@ CommandSpec bake_spec() {
                      "(STEM_S<i>.glb at the input's triangles / 4, 16, 64, 256, 1024), clustering = seed 002's\n"
                      "vertex clustering with thick edges (STEM_C<i>.glb, cells = diagonal / 128 .. 8)"},
                     {"no-mesh-lods", 0, "", "", "the same as --mesh-lods none"},
+                    {"chain", 0, "", "", "also measure the recommended chain (manifest recommended_chain): every mesh LOD,\n"
+                                         "impostor level and the point impostor drawn by the engine method against the input\n"
+                                         "at 256, 128, 64, 32 and 16 px on screen; per band the smallest file that reaches\n"
+                                         "--chain-psnr and IoU 0.9, with its switch distance (1080 px screen, 60 degree field\n"
+                                         "of view). It costs about as much as the bake itself, more for large point impostors"},
+                    {"chain-views", 0, "N", "6", "--chain: directions drawn per size"},
+                    {"chain-psnr", 0, "DB", "30", "--chain: the quality bar, dB (engine method against the input)"},
                     drop_nonfinite_option(), quiet_option()},
                    1, 1};
   append_point_input_options(spec.options);
@@ -86,6 +94,13 @@ AssetOptions read_asset_options(const OptionValues& args) {
   a.mesh_lods = lods == "simplify" ? AssetOptions::MeshLods::kSimplify
                 : lods == "clustering" ? AssetOptions::MeshLods::kClustering
                                        : AssetOptions::MeshLods::kNone;
+  render::ChainOptions chain;
+  chain.views = static_cast<int>(args.get_int("chain-views", chain.views, 1, 1000));
+  chain.min_psnr = args.get_double("chain-psnr", chain.min_psnr, 0.0, 99.0);
+  if (args.flag("chain"))
+    a.measure_chain = [chain](const std::string& input, const nlohmann::json& manifest, const std::vector<OutputFile>& files) {
+      return render::recommend_chain(input, manifest, files, chain);
+    };
   return a;
 }
 

@@ -39,16 +39,13 @@ Plane plane_of(const Moments& m, const Eigen::Vector3d& origin) {
   return {trace > 0 ? ev(0) / trace : 0.0, eig.eigenvectors().col(0)};
 }
 
-// Step 1: the thesis' greedy merge; Psi M with groups numbered in order of their representatives.
-SparseMatrix greedy_merge(const SparseMatrix& psi, const std::vector<Vec3f>& positions, const MergeOptions& options,
-                          std::size_t& merges_out) {
-  const auto m = static_cast<std::size_t>(psi.cols());
-  // 1. Per-function moments, relative to the bounding-box centre.
+// Step 1, part 1: per-function moments, relative to the bounding-box centre (returned in `origin`).
+std::vector<Moments> function_moments(const SparseMatrix& psi, const std::vector<Vec3f>& positions, Eigen::Vector3d& origin) {
   Bounds box;
   for (const Vec3f& p : positions) box.add(p);
   const Vec3f c = box.center();
-  const Eigen::Vector3d origin(c.x, c.y, c.z);
-  std::vector<Moments> moments(m);
+  origin = Eigen::Vector3d(c.x, c.y, c.z);
+  std::vector<Moments> moments(static_cast<std::size_t>(psi.cols()));
   for (Eigen::Index i = 0; i < psi.rows(); ++i) {
     const Vec3f p = positions[static_cast<std::size_t>(i)];
     const Eigen::Vector3d x(double(p.x) - c.x, double(p.y) - c.y, double(p.z) - c.z);
@@ -59,35 +56,50 @@ SparseMatrix greedy_merge(const SparseMatrix& psi, const std::vector<Vec3f>& pos
       mo.ss += it.value() * x * x.transpose();
     }
   }
-  // 2. Pairwise overlaps of the thresholded domains.
-  const Domains d = make_domains(psi, options.domains);
-  std::vector<std::map<std::size_t, double>> overlap(m);  // overlap[f][g]: shared points (both directions)
-  {
-    // shared counts per pair, from each point's memberships
-    std::vector<std::vector<std::uint32_t>> of_point(static_cast<std::size_t>(psi.rows()));
-    for (std::size_t f = 0; f < d.count(); ++f)
-      for (std::uint32_t r = d.offsets[f]; r < d.offsets[f + 1]; ++r) of_point[d.points[r]].push_back(static_cast<std::uint32_t>(f));
-    for (const auto& list : of_point)
-      for (std::size_t a = 0; a < list.size(); ++a)
-        for (std::size_t b = a + 1; b < list.size(); ++b) overlap[list[a]][list[b]] += 1, overlap[list[b]][list[a]] += 1;
-  }
-  // 3. Greedy: the qualifying pair with the largest overlap first (ties: lowest indices).
-  std::vector<std::size_t> group(m);
-  std::iota(group.begin(), group.end(), std::size_t{0});
-  auto find = [&](std::size_t x) {
-    while (group[x] != x) x = group[x] = group[group[x]];
+  return moments;
+}
+
+// Step 1, part 2: pairwise overlaps of the thresholded domains. overlap[f][g]: shared points (both
+// directions), counted from each point's memberships.
+std::vector<std::map<std::size_t, double>> domain_overlaps(const SparseMatrix& psi, const DomainOptions& options) {
+  const Domains d = make_domains(psi, options);
+  std::vector<std::map<std::size_t, double>> overlap(static_cast<std::size_t>(psi.cols()));
+  std::vector<std::vector<std::uint32_t>> of_point(static_cast<std::size_t>(psi.rows()));
+  for (std::size_t f = 0; f < d.count(); ++f)
+    for (std::uint32_t r = d.offsets[f]; r < d.offsets[f + 1]; ++r) of_point[d.points[r]].push_back(static_cast<std::uint32_t>(f));
+  for (const auto& list : of_point)
+    for (std::size_t a = 0; a < list.size(); ++a)
+      for (std::size_t b = a + 1; b < list.size(); ++b) overlap[list[a]][list[b]] += 1, overlap[list[b]][list[a]] += 1;
+  return overlap;
+}
+
+// The merged groups of basis functions: union-find with path halving, the lowest index of a group
+// its representative.
+struct Groups {
+  std::vector<std::size_t> parent;
+  explicit Groups(std::size_t m) : parent(m) { std::iota(parent.begin(), parent.end(), std::size_t{0}); }
+  std::size_t find(std::size_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
     return x;
-  };
-  struct Candidate {
-    double shared;
-    std::size_t a, b;
-    bool operator<(const Candidate& o) const {  // max-heap on shared, then lowest (a, b)
-      if (shared != o.shared) return shared < o.shared;
-      return std::tie(a, b) > std::tie(o.a, o.b);
-    }
-  };
+  }
+};
+
+// A pair of groups that may merge, and how many points their domains share.
+struct Candidate {
+  double shared;
+  std::size_t a, b;
+  bool operator<(const Candidate& o) const {  // max-heap on shared, then lowest (a, b)
+    if (shared != o.shared) return shared < o.shared;
+    return std::tie(a, b) > std::tie(o.a, o.b);
+  }
+};
+
+// Step 1, part 3: greedy, the qualifying pair with the largest overlap first (ties: lowest
+// indices). Both planes flat and within max_angle of each other; returns the number of merges.
+std::size_t merge_pairs(std::vector<std::map<std::size_t, double>>& overlap, std::vector<Moments>& moments,
+                        const Eigen::Vector3d& origin, const MergeOptions& options, Groups& groups) {
   std::priority_queue<Candidate> heap;
-  for (std::size_t f = 0; f < m; ++f)
+  for (std::size_t f = 0; f < overlap.size(); ++f)
     for (const auto& kv : overlap[f])
       if (f < kv.first) heap.push({kv.second, f, kv.first});
   const double cos_max = std::cos(options.max_angle_degrees * 3.14159265358979323846 / 180.0);
@@ -100,14 +112,14 @@ SparseMatrix greedy_merge(const SparseMatrix& psi, const std::vector<Vec3f>& pos
   while (!heap.empty()) {
     const Candidate cand = heap.top();
     heap.pop();
-    const std::size_t a = find(cand.a), b = find(cand.b);
+    const std::size_t a = groups.find(cand.a), b = groups.find(cand.b);
     if (a == b) continue;
     const auto current = overlap[a].find(b);
     if (a != cand.a || b != cand.b || current == overlap[a].end() || current->second != cand.shared) continue;  // stale
     if (!qualifies(a, b)) continue;
     // Merge b into a (the lower index stays the representative).
     const std::size_t keep = std::min(a, b), gone = std::max(a, b);
-    group[gone] = keep;
+    groups.parent[gone] = keep;
     moments[keep].add(moments[gone]);
     ++merges;
     // The merged group's overlaps with the others: sums over its members.
@@ -121,22 +133,38 @@ SparseMatrix greedy_merge(const SparseMatrix& psi, const std::vector<Vec3f>& pos
     overlap[gone].clear();
     for (const auto& kv : overlap[keep]) heap.push({kv.second, std::min(keep, kv.first), std::max(keep, kv.first)});
   }
-  // 4. Psi' = Psi M with groups numbered in order of their representatives.
+  return merges;
+}
+
+// Step 1, part 4: Psi' = Psi M with groups numbered in order of their representatives.
+SparseMatrix merged_basis(const SparseMatrix& psi, Groups& groups) {
+  const auto m = static_cast<std::size_t>(psi.cols());
   std::vector<std::int32_t> column(m, -1);
   std::int32_t count = 0;
   for (std::size_t f = 0; f < m; ++f)
-    if (find(f) == f) column[f] = count++;
+    if (groups.find(f) == f) column[f] = count++;
   std::vector<std::int32_t> outer(static_cast<std::size_t>(psi.rows()) + 1, 0), inner;
   std::vector<double> values;
   std::map<std::int32_t, double> row;
   for (Eigen::Index i = 0; i < psi.rows(); ++i) {
     row.clear();
-    for (SparseMatrix::InnerIterator it(psi, i); it; ++it) row[column[find(static_cast<std::size_t>(it.col()))]] += it.value();
+    for (SparseMatrix::InnerIterator it(psi, i); it; ++it) row[column[groups.find(static_cast<std::size_t>(it.col()))]] += it.value();
     for (const auto& kv : row) inner.push_back(kv.first), values.push_back(kv.second);
     outer[static_cast<std::size_t>(i) + 1] = static_cast<std::int32_t>(values.size());
   }
-  merges_out = merges;
   return from_rows(psi.rows(), count, outer, inner, values);
+}
+
+// Step 1: the thesis' greedy merge of flat domains that overlap and face the same way; Psi M with
+// groups numbered in order of their representatives. merges_out: the number of merges.
+SparseMatrix greedy_merge(const SparseMatrix& psi, const std::vector<Vec3f>& positions, const MergeOptions& options,
+                          std::size_t& merges_out) {
+  Eigen::Vector3d origin;
+  std::vector<Moments> moments = function_moments(psi, positions, origin);
+  std::vector<std::map<std::size_t, double>> overlap = domain_overlaps(psi, options.domains);
+  Groups groups(static_cast<std::size_t>(psi.cols()));
+  merges_out = merge_pairs(overlap, moments, origin, options, groups);
+  return merged_basis(psi, groups);
 }
 
 // What the cleaning steps need of a domain: its Psi mass, weighted plane (normal oriented by the
@@ -179,16 +207,10 @@ std::vector<Shape> shapes_of(const SparseMatrix& psi, const std::vector<Vec3f>& 
   return out;
 }
 
-// Step 2: slivers. A domain's neighbours here are the domains it shares a point with (any weight,
-// so a sliver whose weights never exceed tau is found too). Each point's weight in a sliver goes
-// to the non-sliver domain that fits the point best (normal first, distance to its plane second),
-// among the point's own domains and the sliver's neighbours. A sliver without a non-sliver
-// neighbour stays.
-SparseMatrix absorb_slivers(const SparseMatrix& psi, const std::vector<Vec3f>& positions, const std::vector<Vec3f>& normals,
-                            const std::vector<Shape>& shapes, const MergeOptions& o, std::size_t& slivers) {
-  const auto m = static_cast<std::size_t>(psi.cols());
-  // 1. The heaviest neighbour of each domain: per row, the two heaviest domains in it.
-  std::vector<double> heaviest(m, 0.0);
+// Step 2, part 1: the heaviest neighbour of each domain (its mass): per row, the two heaviest
+// domains in it.
+std::vector<double> heaviest_neighbors(const SparseMatrix& psi, const std::vector<Shape>& shapes) {
+  std::vector<double> heaviest(static_cast<std::size_t>(psi.cols()), 0.0);
   for (Eigen::Index i = 0; i < psi.rows(); ++i) {
     std::int64_t first = -1, second = -1;
     for (SparseMatrix::InnerIterator it(psi, i); it; ++it) {
@@ -201,14 +223,24 @@ SparseMatrix absorb_slivers(const SparseMatrix& psi, const std::vector<Vec3f>& p
       if (other >= 0) heaviest[std::size_t(it.col())] = std::max(heaviest[std::size_t(it.col())], shapes[std::size_t(other)].mass);
     }
   }
-  // 2. Slivers: light next to a neighbour, or lighter but with their normals split.
+  return heaviest;
+}
+
+// Step 2, part 2: slivers, light next to a neighbour, or lighter but with their normals split.
+std::vector<char> find_slivers(const std::vector<Shape>& shapes, const std::vector<double>& heaviest, bool has_normals,
+                               const MergeOptions& o) {
   const double cos_split = std::cos(o.straddle_angle_degrees * 3.14159265358979323846 / 180.0);
-  std::vector<char> sliver(m, 0);
-  for (std::size_t c = 0; c < m; ++c)
+  std::vector<char> sliver(shapes.size(), 0);
+  for (std::size_t c = 0; c < shapes.size(); ++c)
     sliver[c] = shapes[c].mass < o.sliver_share * heaviest[c] ||
-                (!normals.empty() && shapes[c].mass < o.straddle_share * heaviest[c] && shapes[c].coherence < cos_split);
-  // 3. Each sliver's non-sliver neighbours (sorted, unique).
-  std::vector<std::vector<std::uint32_t>> targets(m);
+                (has_normals && shapes[c].mass < o.straddle_share * heaviest[c] && shapes[c].coherence < cos_split);
+  return sliver;
+}
+
+// Step 2, part 3: each sliver's non-sliver neighbours (sorted, unique); `slivers` counts the
+// slivers that have one.
+std::vector<std::vector<std::uint32_t>> sliver_targets(const SparseMatrix& psi, const std::vector<char>& sliver, std::size_t& slivers) {
+  std::vector<std::vector<std::uint32_t>> targets(static_cast<std::size_t>(psi.cols()));
   for (Eigen::Index i = 0; i < psi.rows(); ++i)
     for (SparseMatrix::InnerIterator it(psi, i); it; ++it)
       if (sliver[std::size_t(it.col())])
@@ -220,8 +252,14 @@ SparseMatrix absorb_slivers(const SparseMatrix& psi, const std::vector<Vec3f>& p
     t.erase(std::unique(t.begin(), t.end()), t.end());
     slivers += !t.empty();
   }
-  if (slivers == 0) return psi;
-  // 4. Move the weights, point by point.
+  return targets;
+}
+
+// Step 2, part 4: move the weights, point by point, from each sliver with targets to the
+// candidate that fits the point best.
+SparseMatrix move_sliver_weights(const SparseMatrix& psi, const std::vector<Vec3f>& positions, const std::vector<Vec3f>& normals,
+                                 const std::vector<Shape>& shapes, const std::vector<char>& sliver,
+                                 const std::vector<std::vector<std::uint32_t>>& targets) {
   Bounds box;
   for (const Vec3f& p : positions) box.add(p);
   const double diag = std::max(double(box.diagonal()), 1e-30);
@@ -254,6 +292,19 @@ SparseMatrix absorb_slivers(const SparseMatrix& psi, const std::vector<Vec3f>& p
     outer[static_cast<std::size_t>(i) + 1] = static_cast<std::int32_t>(values.size());
   }
   return from_rows(psi.rows(), psi.cols(), outer, inner, values);
+}
+
+// Step 2: slivers. A domain's neighbours here are the domains it shares a point with (any weight,
+// so a sliver whose weights never exceed tau is found too). Each point's weight in a sliver goes
+// to the non-sliver domain that fits the point best (normal first, distance to its plane second),
+// among the point's own domains and the sliver's neighbours. A sliver without a non-sliver
+// neighbour stays. `slivers`: the number absorbed.
+SparseMatrix absorb_slivers(const SparseMatrix& psi, const std::vector<Vec3f>& positions, const std::vector<Vec3f>& normals,
+                            const std::vector<Shape>& shapes, const MergeOptions& o, std::size_t& slivers) {
+  const std::vector<char> sliver = find_slivers(shapes, heaviest_neighbors(psi, shapes), !normals.empty(), o);
+  const std::vector<std::vector<std::uint32_t>> targets = sliver_targets(psi, sliver, slivers);
+  if (slivers == 0) return psi;
+  return move_sliver_weights(psi, positions, normals, shapes, sliver, targets);
 }
 
 // Step 3: creases. A point whose normal lies within crease_angle of some of its domains' planes

@@ -472,32 +472,6 @@ std::vector<std::uint8_t> encode_point_glb(const PointSet& p, const PointImposto
   return write_glb(m);
 }
 
-std::vector<std::uint8_t> encode_lod_glb(const std::vector<const ImpostorLevel*>& levels,
-                                         const std::vector<double>& screen_coverage, const GltfOptions& options) {
-  if (levels.empty() || screen_coverage.size() != levels.size())
-    throw std::invalid_argument("encode_lod_glb: one screen coverage per level, at least one level");
-  tinygltf::Model m = new_model(options);
-  std::vector<int> nodes;
-  for (const ImpostorLevel* l : levels) nodes.push_back(add_level(m, *l, options, "impostor_L" + std::to_string(l->level) + "_"));
-  // Named NAME_LOD0..n, finest first: the suffix Unity, Unreal and Godot importers group as LODs.
-  for (std::size_t i = 0; i < nodes.size(); ++i) m.nodes[static_cast<std::size_t>(nodes[i])].name = "impostor_LOD" + std::to_string(i);
-  // Only the finest level's node is in the scene: engines without MSFT_lod draw it alone.
-  tinygltf::Node& root = m.nodes[static_cast<std::size_t>(nodes[0])];
-  if (nodes.size() > 1) {
-    Value::Array ids, coverage;
-    for (std::size_t i = 1; i < nodes.size(); ++i) ids.push_back(Value(nodes[i]));
-    for (double c : screen_coverage) coverage.push_back(Value(c));
-    root.extensions[kLodExtension] = Value(Value::Object{{"ids", Value(ids)}});
-    root.extras = Value(Value::Object{{kScreenCoverageExtra, Value(coverage)}});
-    m.extensionsUsed.push_back(kLodExtension);
-  }
-  tinygltf::Scene scene;
-  scene.nodes.push_back(nodes[0]);
-  m.scenes.push_back(scene);
-  m.defaultScene = 0;
-  return write_glb(m);
-}
-
 std::vector<std::uint8_t> encode_mesh_glb(const TriangleMesh& mesh, bool smooth_normals, const GltfOptions& options) {
   if (mesh.triangles.empty()) throw std::invalid_argument("encode_mesh_glb: a mesh without triangles");
   tinygltf::Model m = new_model(options);

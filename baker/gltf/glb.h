@@ -48,13 +48,17 @@ ImpostorLevel make_impostor_level(std::size_t level, const std::vector<SupportRe
 // The .glb bytes: identical for identical input (sorted keys, canonical floats, no timestamps).
 std::vector<std::uint8_t> encode_glb(const ImpostorLevel& level, const GltfOptions& options = {});
 
-// All levels in one .glb under MSFT_lod (gltf-notes.md 2.1), finest first, nodes named
-// impostor_LOD0..n (the LOD-group suffix of Unity, Unreal and Godot): the finest level's node
-// is the scene's only node and lists the others as lower LODs; screen_coverage (one per level, as
-// MSFT_screencoverage) says down to which fraction of the screen height each level is shown. Plain
-// glTF plus MSFT_lod only: a custom runtime reads the per-level files with the QF extension.
-std::vector<std::uint8_t> encode_lod_glb(const std::vector<const ImpostorLevel*>& levels,
-                                         const std::vector<double>& screen_coverage, const GltfOptions& options = {});
+// One .glb under MSFT_lod (gltf-notes.md 2.1) from finished .glb files (`parts`, finest or
+// nearest first, each with one root node in its scene: any file the bake writes): the impostor
+// levels of --lod-file, or the recommended chain's files. The parts' root nodes are named
+// NAME_LOD0..n (the LOD-group suffix of Unity, Unreal and Godot); the first is the scene's only
+// node and lists the others as lower LODs; screen_coverage (one per part, as
+// MSFT_screencoverage) says down to which fraction of the screen height each is shown. Plain glTF
+// plus MSFT_lod: the parts' own document extensions (QF_impostor_level, QF_point_impostor) are
+// left out, a custom runtime reads the per-level files. Throws std::invalid_argument for a part
+// it cannot combine.
+std::vector<std::uint8_t> combine_lod_glb(const std::vector<const std::vector<std::uint8_t>*>& parts,
+                                          const std::vector<double>& screen_coverage, const std::string& name);
 
 // A point impostor (paper section 5): the permuted sample points as one glTF POINTS primitive
 // (POSITION, NORMAL, COLOR_0 when coloured; the order is the permutation, so any prefix is an even

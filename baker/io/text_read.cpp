@@ -100,107 +100,153 @@ TriangleMesh read_off(const std::string& path, const ReadOptions& options, ReadR
   return decode_off(file.bytes(), path, options, report);
 }
 
-TriangleMesh decode_off(ByteView bytes, const std::string& path, const ReadOptions& options, ReadReport* report) {
-  check_text(bytes, path, "off", "an OFF header");
-  io::Tokenizer tok(text_begin(bytes), text_end(bytes));
+namespace {
+
+// decode_off's state and steps, in the order of the file: header(), counts(), vertices(), faces(),
+// then finish() to make the mesh.
+class OffReader {
+ public:
+  OffReader(ByteView bytes, const std::string& path, const ReadOptions& options, ReadReport* report)
+      : tok_(text_begin(bytes), text_end(bytes)), path_(path), nonfinite_(path, options), report_(report), file_size_(bytes.size()) {}
+
+  // 1. Header keyword: [C][N][4]OFF or OFF with the prefixes in either order (COFF, NOFF, NCOFF, CNOFF).
+  void header() {
+    key_ = next();
+    const std::size_t off_at = key_.rfind("OFF");
+    if (off_at == std::string_view::npos || off_at + 3 != key_.size())
+      throw InputError("off.header", path_, at_line(tok_.line()), "expected 'OFF' (or COFF/NOFF/NCOFF) on the first line, found " + quote_token(key_));
+    prefix_ = key_.substr(0, off_at);
+    for (char c : prefix_) {
+      if (c == 'C') has_color_ = true;
+      else if (c == 'N') has_normal_ = true;
+      else
+        throw InputError("off.header", path_, at_line(tok_.line()), "unsupported OFF variant " + quote_token(key_) + ", expected OFF, COFF, NOFF or NCOFF");
+    }
+  }
+
+  // 2. Counts.
+  void counts() {
+    long long given[3];
+    for (long long& c : given) {
+      const std::string_view t = next();
+      if (!io::parse_int64(t, c) || c < 0)
+        throw InputError("off.counts", path_, at_line(tok_.line()),
+                         "expected the counts 'vertices faces edges' (integers >= 0), found " +
+                             (t.empty() ? std::string("the end of the file") : quote_token(t)));
+    }
+    nv_ = static_cast<std::size_t>(given[0]), nf_ = static_cast<std::size_t>(given[1]);
+    if (nv_ > file_size_ || nf_ > file_size_)
+      throw InputError("off.counts", path_, at_line(tok_.line()), "counts larger than the file could hold");
+  }
+
+  // 3. Vertices: x y z [nx ny nz] [r g b [a]] — colour and alpha are read line-wise.
+  void vertices() {
+    mesh_.positions.reserve(nv_);
+    for (std::size_t i = 0; i < nv_; ++i) {
+      float c[3];
+      std::string_view t0 = need("vertex", i, nv_);
+      const std::size_t line = tok_.line();
+      c[0] = number(t0, path_, line, "off.bad_number", "a vertex coordinate");
+      for (int k = 1; k < 3; ++k) c[k] = number(tok_.next_on_line(), path_, line, "off.bad_number", "a vertex coordinate");
+      const Vec3f p{c[0], c[1], c[2]};
+      nonfinite_.check(i, p, "off.nonfinite", [&] { return at_line(line); });
+      mesh_.positions.push_back(p);
+      if (has_normal_) {
+        float n[3];
+        for (float& x : n) x = number(tok_.next_on_line(), path_, line, "off.bad_number", "a vertex normal");
+        mesh_.normals.push_back(as_unit({n[0], n[1], n[2]}));
+      }
+      if (has_color_) {
+        std::uint8_t rgb[3];
+        for (auto& x : rgb) {
+          const std::string_view t = tok_.next_on_line();
+          x = color_component(t, number(t, path_, line, "off.bad_number", "a vertex colour"));
+        }
+        mesh_.colors.push_back({rgb[0], rgb[1], rgb[2]});
+      }
+      tok_.skip_line();  // alpha and anything else on the line
+    }
+  }
+
+  // 4. Faces: n i0 .. i(n-1) [colour], polygons split into fans.
+  void faces() {
+    mesh_.triangles.reserve(nf_);
+    std::vector<long long> idx;
+    for (std::size_t f = 0; f < nf_; ++f) {
+      const std::string_view t = need("face", f, nf_);
+      const std::size_t line = tok_.line();
+      long long n;
+      if (!io::parse_int64(t, n) || n < 3 || n > (1 << 20))
+        throw InputError("off.face", path_, at_line(line), "face corner count " + quote_token(t) + ", expected an integer >= 3");
+      idx.resize(static_cast<std::size_t>(n));
+      for (long long& i : idx) {
+        const std::string_view ti = tok_.next_on_line();
+        if (!io::parse_int64(ti, i))
+          throw InputError("off.face", path_, at_line(line),
+                           "expected " + std::to_string(n) + " vertex indices, found " +
+                               (ti.empty() ? std::string("the end of the line") : quote_token(ti)));
+        if (i < 0 || static_cast<std::size_t>(i) >= nv_)
+          throw InputError("off.face_index", path_, at_line(line),
+                           "vertex index " + std::to_string(i) + " out of range, expected 0.." + std::to_string(nv_ - 1));
+      }
+      tok_.skip_line();  // optional face colour
+      if (n > 3 && report_) ++report_->polygons_triangulated;
+      for (std::size_t k = 1; k + 1 < idx.size(); ++k)
+        mesh_.triangles.push_back({static_cast<std::uint32_t>(idx[0]), static_cast<std::uint32_t>(idx[k]),
+                                   static_cast<std::uint32_t>(idx[k + 1])});
+    }
+  }
+
+  // 5. The mesh, less the non-finite vertices when they are to be dropped.
+  TriangleMesh finish() {
+    nonfinite_.apply(mesh_, report_);
+    if (report_) report_->format = "off" + (prefix_.empty() ? std::string() : " (" + std::string(key_) + ")");
+    return std::move(mesh_);
+  }
+
+ private:
   // Comments start with '#'; they may stand anywhere a token may.
-  auto next = [&]() {
-    std::string_view t = tok.next();
+  std::string_view next() {
+    std::string_view t = tok_.next();
     while (!t.empty() && t[0] == '#') {
-      tok.skip_line();
-      t = tok.next();
+      tok_.skip_line();
+      t = tok_.next();
     }
     return t;
-  };
-  // 1. Header keyword: [C][N][4]OFF or OFF with the prefixes in either order (COFF, NOFF, NCOFF, CNOFF).
-  const std::string_view key = next();
-  const std::size_t off_at = key.rfind("OFF");
-  if (off_at == std::string_view::npos || off_at + 3 != key.size())
-    throw InputError("off.header", path, at_line(tok.line()), "expected 'OFF' (or COFF/NOFF/NCOFF) on the first line, found " + quote_token(key));
-  const std::string_view prefix = key.substr(0, off_at);
-  bool has_color = false, has_normal = false;
-  for (char c : prefix) {
-    if (c == 'C') has_color = true;
-    else if (c == 'N') has_normal = true;
-    else
-      throw InputError("off.header", path, at_line(tok.line()), "unsupported OFF variant " + quote_token(key) + ", expected OFF, COFF, NOFF or NCOFF");
   }
-  // 2. Counts.
-  long long counts[3];
-  for (long long& c : counts) {
-    const std::string_view t = next();
-    if (!io::parse_int64(t, c) || c < 0)
-      throw InputError("off.counts", path, at_line(tok.line()),
-                       "expected the counts 'vertices faces edges' (integers >= 0), found " +
-                           (t.empty() ? std::string("the end of the file") : quote_token(t)));
-  }
-  const std::size_t nv = static_cast<std::size_t>(counts[0]), nf = static_cast<std::size_t>(counts[1]);
-  if (nv > bytes.size() || nf > bytes.size())
-    throw InputError("off.counts", path, at_line(tok.line()), "counts larger than the file could hold");
-  TriangleMesh mesh;
-  io::NonFiniteFilter nonfinite(path, options);
-  mesh.positions.reserve(nv);
-  auto need = [&](const char* what, std::size_t i, std::size_t n) {
+
+  // The next token of element i of n (a vertex or a face), which the file must still hold.
+  std::string_view need(const char* what, std::size_t i, std::size_t n) {
     const std::string_view t = next();
     if (t.empty())
-      throw InputError("off.truncated", path, at_line(tok.line()),
+      throw InputError("off.truncated", path_, at_line(tok_.line()),
                        std::string("file ends inside ") + what + " " + std::to_string(i) + " of " + std::to_string(n));
     return t;
-  };
-  // 3. Vertices: x y z [nx ny nz] [r g b [a]] — colour and alpha are read line-wise.
-  for (std::size_t i = 0; i < nv; ++i) {
-    float c[3];
-    std::string_view t0 = need("vertex", i, nv);
-    const std::size_t line = tok.line();
-    c[0] = number(t0, path, line, "off.bad_number", "a vertex coordinate");
-    for (int k = 1; k < 3; ++k) c[k] = number(tok.next_on_line(), path, line, "off.bad_number", "a vertex coordinate");
-    const Vec3f p{c[0], c[1], c[2]};
-    nonfinite.check(i, p, "off.nonfinite", [&] { return at_line(line); });
-    mesh.positions.push_back(p);
-    if (has_normal) {
-      float n[3];
-      for (float& x : n) x = number(tok.next_on_line(), path, line, "off.bad_number", "a vertex normal");
-      mesh.normals.push_back(as_unit({n[0], n[1], n[2]}));
-    }
-    if (has_color) {
-      std::uint8_t rgb[3];
-      for (auto& x : rgb) {
-        const std::string_view t = tok.next_on_line();
-        x = color_component(t, number(t, path, line, "off.bad_number", "a vertex colour"));
-      }
-      mesh.colors.push_back({rgb[0], rgb[1], rgb[2]});
-    }
-    tok.skip_line();  // alpha and anything else on the line
   }
-  // 4. Faces: n i0 .. i(n-1) [colour], polygons split into fans.
-  mesh.triangles.reserve(nf);
-  std::vector<long long> idx;
-  for (std::size_t f = 0; f < nf; ++f) {
-    const std::string_view t = need("face", f, nf);
-    const std::size_t line = tok.line();
-    long long n;
-    if (!io::parse_int64(t, n) || n < 3 || n > (1 << 20))
-      throw InputError("off.face", path, at_line(line), "face corner count " + quote_token(t) + ", expected an integer >= 3");
-    idx.resize(static_cast<std::size_t>(n));
-    for (long long& i : idx) {
-      const std::string_view ti = tok.next_on_line();
-      if (!io::parse_int64(ti, i))
-        throw InputError("off.face", path, at_line(line),
-                         "expected " + std::to_string(n) + " vertex indices, found " +
-                             (ti.empty() ? std::string("the end of the line") : quote_token(ti)));
-      if (i < 0 || static_cast<std::size_t>(i) >= nv)
-        throw InputError("off.face_index", path, at_line(line),
-                         "vertex index " + std::to_string(i) + " out of range, expected 0.." + std::to_string(nv - 1));
-    }
-    tok.skip_line();  // optional face colour
-    if (n > 3 && report) ++report->polygons_triangulated;
-    for (std::size_t k = 1; k + 1 < idx.size(); ++k)
-      mesh.triangles.push_back({static_cast<std::uint32_t>(idx[0]), static_cast<std::uint32_t>(idx[k]),
-                                static_cast<std::uint32_t>(idx[k + 1])});
-  }
-  nonfinite.apply(mesh, report);
-  if (report) report->format = "off" + (prefix.empty() ? std::string() : " (" + std::string(key) + ")");
-  return mesh;
+
+  io::Tokenizer tok_;
+  const std::string& path_;
+  io::NonFiniteFilter nonfinite_;
+  ReadReport* report_;
+  std::size_t file_size_;
+  std::string_view key_, prefix_;  // the header keyword and its C/N prefix
+  bool has_color_ = false, has_normal_ = false;
+  std::size_t nv_ = 0, nf_ = 0;
+  TriangleMesh mesh_;
+};
+
+}  // namespace
+
+// An OFF file's mesh: per vertex its position, normal (NOFF) and colour (COFF) in file order;
+// polygons split into fans. Errors name the line and what was expected.
+TriangleMesh decode_off(ByteView bytes, const std::string& path, const ReadOptions& options, ReadReport* report) {
+  check_text(bytes, path, "off", "an OFF header");
+  OffReader reader(bytes, path, options, report);
+  reader.header();
+  reader.counts();
+  reader.vertices();
+  reader.faces();
+  return reader.finish();
 }
 
 TriangleMesh read_obj(const std::string& path, const ReadOptions& options, ReadReport* report) {

@@ -122,44 +122,38 @@ nlohmann::json stage_entry(const StageTime& t) {
           {"peak_mb", canonical_double(static_cast<float>(t.peak_bytes / 1048576.0))}};
 }
 
-}  // namespace
-
-AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::string& input_name) {
-  AssetBake a;
-  const std::string stem = std::filesystem::path(input_name).stem().string();
-  // 1. Points (a mesh is sampled).
-  TriangleMesh mesh;
-  const PointSet points = load_point_set(path, o.read, o.sample, "bake", a.read, &a.sampled, &mesh);
-  const bool is_mesh = !a.sampled.backend.empty();
-  // 2. Mesh inputs: mesh LODs for near and middle distances beside the impostors.
-  std::vector<LodMesh> mesh_lods;
-  nlohmann::json mesh_lod_entries;
-  const auto lods_start = std::chrono::steady_clock::now();
-  if (is_mesh && o.mesh_lods == AssetOptions::MeshLods::kClustering) {
+// 2. Mesh inputs: mesh LODs for near and middle distances beside the impostors (their manifest
+// entry; null when none), their files appended to `files`.
+nlohmann::json mesh_lod_outputs(const TriangleMesh& mesh, const AssetOptions& o, const std::string& stem,
+                                std::vector<OutputFile>& files) {
+  if (o.mesh_lods == AssetOptions::MeshLods::kClustering) {
     const VertexGrading grading = grade_vertices(mesh);
     ClusterOptions co;
+    std::vector<LodMesh> lods;
     for (double c : default_cluster_cells(mesh)) {
       co.cell = static_cast<float>(c);
-      mesh_lods.push_back(cluster_mesh(mesh, grading, co));
+      lods.push_back(cluster_mesh(mesh, grading, co));
     }
-    mesh_lod_entries = {{"method", "clustering"},
-                        {"levels", cluster_level_files(mesh_lods, stem, false, a.files)},
-                        {"lod_rule", "largest cell_width <= X * R, R = 2 D tan(fov/2) / window height, X = 5; "
-                                     "thick line width = _THICKNESS / R pixels"}};
-  } else if (is_mesh && o.mesh_lods == AssetOptions::MeshLods::kSimplify && !default_simplify_budgets(mesh).empty()) {
-    mesh_lod_entries = {{"method", "simplify"},
-                        {"levels", simplify_level_files(mesh, default_simplify_budgets(mesh), stem, a.files)},
-                        {"lod_rule", "coarsest level whose max_screen_pixels >= the object's on-screen size (bounding-box diagonal, pixels)"}};
+    return {{"method", "clustering"},
+            {"levels", cluster_level_files(lods, stem, false, files)},
+            {"lod_rule", "largest cell_width <= X * R, R = 2 D tan(fov/2) / window height, X = 5; "
+                         "thick line width = _THICKNESS / R pixels"}};
   }
-  const double lods_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - lods_start).count();
-  // 3. The impostor levels.
-  a.result = bake(points, o.bake, path);
-  BakeResult& r = a.result;
+  if (o.mesh_lods == AssetOptions::MeshLods::kSimplify && !default_simplify_budgets(mesh).empty())
+    return {{"method", "simplify"},
+            {"levels", simplify_level_files(mesh, default_simplify_budgets(mesh), stem, files)},
+            {"lod_rule", "coarsest level whose max_screen_pixels >= the object's on-screen size (bounding-box diagonal, pixels)"}};
+  return nullptr;
+}
+
+// 3. The impostor levels' files (their .glb bytes moved out of `r`) and the manifest around them.
+nlohmann::json impostor_outputs(BakeResult& r, const AssetOptions& o, const std::string& stem, const std::string& input_name,
+                                std::vector<OutputFile>& files) {
   nlohmann::json levels = nlohmann::json::array();
   for (BakedLevel& l : r.levels) {
     const std::string name = stem + "_L" + std::to_string(l.level) + ".glb";
     levels.push_back(level_entry(l, name));
-    a.files.push_back({name, std::move(l.glb)});
+    files.push_back({name, std::move(l.glb)});
     l.glb.clear();
   }
   nlohmann::json manifest{{"input", input_name},
@@ -169,34 +163,37 @@ AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::
                           {"generator", "quasiflat qf-bake"}};
   if (!r.lod_glb.empty()) {
     const std::string name = stem + "_lods.glb";
-    a.files.push_back({name, std::move(r.lod_glb)});
+    files.push_back({name, std::move(r.lod_glb)});
     r.lod_glb.clear();
     manifest["lod_file"] = {{"file", name}, {"screen_height", o.bake.lod_screen_height}};
   }
-  // 4. Mesh inputs: the sampled points, randomly permuted, as a point impostor; the cluster LODs.
-  if (is_mesh && o.point_impostor) {
-    PointImpostorInfo info;
-    info.pixel = a.sampled.pixel;
-    info.seed = o.point_seed;
-    const std::string name = stem + "_points.glb";
-    a.files.push_back({name, encode_point_glb(permuted(points, point_permutation(points.size(), info.seed)), info)});
-    manifest["point_impostor"] = {{"file", name},
-                                  {"points", points.size()},
-                                  {"pixel_size", canonical_double(info.pixel)},
-                                  {"seed", info.seed},
-                                  {"switch_distance", canonical_double(static_cast<float>(point_switch_distance(info)))},
-                                  {"switch_screen_height", info.reference_height},
-                                  {"switch_fov_degrees", canonical_double(info.reference_fov_degrees)}};
-  }
-  if (!mesh_lod_entries.is_null()) {
-    manifest["mesh_lods"] = std::move(mesh_lod_entries);
-    r.times.push_back({"mesh lods", lods_seconds, 0, 0});
-  }
-  // 5. The report: what was read, the settings, the figures, per-stage time and memory.
+  return manifest;
+}
+
+// 4. Mesh inputs: the sampled points, randomly permuted, as a point impostor (its manifest entry).
+nlohmann::json point_impostor_output(const PointSet& points, const AssetOptions& o, float pixel, const std::string& stem,
+                                     std::vector<OutputFile>& files) {
+  PointImpostorInfo info;
+  info.pixel = pixel;
+  info.seed = o.point_seed;
+  const std::string name = stem + "_points.glb";
+  files.push_back({name, encode_point_glb(permuted(points, point_permutation(points.size(), info.seed)), info)});
+  return {{"file", name},
+          {"points", points.size()},
+          {"pixel_size", canonical_double(info.pixel)},
+          {"seed", info.seed},
+          {"switch_distance", canonical_double(static_cast<float>(point_switch_distance(info)))},
+          {"switch_screen_height", info.reference_height},
+          {"switch_fov_degrees", canonical_double(info.reference_fov_degrees)}};
+}
+
+// 6. The report: what was read, the settings, the figures, per-stage time and memory.
+nlohmann::json asset_report(AssetBake& a, const AssetOptions& o, const std::string& input_name, const nlohmann::json& levels) {
+  BakeResult& r = a.result;
   nlohmann::json stages = nlohmann::json::array();
   for (const StageTime& t : r.times) stages.push_back(stage_entry(t));
   nlohmann::json sampling;  // null for point sets
-  if (is_mesh) {
+  if (!a.sampled.backend.empty()) {
     sampling = {{"ldi_size", o.sample.ldi_size},
                 {"backend_requested", o.sample.backend},
                 {"backend", a.sampled.backend},
@@ -208,30 +205,85 @@ AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::
                 {"seconds", canonical_double(static_cast<float>(a.sampled.seconds))}};
     if (!a.sampled.fallback.empty()) r.warnings.push_back(a.sampled.fallback);
   }
-  a.report = {{"input", input_name},
-              {"format", a.read.format},
-              {"points", r.points},
-              {"dropped_nonfinite", a.read.dropped_nonfinite},
-              {"hierarchy_levels", r.hierarchy_levels},
-              {"components", r.components},
-              {"cache", r.cache},
-              {"settings",
-               {{"k", o.bake.analysis.neighborhoods.k},
-                {"tau", o.bake.domains.tau},
-                {"strict", o.bake.domains.strict},
-                {"merge", o.bake.merge},
-                {"texel_factor", canonical_double(o.bake.texture.texel_factor)},
-                {"texel_density", canonical_double(static_cast<float>(o.bake.texel_density))},
-                {"max_texture", o.bake.texture.max_side},
-                {"lod_file", o.bake.lod_file},
-                {"mesh_lods", o.mesh_lods == AssetOptions::MeshLods::kSimplify     ? "simplify"
-                              : o.mesh_lods == AssetOptions::MeshLods::kClustering ? "clustering"
-                                                                                   : "none"}}},
-              {"levels", levels},
-              {"stages", stages},
-              {"sampling", sampling},
-              {"warnings", r.warnings}};
-  a.manifest = std::move(manifest);
+  return {{"input", input_name},
+          {"format", a.read.format},
+          {"points", r.points},
+          {"dropped_nonfinite", a.read.dropped_nonfinite},
+          {"hierarchy_levels", r.hierarchy_levels},
+          {"components", r.components},
+          {"cache", r.cache},
+          {"settings",
+           {{"k", o.bake.analysis.neighborhoods.k},
+            {"tau", o.bake.domains.tau},
+            {"strict", o.bake.domains.strict},
+            {"merge", o.bake.merge},
+            {"texel_factor", canonical_double(o.bake.texture.texel_factor)},
+            {"texel_density", canonical_double(static_cast<float>(o.bake.texel_density))},
+            {"max_texture", o.bake.texture.max_side},
+            {"lod_file", o.bake.lod_file},
+            {"mesh_lods", o.mesh_lods == AssetOptions::MeshLods::kSimplify     ? "simplify"
+                          : o.mesh_lods == AssetOptions::MeshLods::kClustering ? "clustering"
+                                                                               : "none"},
+            {"chain", static_cast<bool>(o.measure_chain)}}},
+          {"levels", levels},
+          {"stages", stages},
+          {"sampling", sampling},
+          {"warnings", r.warnings}};
+}
+
+// 5. With a chain, the combined LOD file holds the chain's files (each shown down to its
+// min_pixels) instead of the impostor levels alone.
+void chain_lod_file(AssetBake& a, const AssetOptions& o) {
+  std::vector<const std::vector<std::uint8_t>*> parts;
+  std::vector<double> coverage;
+  nlohmann::json names = nlohmann::json::array();
+  for (const nlohmann::json& e : a.manifest["recommended_chain"]["chain"]) {
+    for (const OutputFile& f : a.files)
+      if (f.name == e["file"]) parts.push_back(&f.bytes);
+    coverage.push_back(canonical_double(static_cast<float>(std::min(1.0, e["min_pixels"].get<double>() / o.bake.lod_screen_height))));
+    names.push_back(e["file"]);
+  }
+  nlohmann::json& entry = a.manifest["lod_file"];
+  std::vector<std::uint8_t> combined = combine_lod_glb(parts, coverage, "chain");
+  for (OutputFile& f : a.files)
+    if (f.name == entry["file"]) f.bytes = std::move(combined);
+  entry["parts"] = names;
+}
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::string& input_name) {
+  AssetBake a;
+  const std::string stem = std::filesystem::path(input_name).stem().string();
+  // 1. Points (a mesh is sampled).
+  TriangleMesh mesh;
+  const PointSet points = load_point_set(path, o.read, o.sample, "bake", a.read, &a.sampled, &mesh);
+  const bool is_mesh = !a.sampled.backend.empty();
+  // 2-4. The outputs: mesh LODs, impostor levels, the point impostor.
+  const auto lods_start = std::chrono::steady_clock::now();
+  nlohmann::json mesh_lods = is_mesh ? mesh_lod_outputs(mesh, o, stem, a.files) : nlohmann::json(nullptr);
+  const double lods_seconds = seconds_since(lods_start);
+  a.result = bake(points, o.bake, path);
+  a.manifest = impostor_outputs(a.result, o, stem, input_name, a.files);
+  if (is_mesh && o.point_impostor) a.manifest["point_impostor"] = point_impostor_output(points, o, a.sampled.pixel, stem, a.files);
+  if (!mesh_lods.is_null()) {
+    a.manifest["mesh_lods"] = std::move(mesh_lods);
+    a.result.times.push_back({"mesh lods", lods_seconds, 0, 0});
+  }
+  // 5. The recommended chain, measured on the files just made.
+  if (o.measure_chain) {
+    const auto chain_start = std::chrono::steady_clock::now();
+    const nlohmann::json chain = o.measure_chain(path, a.manifest, a.files);
+    if (!chain.is_null()) a.manifest["recommended_chain"] = chain;
+    if (!chain.is_null() && a.manifest.contains("lod_file")) chain_lod_file(a, o);
+    a.result.times.push_back({"chain", seconds_since(chain_start), 0, 0});
+  }
+  // 6. The report.
+  a.report = asset_report(a, o, input_name, a.manifest["levels"]);
   return a;
 }
 

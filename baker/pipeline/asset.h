@@ -2,12 +2,15 @@
 // or mesh) -> the bytes of every output file with the asset's manifest and report -> a folder.
 //   point set:  impostor levels (STEM_L<l>.glb), optionally STEM_lods.glb (MSFT_lod)
 //   mesh:       sampled into points first (depth peeling), then the same, plus the sampled points
-//               as a point impostor (STEM_points.glb) and vertex-clustering LODs (STEM_C<i>.glb)
+//               as a point impostor (STEM_points.glb) and mesh LODs (STEM_S<i>.glb, or the
+//               vertex-clustering STEM_C<i>.glb)
+//   both:       the manifest's recommended chain, when measure_chain is set
 #pragma once
 
 #include <nlohmann/json.hpp>
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -17,6 +20,11 @@
 #include "sample/sample.h"
 
 namespace qf {
+
+struct OutputFile {
+  std::string name;  // inside the asset's folder
+  std::vector<std::uint8_t> bytes;
+};
 
 struct AssetOptions {
   BakeOptions bake;
@@ -29,11 +37,10 @@ struct AssetOptions {
   // vertex clustering of seed 002 (STEM_C<i>.glb at default_cluster_cells) in every model x budget
   // case at 256 and 64 pixels, by 1-8 dB, with 4-60x fewer bytes at the same triangle count.
   enum class MeshLods { kSimplify, kClustering, kNone } mesh_lods = MeshLods::kSimplify;
-};
-
-struct OutputFile {
-  std::string name;  // inside the asset's folder
-  std::vector<std::uint8_t> bytes;
+  // The manifest's "recommended_chain" from the input's path, the manifest so far and the files:
+  // the candidates measured by drawing them (tools/chain.h). qf-bake sets it, as it links the
+  // renderer and the baker does not; empty: no chain.
+  std::function<nlohmann::json(const std::string&, const nlohmann::json&, const std::vector<OutputFile>&)> measure_chain;
 };
 
 struct AssetBake {

@@ -174,6 +174,98 @@ void check_bake_memory(std::size_t points, const AnalysisOptions& analysis, cons
                        budget.source + "); bake it on a machine with more memory, or split it");
 }
 
+namespace {
+
+// 2. Complete the point set: radii from spacing where missing (the set is copied into `completed`
+//    only then); normals stay as given. Returns the set to bake.
+const PointSet& completed_points(const PointSet& input, PointSet& completed, BakeResult& r) {
+  const bool needs_radii = !input.has_radii() || std::find(input.radii.begin(), input.radii.end(), 0.0f) != input.radii.end();
+  if (!needs_radii) return input;
+  completed = input;
+  if (estimate_radii(completed) && input.has_radii()) r.warnings.push_back("some radii were 0 and were estimated");
+  return completed;
+}
+
+// 4a. The chosen levels' bases (merged with --merge), in `levels` order of choice.
+std::vector<MergedLevel> level_bases(const AmgHierarchy& h, const BakeOptions& o, const PointSet& points,
+                                     const std::vector<Vec3f>& normals, std::vector<std::size_t>& levels) {
+  std::vector<MergedLevel> bases;  // quads and edges filled only when merged
+  if (o.merge && o.levels.empty()) {
+    // Chosen by the merged count; the bases come merged.
+    bases = choose_merged_levels(h, o, points.positions, normals);
+    for (const MergedLevel& b : bases) levels.push_back(b.level);
+    return bases;
+  }
+  levels = chosen_levels(h, o);
+  const std::size_t deepest = *std::max_element(levels.begin(), levels.end());
+  if (std::find(levels.begin(), levels.end(), std::size_t{0}) != levels.end()) bases.push_back({0, 0, basis_at_level(h, 0), {}});
+  for_each_basis(h, deepest, o.basis, [&](std::size_t l, const SparseMatrix& psi) {
+    if (std::find(levels.begin(), levels.end(), l) != levels.end()) bases.push_back({l, 0, psi, {}});
+  });
+  if (o.merge)
+    for (MergedLevel& b : bases) {
+      MergeReport report;
+      b.psi = merge_domains(b.psi, points.positions, normals, o.merge_options, &report);
+      b.edges = std::move(report.edges);
+    }
+  return bases;
+}
+
+// 4b. One level from its basis: domains, rectangles, textures, atlas, glb.
+BakedLevel bake_level(MergedLevel b, const PointSet& points, const std::vector<Vec3f>& normals, const BakeOptions& o, double diagonal,
+                      Stopwatch& watch) {
+  const std::string name = "level " + std::to_string(b.level);
+  SparseMatrix psi = std::move(b.psi);
+  Domains d = make_domains(psi, o.domains);
+  // Merged faces trimmed at their crease no longer overlap but stay neighbours there.
+  if (o.merge) d.edges = std::move(b.edges);
+  const std::vector<SupportRect> rects = support_rectangles(points.positions, normals, points.radii, psi, d, o.support);
+  SparseMatrix alpha = domain_partition(psi, d);  // what the rendered sum adds up
+  watch.lap(name + " domains");
+  BakedLevel out;
+  out.level = b.level;
+  out.primitives = rects.size();
+  for (const SupportRect& q : rects) out.error += q.error;
+  out.error = rects.empty() ? 0.0 : out.error / double(rects.size());
+  out.relative_error = diagonal > 0 ? out.error / diagonal : 0.0;
+  out.max_screen_pixels = out.error > 0 ? std::min(0.5 * diagonal / out.error, 1e9) : 1e9;
+  const TextureOptions texture = level_texture_options(o, diagonal, out.max_screen_pixels);
+  out.texel = texture.min_texel;
+  std::vector<Texture> textures = level_textures(points, normals, alpha, d, rects, texture);
+  watch.lap(name + " textures");
+  for (const Texture& t : textures) out.texels += static_cast<std::size_t>(t.width) * static_cast<std::size_t>(t.height);
+  // The level's per-point matrices are done with; its textures once packed into the atlas (at
+  // 10M sampled points a level's textures are ~0.8 GB, freed before the PNG encoding needs more).
+  psi = SparseMatrix(), alpha = SparseMatrix();
+  ImpostorLevel il = make_impostor_level(b.level, rects, textures, d, o.atlas);
+  std::vector<Texture>().swap(textures);
+  out.atlas_images = static_cast<int>(il.atlas.images.size());
+  out.atlas_widths = il.atlas.widths, out.atlas_heights = il.atlas.heights;
+  out.glb = encode_glb(il, o.gltf);
+  watch.lap(name + " atlas+glb");
+  return out;
+}
+
+// 5. The MSFT_lod file of the levels' .glb files, finest first. Level i is shown down to the size
+// at which the next coarser one is accurate enough; the coarsest is never culled.
+std::vector<std::uint8_t> lod_file(const std::vector<BakedLevel>& levels, const BakeOptions& o) {
+  std::vector<std::size_t> order(levels.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return levels[a].level < levels[b].level; });
+  std::vector<const std::vector<std::uint8_t>*> parts;
+  std::vector<double> coverage;
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    parts.push_back(&levels[order[i]].glb);
+    double c = 0;
+    if (i + 1 < order.size()) c = std::min(1.0, levels[order[i + 1]].max_screen_pixels / o.lod_screen_height);
+    if (!coverage.empty()) c = std::min(c, coverage.back());
+    coverage.push_back(canonical_double(static_cast<float>(c)));
+  }
+  return combine_lod_glb(parts, coverage, "impostor");
+}
+
+}  // namespace
+
 BakeResult bake(const PointSet& input, const BakeOptions& o, const std::string& source_name) {
   BakeResult r;
   Stopwatch watch(r.times);
@@ -185,15 +277,9 @@ BakeResult bake(const PointSet& input, const BakeOptions& o, const std::string& 
                          std::to_string(needed));
   // 1. Fail early, with the figures, where the bake would not fit in memory (not an OOM kill).
   check_bake_memory(input.size(), o.analysis, source_name);
-  // 2. Complete the point set: radii from spacing where missing (the set is copied only then);
-  //    normals stay as given.
+  // 2. Complete the point set.
   PointSet completed;
-  const bool needs_radii = !input.has_radii() || std::find(input.radii.begin(), input.radii.end(), 0.0f) != input.radii.end();
-  if (needs_radii) {
-    completed = input;
-    if (estimate_radii(completed) && input.has_radii()) r.warnings.push_back("some radii were 0 and were estimated");
-  }
-  const PointSet& points = needs_radii ? completed : input;
+  const PointSet& points = completed_points(input, completed, r);
   r.diagonal = points.bounds().diagonal();
   watch.lap("prepare");
   // 3. Hierarchy (analysis + AMG), cached.
@@ -211,80 +297,19 @@ BakeResult bake(const PointSet& input, const BakeOptions& o, const std::string& 
   watch.lap("hierarchy");
   // Normals orient the planes and make the normal maps: the input's, else the analysis' estimate.
   const std::vector<Vec3f>& normals = points.has_normals() ? points.normals : estimated;
-  // 4. Every chosen level: basis (merged with --merge), domains, rectangles, textures, atlas, glb.
+  // 4. Every chosen level: basis, then domains, rectangles, textures, atlas, glb.
   std::vector<std::size_t> levels;
-  std::vector<MergedLevel> bases;  // quads and edges filled only when merged
-  if (o.merge && o.levels.empty()) {
-    // Chosen by the merged count; the bases come merged.
-    bases = choose_merged_levels(h, o, points.positions, normals);
-    for (const MergedLevel& b : bases) levels.push_back(b.level);
-  } else {
-    levels = chosen_levels(h, o);
-    const std::size_t deepest = *std::max_element(levels.begin(), levels.end());
-    if (std::find(levels.begin(), levels.end(), std::size_t{0}) != levels.end()) bases.push_back({0, 0, basis_at_level(h, 0), {}});
-    for_each_basis(h, deepest, o.basis, [&](std::size_t l, const SparseMatrix& psi) {
-      if (std::find(levels.begin(), levels.end(), l) != levels.end()) bases.push_back({l, 0, psi, {}});
-    });
-    if (o.merge)
-      for (MergedLevel& b : bases) {
-        MergeReport report;
-        b.psi = merge_domains(b.psi, points.positions, normals, o.merge_options, &report);
-        b.edges = std::move(report.edges);
-      }
-  }
+  std::vector<MergedLevel> bases = level_bases(h, o, points, normals, levels);
   watch.lap("basis");
-  std::vector<ImpostorLevel> kept;  // for the MSFT_lod file
-  for (std::size_t level : levels) {
-    SparseMatrix psi;
-    std::vector<std::array<std::uint32_t, 2>> merged_edges;
+  for (std::size_t level : levels)
     for (MergedLevel& b : bases)
-      if (b.level == level) psi = std::move(b.psi), merged_edges = std::move(b.edges);
-    Domains d = make_domains(psi, o.domains);
-    // Merged faces trimmed at their crease no longer overlap but stay neighbours there.
-    if (o.merge) d.edges = std::move(merged_edges);
-    const std::vector<SupportRect> rects = support_rectangles(points.positions, normals, points.radii, psi, d, o.support);
-    SparseMatrix alpha = domain_partition(psi, d);  // what the rendered sum adds up
-    watch.lap("level " + std::to_string(level) + " domains");
-    BakedLevel out;
-    out.level = level;
-    out.primitives = rects.size();
-    for (const SupportRect& q : rects) out.error += q.error;
-    out.error = rects.empty() ? 0.0 : out.error / double(rects.size());
-    out.relative_error = r.diagonal > 0 ? out.error / r.diagonal : 0.0;
-    out.max_screen_pixels = out.error > 0 ? std::min(0.5 * r.diagonal / out.error, 1e9) : 1e9;
-    const TextureOptions texture = level_texture_options(o, r.diagonal, out.max_screen_pixels);
-    out.texel = texture.min_texel;
-    std::vector<Texture> textures = level_textures(points, normals, alpha, d, rects, texture);
-    watch.lap("level " + std::to_string(level) + " textures");
-    for (const Texture& t : textures) out.texels += static_cast<std::size_t>(t.width) * static_cast<std::size_t>(t.height);
-    // The level's per-point matrices are done with; its textures once packed into the atlas (at
-    // 10M sampled points a level's textures are ~0.8 GB, freed before the PNG encoding needs more).
-    psi = SparseMatrix(), alpha = SparseMatrix();
-    ImpostorLevel il = make_impostor_level(level, rects, textures, d, o.atlas);
-    std::vector<Texture>().swap(textures);
-    out.atlas_images = static_cast<int>(il.atlas.images.size());
-    out.atlas_widths = il.atlas.widths, out.atlas_heights = il.atlas.heights;
-    out.glb = encode_glb(il, o.gltf);
-    r.levels.push_back(std::move(out));
-    if (o.lod_file) kept.push_back(std::move(il));
-    watch.lap("level " + std::to_string(level) + " atlas+glb");
-  }
+      if (b.level == level) {
+        r.levels.push_back(bake_level(std::move(b), points, normals, o, r.diagonal, watch));
+        break;
+      }
+  // 5. All levels in one file.
   if (o.lod_file) {
-    // Finest first. Level i is shown down to the size at which the next coarser one is accurate
-    // enough; the coarsest is never culled.
-    std::vector<std::size_t> order(kept.size());
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return kept[a].level < kept[b].level; });
-    std::vector<const ImpostorLevel*> chain;
-    std::vector<double> coverage;
-    for (std::size_t i = 0; i < order.size(); ++i) {
-      chain.push_back(&kept[order[i]]);
-      double c = 0;
-      if (i + 1 < order.size()) c = std::min(1.0, r.levels[order[i + 1]].max_screen_pixels / o.lod_screen_height);
-      if (!coverage.empty()) c = std::min(c, coverage.back());
-      coverage.push_back(canonical_double(static_cast<float>(c)));
-    }
-    r.lod_glb = encode_lod_glb(chain, coverage, o.gltf);
+    r.lod_glb = lod_file(r.levels, o);
     watch.lap("lod file");
   }
   return r;

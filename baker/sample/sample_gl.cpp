@@ -77,11 +77,10 @@ GLuint make_texture(GLenum internal, GLenum format, GLenum type, int w, int h) {
   return tex;
 }
 
-AxisLayers peel_axis(const TriangleMesh& mesh, const SampleGrid& grid, const SampleOptions& options, int axis, PeelTarget& t) {
+// 1. The triangles of this axis as a vertex array, relative to the grid corner (float precision
+//    where it matters), ids as RGBA bytes, bound to attributes 0 and 1. Returns the vertex count.
+GLsizei upload_triangles(const TriangleMesh& mesh, const SampleGrid& grid, const SampleOptions& options, int axis, PeelTarget& t) {
   const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-  AxisLayers L = empty_layers(grid, axis);
-  // 1. The triangles of this axis as a vertex array, relative to the grid corner (float precision
-  //    where it matters), ids as RGBA bytes.
   std::vector<float> pos;
   std::vector<unsigned char> ids;
   for (std::size_t tri = 0; tri < mesh.triangles.size(); ++tri) {
@@ -94,7 +93,6 @@ AxisLayers peel_axis(const TriangleMesh& mesh, const SampleGrid& grid, const Sam
                              static_cast<unsigned char>(id >> 16), static_cast<unsigned char>(id >> 24)});
     }
   }
-  const GLsizei vertices = static_cast<GLsizei>(pos.size() / 3);
   glBindBuffer(GL_ARRAY_BUFFER, t.vbo[0]);
   glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(pos.size() * sizeof(float)), pos.data(), GL_STATIC_DRAW);
   glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
@@ -103,7 +101,12 @@ AxisLayers peel_axis(const TriangleMesh& mesh, const SampleGrid& grid, const Sam
   glVertexAttribPointer(1, 4, GL_UNSIGNED_BYTE, GL_TRUE, 0, nullptr);
   glEnableVertexAttribArray(0);
   glEnableVertexAttribArray(1);
-  // 2. Orthographic: image u, v over the grid, depth over the grid's extent along the axis.
+  return static_cast<GLsizei>(pos.size() / 3);
+}
+
+// 2. Orthographic: image u, v over the grid, depth over the grid's extent along the axis; the
+//    colour and both depth textures sized to the image, the colour attached to the FBO.
+void set_view(const SampleGrid& grid, int axis, const AxisLayers& L, PeelTarget& t) {
   const float W = static_cast<float>(L.width) * grid.pixel, H = static_cast<float>(L.height) * grid.pixel;
   const float D = static_cast<float>(grid.cells[static_cast<std::size_t>(axis)]) * grid.pixel;
   const float mvp[16] = {2 / W, 0, 0, 0, 0, 2 / H, 0, 0, 0, 0, 2 / D, 0, -1, -1, -1, 1};  // column-major
@@ -117,11 +120,15 @@ AxisLayers peel_axis(const TriangleMesh& mesh, const SampleGrid& grid, const Sam
   }
   glBindFramebuffer(GL_FRAMEBUFFER, t.fbo);
   glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, t.color, 0);
-  // 3. Peel: layer k writes depth[k % 2] and tests against depth[(k + 1) % 2].
+}
+
+// 3. Peel: layer k writes depth[k % 2] and tests against depth[(k + 1) % 2]. Per layer, each
+//    pixel's triangle id + 1 (0: none), until a layer is empty or max_layers are drawn.
+std::vector<std::vector<std::uint32_t>> peel(const AxisLayers& L, int max_layers, GLsizei vertices, PeelTarget& t) {
   const std::size_t pixels = static_cast<std::size_t>(L.width) * static_cast<std::size_t>(L.height);
   std::vector<std::vector<std::uint32_t>> layer_ids;
   std::vector<unsigned char> rgba(pixels * 4);
-  for (int k = 0; k < options.max_layers; ++k) {
+  for (int k = 0; k < max_layers; ++k) {
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, t.depth[k % 2], 0);
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
       throw std::runtime_error("depth peeling framebuffer incomplete");
@@ -144,7 +151,12 @@ AxisLayers peel_axis(const TriangleMesh& mesh, const SampleGrid& grid, const Sam
     layer_ids.push_back(std::move(id));
   }
   glBindTexture(GL_TEXTURE_2D, 0);
-  // 4. Per pixel, its layers front to back (a pixel's layers are contiguous from the first).
+  return layer_ids;
+}
+
+// 4. Per pixel, its layers front to back (a pixel's layers are contiguous from the first).
+void gather_layers(const std::vector<std::vector<std::uint32_t>>& layer_ids, AxisLayers& L) {
+  const std::size_t pixels = static_cast<std::size_t>(L.width) * static_cast<std::size_t>(L.height);
   L.layers = static_cast<int>(layer_ids.size());
   L.offsets.assign(pixels + 1, 0);
   for (std::size_t p = 0; p < pixels; ++p) {
@@ -154,6 +166,15 @@ AxisLayers peel_axis(const TriangleMesh& mesh, const SampleGrid& grid, const Sam
     }
     L.offsets[p + 1] = static_cast<std::uint32_t>(L.triangles.size());
   }
+}
+
+// One axis's layered depth image: every layer of the mesh's triangles seen along `axis` (only those
+// sampled on it with per_axis_triangles), over the grid, in the GL objects of `t`.
+AxisLayers peel_axis(const TriangleMesh& mesh, const SampleGrid& grid, const SampleOptions& options, int axis, PeelTarget& t) {
+  AxisLayers L = empty_layers(grid, axis);
+  const GLsizei vertices = upload_triangles(mesh, grid, options, axis, t);
+  set_view(grid, axis, L, t);
+  gather_layers(peel(L, options.max_layers, vertices, t), L);
   return L;
 }
 

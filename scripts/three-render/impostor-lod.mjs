@@ -1,5 +1,5 @@
-// Switching a bake's per-level impostor files with THREE.LOD at the manifest's distances (the
-// README shows this file; tests/render/three_lod_test.sh runs it in headless Chromium).
+// Switching a bake's per-level files with THREE.LOD at the manifest's distances (the README shows
+// this file; tests/render/three_lod_test.sh runs it in headless Chromium).
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 
@@ -9,17 +9,22 @@ export async function loadImpostorLOD(baseUrl, camera, screenHeight) {
   const manifest = await (await fetch(baseUrl + 'manifest.json')).json();
   // Pixels per world unit at distance 1: an object of diagonal D at distance d spans D * z0 / d px.
   const z0 = screenHeight / (2 * Math.tan(THREE.MathUtils.degToRad(camera.fov) / 2));
-  const levels = [...manifest.levels].sort((a, b) => b.primitives - a.primitives);  // finest first
+  // The recommended chain when the bake measured one (qf-bake --chain: nearest first, each file
+  // shown while the object spans at most max_pixels, null = any size); else the impostor levels,
+  // finest first, each accurate (error under half a pixel) up to its max_screen_pixels.
+  const steps = manifest.recommended_chain
+    ? manifest.recommended_chain.chain.map((e) => ({ file: e.file, pixels: e.max_pixels }))
+    : [...manifest.levels].sort((a, b) => b.primitives - a.primitives)
+        .map((l, i) => ({ file: l.file, pixels: i === 0 ? null : l.max_screen_pixels }));
   const lod = new THREE.LOD();  // THREE.LOD measures from its own position: the object's centre
   const loader = new GLTFLoader();
   const centre = new THREE.Vector3();
-  for (const [i, level] of levels.entries()) {
-    const gltf = await loader.loadAsync(baseUrl + level.file);
+  for (const [i, step] of steps.entries()) {
+    const gltf = await loader.loadAsync(baseUrl + step.file);
     if (i === 0) new THREE.Box3().setFromObject(gltf.scene).getCenter(centre);
     gltf.scene.position.sub(centre);
-    // A level is accurate (error under half a pixel) while the object spans at most
-    // max_screen_pixels: from that distance on; the finest from 0.
-    const distance = i === 0 ? 0 : manifest.bounding_box_diagonal * z0 / level.max_screen_pixels;
+    // Shown from the distance at which the object spans step.pixels on; the first from 0.
+    const distance = step.pixels === null ? 0 : manifest.bounding_box_diagonal * z0 / step.pixels;
     lod.addLevel(gltf.scene, distance);
   }
   lod.position.copy(centre);

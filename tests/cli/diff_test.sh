@@ -69,6 +69,17 @@ cp "$work/k1/ball_C0.draco.glb" "$work/k3.draco.glb"
 [[ $rc -eq 1 && $(field "$work/j" "'Draco' in r['files'][0]['note'] and '/nodes/0/extras/cellWidth' in r['files'][0]['changed_keys']") == True ]] && ok ||
   bad "changed Draco file: exit $rc, noted, keys listed"
 
+# --- the recommended chain: a manifest's chain before and after, in text and JSON ---
+"$bake" generate torus -n 6000 -o "$work/ring.ply" -q
+"$bake" "$work/ring.ply" -o "$work/c1" --chain --chain-views 2 --chain-psnr 99 -q
+"$bake" "$work/ring.ply" -o "$work/c2" --chain --chain-views 2 --chain-psnr 0 -q
+"$diff" "$work/c1" "$work/c2" --no-render --json >"$work/j"; rc=$?
+chain="[x for x in r['files'] if x['name'] == 'manifest.json'][0]['recommended_chain']"
+[[ $rc -eq 0 && $(field "$work/j" "$chain['old'] != $chain['new'] and $chain['old'].startswith('ring_L')") == True ]] && ok ||
+  bad "a changed chain: exit $rc, old and new listed"
+"$diff" "$work/c1" "$work/c2" --no-render >"$work/out"
+grep -q "^    recommended chain: ring_L.* px, .* dB" "$work/out" && grep -q "^      now: ring_L" "$work/out" && ok || bad "the chain in text: $(cat "$work/out")"
+
 # --- usage ---
 "$diff" "$work/a" "$work/a/$level" >/dev/null 2>"$work/err"; [[ $? -eq 2 ]] && grep -q "not a file with a folder" "$work/err" && ok || bad "file vs folder: exit 2"
 "$diff" "$work/a/$level" "$work/none.glb" >/dev/null 2>"$work/err"; [[ $? -eq 2 ]] && grep -q "none.glb" "$work/err" && ok || bad "missing file: exit 2 naming it"

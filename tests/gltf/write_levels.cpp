@@ -43,7 +43,8 @@ int main(int argc, char** argv) {
       const ImpostorLevel a = make_level(p, h, level_by_primitives(h, 300), false);
       const ImpostorLevel b = make_level(p, h, level_by_primitives(h, 100), false);
       const ImpostorLevel c = make_level(p, h, level_by_primitives(h, 30), false);
-      write_bytes_atomically(dir + "/torus_lods.glb", encode_lod_glb({&a, &b, &c}, {0.25, 0.1, 0}));
+      const std::vector<std::uint8_t> ga = encode_glb(a), gb = encode_glb(b), gc = encode_glb(c);
+      write_bytes_atomically(dir + "/torus_lods.glb", combine_lod_glb({&ga, &gb, &gc}, {0.25, 0.1, 0}, "impostor"));
     }
   }
   // A point impostor of a sampled mesh (COLOR_0 as 16-bit linear RGBA, mode POINTS).

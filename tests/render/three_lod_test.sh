@@ -2,7 +2,8 @@
 # The README's THREE.LOD example (scripts/three-render/impostor-lod.mjs, shown there verbatim)
 # switches a bake's per-level files in three.js at the manifest's distances: run in headless
 # Chromium on a baked torus, with the camera just inside and just outside every switch distance
-# (D z0 / max_screen_pixels, z0 = 512 / (2 tan 30 deg)), it shows the level the manifest says.
+# (D z0 / max_screen_pixels, z0 = 512 / (2 tan 30 deg)), it shows the level the manifest says;
+# with the recommended chain (--chain), its files at its max_pixels.
 # usage: three_lod_test.sh QF_BAKE SOURCE_DIR
 set -u
 bake=$1 src=$2
@@ -17,21 +18,28 @@ code = "\n".join("  " + l if l else "" for l in open(sys.argv[2]).read().strip()
 sys.exit(0 if code in open(sys.argv[1]).read() else 1)
 PY
 "$bake" generate torus -o "$work/torus.ply" -q || fail "generate"
-"$bake" "$work/torus.ply" -o "$work/bake" -q || fail "bake"
-read -r distances expected < <(python3 - "$work/bake/manifest.json" <<'PY'
+# Plain: the impostor levels. --chain: the recommended chain's files at its max_pixels.
+for how in plain chain; do
+  opts=(); [[ $how == chain ]] && opts=(--chain --chain-views 2)
+  "$bake" "$work/torus.ply" -o "$work/$how" "${opts[@]}" -q || fail "bake ($how)"
+  read -r distances expected < <(python3 - "$work/$how/manifest.json" <<'PY'
 import json, math, sys
 m = json.load(open(sys.argv[1]))
 z0 = 512 / (2 * math.tan(math.radians(30)))
-levels = sorted(m["levels"], key=lambda l: -l["primitives"])
-starts = [0] + [m["bounding_box_diagonal"] * z0 / l["max_screen_pixels"] for l in levels[1:]]
+if "recommended_chain" in m:
+    pixels = [e["max_pixels"] for e in m["recommended_chain"]["chain"]]
+else:
+    pixels = [None] + [l["max_screen_pixels"] for l in sorted(m["levels"], key=lambda l: -l["primitives"])[1:]]
+starts = [0 if p is None else m["bounding_box_diagonal"] * z0 / p for p in pixels]
 ds, want = [], []
 for i, s in enumerate(starts):
-    for d in ([s * 1.05] if i == 0 else [s * 0.95, s * 1.05]) if s > 0 else [0.5 * starts[1]]:
+    for d in ([s * 1.05] if i == 0 else [s * 0.95, s * 1.05]) if s > 0 else [0.5 * starts[1] if len(starts) > 1 else 1.0]:
         ds.append(d)
         want.append(max(j for j, t in enumerate(starts) if d >= t))
 print(",".join(f"{d:.6g}" for d in ds), ",".join(map(str, want)))
 PY
-)
-shown=$(node "$three/lod-check.mjs" "$work/bake" ${distances//,/ }) || fail "lod-check: $shown"
-[[ "$shown" == "[$expected]" ]] || fail "at distances $distances THREE.LOD shows levels $shown, the manifest says [$expected]"
-echo "THREE.LOD shows the manifest's level at every distance: $distances -> $shown"
+  )
+  shown=$(node "$three/lod-check.mjs" "$work/$how" ${distances//,/ }) || fail "lod-check ($how): $shown"
+  [[ "$shown" == "[$expected]" ]] || fail "$how: at distances $distances THREE.LOD shows levels $shown, the manifest says [$expected]"
+  echo "$how: THREE.LOD shows the manifest's level at every distance: $distances -> $shown"
+done

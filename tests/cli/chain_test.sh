@@ -1,0 +1,115 @@
+#!/usr/bin/env bash
+# The recommended chain (qf-bake bake --chain, tools/chain.h): every candidate of a bake measured
+# against the input, per band the smallest file that reaches the quality bar (else the best),
+# switch distances for a 1080-px screen at 60 degrees, the same bytes on a rebake; a batch asset's
+# "chain" setting means the same; with --lod-file the combined file holds the chain's files.
+# usage: chain_test.sh QF_BAKE QF_RENDER
+set -u
+bake=$1 render=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fail() { echo "FAIL: $*"; exit 1; }
+
+# A small mesh with mesh LODs (a UV sphere of 1,008 triangles) and a point set.
+python3 - "$work/sphere.off" <<'PY'
+import math, sys
+rings, segs = 15, 36
+v = [(0, 0, 1)] + [(math.sin(math.pi * i / rings) * math.cos(2 * math.pi * j / segs),
+                    math.sin(math.pi * i / rings) * math.sin(2 * math.pi * j / segs),
+                    math.cos(math.pi * i / rings)) for i in range(1, rings) for j in range(segs)] + [(0, 0, -1)]
+f = [(0, 1 + (j + 1) % segs, 1 + j) for j in range(segs)]
+for i in range(rings - 2):
+    for j in range(segs):
+        a, b = 1 + i * segs + j, 1 + i * segs + (j + 1) % segs
+        f += [(a, b, b + segs), (a, b + segs, a + segs)]
+last = len(v) - 1
+f += [(last, last - segs + j, last - segs + (j + 1) % segs) for j in range(segs)]
+with open(sys.argv[1], "w") as o:
+    o.write(f"OFF\n{len(v)} {len(f)} 0\n" + "".join(f"{x:.6f} {y:.6f} {z:.6f}\n" for x, y, z in v)
+            + "".join(f"3 {a} {b} {c}\n" for a, b, c in f))
+PY
+"$bake" generate torus -n 8000 -o "$work/torus.ply" -q || fail "generate"
+
+check() {  # check MANIFEST: the chain follows its rule from its own measurements
+  python3 - "$1" <<'PY'
+import json, math, sys
+m = json.load(open(sys.argv[1]))
+c = m.get("recommended_chain") or sys.exit("no recommended_chain")
+files = {f["name"]: f["bytes"] for f in m["files"]}
+want = [l["file"] for l in m.get("mesh_lods", {}).get("levels", [])] + [l["file"] for l in m["levels"]]
+if "point_impostor" in m: want.append(m["point_impostor"]["file"])
+measured = {e["file"]: e for e in c["measured"]}
+if sorted(measured) != sorted(want): sys.exit(f"measured {sorted(measured)}, the bake made {sorted(want)}")
+sizes = c["sizes"]
+for e in measured.values():
+    if e["bytes"] != files[e["file"]] or len(e["at_pixels"]) != len(sizes): sys.exit(f"bad measurement {e}")
+def pick(k):
+    ok = [e for e in c["measured"] if e["at_pixels"][k]["psnr"] >= c["min_psnr"] and e["at_pixels"][k]["iou"] >= c["min_iou"]]
+    if ok: return min(ok, key=lambda e: e["bytes"])["file"]
+    return max(c["measured"], key=lambda e: e["at_pixels"][k]["psnr"])["file"]
+bands = []  # the file of each band, nearest first, from the chain's entries
+for e in c["chain"]:
+    for k, s in enumerate(sizes):
+        lower = sizes[k + 1] if k + 1 < len(sizes) else 0
+        if (e["max_pixels"] is None or s <= e["max_pixels"]) and lower >= e["min_pixels"]: bands.append(e["file"])
+if bands != [pick(k) for k in range(len(sizes))]: sys.exit(f"bands {bands}, the rule says {[pick(k) for k in range(len(sizes))]}")
+if c["chain"][0]["max_pixels"] is not None or c["chain"][-1]["min_pixels"] != 0 or c["chain"][-1]["switch_distance"] is not None:
+    sys.exit("the chain does not run from any size down to 0")
+z0 = 1080 / (2 * math.tan(math.radians(30)))
+for a, b in zip(c["chain"], c["chain"][1:]):
+    if a["file"] == b["file"] or a["min_pixels"] != b["max_pixels"]: sys.exit(f"entries {a} and {b} do not join")
+    d = m["bounding_box_diagonal"] * z0 / a["min_pixels"]
+    if abs(a["switch_distance"] - d) > 1e-3 * d: sys.exit(f"switch distance {a['switch_distance']}, expected {d}")
+print(" -> ".join(f"{e['file']} (to {e['min_pixels']} px, {e['error']['psnr']} dB)" for e in c["chain"]))
+PY
+}
+
+# 1. A mesh: mesh LODs, impostor levels and the point impostor are all candidates.
+"$bake" "$work/sphere.off" -o "$work/mesh" --ldi 256 --chain --chain-views 3 -q || fail "mesh bake with --chain"
+kinds=$(python3 -c "import json,sys; print(sorted({e['kind'] for e in json.load(open(sys.argv[1]))['recommended_chain']['measured']}))" "$work/mesh/manifest.json")
+[[ "$kinds" == "['impostor_level', 'mesh_lod', 'point_impostor']" ]] || fail "mesh candidates: $kinds"
+out=$(check "$work/mesh/manifest.json") || fail "mesh chain: $out"
+echo "mesh chain: $out"
+
+# With --lod-file, STEM_lods.glb holds the chain's files as its LODs: each drawn alone (--lod i)
+# gives the same picture as the file itself.
+"$bake" "$work/sphere.off" -o "$work/lod" --ldi 256 --chain --chain-views 3 --lod-file --chain-psnr 45 -q || fail "--chain --lod-file"
+mapfile -t parts < <(python3 -c "import json,sys; [print(p) for p in json.load(open(sys.argv[1]))['lod_file']['parts']]" "$work/lod/manifest.json")
+chain=$(python3 -c "import json,sys; print(' '.join(e['file'] for e in json.load(open(sys.argv[1]))['recommended_chain']['chain']))" "$work/lod/manifest.json")
+[[ "${parts[*]}" == "$chain" ]] || fail "lod_file parts ${parts[*]}, the chain is $chain"
+(( ${#parts[@]} >= 2 )) || fail "a chain of one file at 45 dB: ${parts[*]}"
+for i in "${!parts[@]}"; do
+  "$render" render "$work/lod/sphere_lods.glb" --lod "$i" -o "$work/lod$i.png" --method engine --size 64 2>/dev/null || fail "render --lod $i"
+  "$render" render "$work/lod/${parts[$i]}" -o "$work/part$i.png" --method engine --size 64 --frame "$work/lod/sphere_lods.glb" 2>/dev/null || fail "render ${parts[$i]}"
+  cmp -s "$work/lod$i.png" "$work/part$i.png" || fail "LOD $i of the combined file does not draw as ${parts[$i]}"
+done
+"$render" render "$work/lod/sphere_lods.glb" --lod "${#parts[@]}" -o "$work/x.png" 2>/dev/null && fail "--lod past the last part"
+echo "lod file: ${parts[*]}"
+
+# 2. A point set: the impostor levels alone. The bar decides: at 99 dB nothing reaches it and each
+# band takes its best; at 0 dB and IoU 0.9 a cheaper file where one qualifies.
+"$bake" "$work/torus.ply" -o "$work/points" --chain --chain-views 3 -q || fail "point-set bake with --chain"
+out=$(check "$work/points/manifest.json") || fail "point-set chain: $out"
+echo "point-set chain: $out"
+"$bake" "$work/torus.ply" -o "$work/strict" --chain --chain-views 3 --chain-psnr 99 -q || fail "--chain-psnr 99"
+out=$(check "$work/strict/manifest.json") || fail "strict chain: $out"
+echo "at 99 dB: $out"
+"$bake" "$work/torus.ply" -o "$work/lax" --chain --chain-views 3 --chain-psnr 0 -q || fail "--chain-psnr 0"
+out=$(check "$work/lax/manifest.json") || fail "lax chain: $out"
+echo "at 0 dB: $out"
+cmp -s "$work/strict/manifest.json" "$work/lax/manifest.json" && fail "the quality bar changed nothing"
+
+# 3. Same input and settings, same bytes; without --chain no chain.
+"$bake" "$work/torus.ply" -o "$work/points2" --chain --chain-views 3 -q || fail "rebake"
+cmp "$work/points/manifest.json" "$work/points2/manifest.json" || fail "a rebake's chain differs"
+"$bake" "$work/torus.ply" -o "$work/plain" -q || fail "bake without --chain"
+grep -q recommended_chain "$work/plain/manifest.json" && fail "a chain without --chain"
+
+# 4. In a batch, the setting "chain" measures it too, with the same result.
+cat > "$work/batch.json" <<JSON
+{"defaults": {"chain": true, "chain-views": 3}, "assets": ["$work/torus.ply"]}
+JSON
+"$bake" batch "$work/batch.json" -o "$work/batch" -q || fail "batch with chain"
+python3 -c "import json,sys; a, b = (json.load(open(f))['recommended_chain'] for f in sys.argv[1:]); sys.exit(a != b)" \
+  "$work/points/manifest.json" "$work/batch/torus/manifest.json" || fail "the batch's chain differs from the bake's"
+echo "chain: all checks passed"
