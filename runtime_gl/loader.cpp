@@ -180,6 +180,15 @@ std::vector<int> lod_nodes(const tinygltf::Model& m, const std::vector<int>& roo
 
 namespace {
 
+// Whether mesh `mesh` has a triangle primitive: a combined LOD file may hold a point impostor,
+// which the item view cannot show (the engine view can).
+bool has_triangles(const tinygltf::Model& m, int mesh) {
+  if (mesh < 0 || mesh >= static_cast<int>(m.meshes.size())) return false;
+  for (const tinygltf::Primitive& p : m.meshes[static_cast<std::size_t>(mesh)].primitives)
+    if (p.mode == TINYGLTF_MODE_TRIANGLES) return true;  // as expand_triangles reads them
+  return false;
+}
+
 // The scene of a parsed file, whatever it holds.
 BakedScene baked_scene(const tinygltf::Model& m, const std::string& path) {
   BakedScene s;
@@ -192,7 +201,9 @@ BakedScene baked_scene(const tinygltf::Model& m, const std::string& path) {
       if (node < 0 || node >= static_cast<int>(m.nodes.size())) fail(path, "nodes", "MSFT_lod names node " + std::to_string(node) + ", which does not exist");
       BakedScene level;
       level.engine = engine_scene(m, path, {node});
-      level.impostor = impostor_scene(m, path, m.nodes[static_cast<std::size_t>(node)].mesh);
+      const int mesh = m.nodes[static_cast<std::size_t>(node)].mesh;
+      if (has_triangles(m, mesh)) level.impostor = impostor_scene(m, path, mesh);
+      else level.impostor.bounds = level.engine.bounds;  // drawn by the engine method alone
       s.lods.push_back(std::move(level));
     }
     s.lod_coverage = coverage;

@@ -13,17 +13,19 @@
 # methods) vs meshoptimizer simplify at twice the triangles (flat, smooth normals) and the nearest
 # vertex-clustering LOD, PSNR / IoU / holes / bytes at 256 and 64 pixels, on bunny00, fandisk,
 # elephant, the dragon and the coloured point set b9_training.
+# chain: the recommended chain (qf-bake bake --chain, scripts/chain_table.py) on bunny00, fandisk,
+# elephant, the dragon and assimp's textured spider: the chain, its bytes, bake and chain seconds.
 # big: one big asset (issue 20): a generated torus and bunny00's mesh sampled by depth peeling, at
 # 1M and 10M points each, baked with the defaults on 2 threads: seconds per stage, wall and CPU
 # (user + sys) time and peak RSS of the whole command (GNU time -v), bytes per point, and the
 # growth exponents from 1M to 10M (scripts/big_table.py). Needs ~12 GB and ~15 minutes; not part
 # of "all" (CI does not run it).
-# usage: scripts/bench.sh [io|analysis|amg|render|bake|sample|cluster|batch|fidelity|big]...   (default: all but big)
+# usage: scripts/bench.sh [io|analysis|amg|render|bake|sample|cluster|batch|fidelity|chain|big]...   (default: all but big)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh >/dev/null
 what=("$@")
-[[ ${#what[@]} -eq 0 ]] && what=(io analysis amg render bake sample cluster batch fidelity)
+[[ ${#what[@]} -eq 0 ]] && what=(io analysis amg render bake sample cluster batch fidelity chain)
 for w in "${what[@]}"; do
   case $w in
     io) build/bin/qf-bench-io ;;
@@ -162,7 +164,13 @@ for w in "${what[@]}"; do
       python3 scripts/fidelity_table.py build/bin "$models" "$tmp" \
         --models "bunny00.off,fandisk.off,elephant.off,ChineseDragon-10kv.off,b9_training.ply,$tmp/tree.glb"
       rm -rf "$tmp" ;;
-    *) echo "unknown benchmark '$w' (io, analysis, amg, render, bake, sample, cluster, batch, fidelity, big)" >&2; exit 2 ;;
+    chain)
+      models=$(scripts/fetch-models.sh bunny00.off fandisk.off elephant.off ChineseDragon-10kv.off | tail -1)
+      tmp=$(mktemp -d)
+      python3 scripts/chain_table.py build/bin "$models" "$tmp" bunny00.off fandisk.off elephant.off ChineseDragon-10kv.off \
+        /usr/share/assimp/models/OBJ/spider.obj
+      rm -rf "$tmp" ;;
+    *) echo "unknown benchmark '$w' (io, analysis, amg, render, bake, sample, cluster, batch, fidelity, chain, big)" >&2; exit 2 ;;
   esac
   echo
 done

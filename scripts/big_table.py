@@ -30,7 +30,9 @@ def stage_groups(report):
         groups["sample"] = report["sampling"]["seconds"]
     for s in report["stages"]:
         name = s["stage"]
-        if name.startswith("level ") or name == "lod file":
+        if name.startswith("level ") and name.endswith(" basis"):  # each level's basis, as it is made
+            groups["basis"] += s["seconds"]
+        elif name.startswith("level ") or name == "lod file":
             groups["levels"] += s["seconds"]
         elif name == "hierarchy":  # reports from before the split: analysis + AMG in one
             groups["amg"] += s["seconds"]

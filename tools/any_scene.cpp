@@ -62,9 +62,9 @@ AnyScene load_scene(const std::string& path) {
   return load_input(path);
 }
 
-AnyScene load_input(const std::string& path) {
+AnyScene load_input(const std::string& path, const ReadOptions& read) {
   AnyScene s;
-  Model m = read_model(path);
+  Model m = read_model(path, read);
   if (m.is_mesh) {
     s.kind = AnyScene::kMesh;
     s.mesh = mesh_scene(m.mesh, path);

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "io/model_io.h"
 #include "runtime_gl/draw_gl11.h"
 #include "tools/image_ops.h"
 #include "runtime_gl/loader.h"
@@ -46,7 +47,7 @@ struct AnyScene {
 AnyScene load_scene(const std::string& path);
 // An input file as the baker's readers read it (any format they take, glTF assets with their
 // materials too): a mesh, else a point set as splats.
-AnyScene load_input(const std::string& path);
+AnyScene load_input(const std::string& path, const ReadOptions& read = {});
 // A .glb file's bytes in memory, as load_scene reads the file; errors name `name`.
 AnyScene load_scene(const std::vector<std::uint8_t>& glb, const std::string& name);
 

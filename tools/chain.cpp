@@ -92,20 +92,21 @@ void measure(std::vector<Candidate>& candidates, std::vector<SizeViews>& sizes) 
   }
 }
 
-// 4. A band's choice, fidelity per byte: the fewest bytes that reach the quality bar there (PSNR
-// and IoU); where none does, the highest PSNR. The earlier candidate on equal bytes.
+double rounded(double v, double step) { return canonical_double(static_cast<float>(std::round(v / step) * step)); }
+
+// 4. A band's choice: the fewest bytes that reach the quality bar there (PSNR and IoU, as the
+// manifest rounds them, so that it can be checked from the manifest); where none does, the
+// highest PSNR. The earlier candidate on a tie.
 std::size_t choose(const std::vector<Candidate>& candidates, std::size_t band, const ChainOptions& o) {
   std::size_t pick = candidates.size(), best = 0;
   for (std::size_t i = 0; i < candidates.size(); ++i) {
-    const ViewMetrics& m = candidates[i].at_size[band];
-    if (m.psnr > candidates[best].at_size[band].psnr) best = i;
-    if (m.psnr >= o.min_psnr && m.iou >= o.min_iou && (pick == candidates.size() || candidates[i].bytes->size() < candidates[pick].bytes->size()))
+    const double psnr = rounded(candidates[i].at_size[band].psnr, 0.01), iou = rounded(candidates[i].at_size[band].iou, 0.001);
+    if (psnr > rounded(candidates[best].at_size[band].psnr, 0.01)) best = i;
+    if (psnr >= o.min_psnr && iou >= o.min_iou && (pick == candidates.size() || candidates[i].bytes->size() < candidates[pick].bytes->size()))
       pick = i;
   }
   return pick < candidates.size() ? pick : best;
 }
-
-double rounded(double v, double step) { return canonical_double(static_cast<float>(std::round(v / step) * step)); }
 
 nlohmann::json metrics_entry(const ViewMetrics& m) { return {{"psnr", rounded(m.psnr, 0.01)}, {"iou", rounded(m.iou, 0.001)}}; }
 
@@ -147,8 +148,13 @@ nlohmann::json recommend_chain(const std::string& input_path, const nlohmann::js
                                const ChainOptions& o) {
   std::vector<Candidate> candidates = listed_candidates(manifest, files);
   if (candidates.empty() || o.sizes.empty() || o.views < 1) return nullptr;
-  HeadlessContext context;
-  std::vector<SizeViews> sizes = reference_views(load_input(input_path), o);
+  std::unique_ptr<HeadlessContext> context;
+  try {
+    context = std::make_unique<HeadlessContext>();
+  } catch (const std::runtime_error& e) {
+    throw UsageError(std::string("--chain draws the candidates, which needs an EGL/OpenGL driver: ") + e.what());
+  }
+  std::vector<SizeViews> sizes = reference_views(load_input(input_path, o.read), o);
   measure(candidates, sizes);
   nlohmann::json measured = nlohmann::json::array();
   for (const Candidate& c : candidates) {

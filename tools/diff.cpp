@@ -317,9 +317,14 @@ OJson level_changes(const Json& a, const Json& b) {
   return OJson{{"levels", out}, {"bytes_total", {total[0], total[1]}}};
 }
 
-// A manifest's recommended chain as one line per side ("FILE to N px, P dB -> ..."), null on a side
-// without one; empty when the two chains are the same (or neither has one).
+// Two manifests' recommended chains, one line per side ("FILE to N px, P dB -> ...", null on a side
+// without one), when their chains differ in anything; empty when they are the same.
 OJson chain_changes(const Json& a, const Json& b) {
+  const auto chain = [](const Json& m) {
+    return m.is_object() && m.contains("recommended_chain") && m["recommended_chain"].is_object() ? m["recommended_chain"].value("chain", Json())
+                                                                                                   : Json();
+  };
+  if (chain(a) == chain(b)) return OJson();
   const auto line = [](const Json& m) {
     if (!m.is_object() || !m.contains("recommended_chain") || !m["recommended_chain"].is_object()) return OJson();
     std::string text;
@@ -331,9 +336,7 @@ OJson chain_changes(const Json& a, const Json& b) {
     }
     return OJson(text);
   };
-  const OJson la = line(a), lb = line(b);
-  if (la == lb) return OJson();
-  return OJson{{"old", la}, {"new", lb}};
+  return OJson{{"old", line(a)}, {"new", line(b)}};
 }
 
 // Keys whose values differ between two JSON values, as JSON pointers (at most `limit`).

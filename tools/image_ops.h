@@ -45,12 +45,12 @@ ViewMetrics compare_renders(const RenderPair& reference, const RenderPair& impos
 
 // Writes a float RGB image (e.g. a difference image) as OpenEXR (half floats, zip), atomically.
 void save_exr(const std::string& path, const std::vector<float>& rgb, int width, int height);
-// A float RGB image as 8-bit, scaled by `gain` and clamped (difference images made visible).
 // `image` reduced by a whole `factor` (its sides divisible by it), each pixel the mean of a
 // factor x factor block of bytes: a resolve in sRGB bytes, so that a pair over black and white
 // still gives coverage = 1 - (W - B) / 255.
 Image box_downsample(const Image& image, int factor);
 
+// A float RGB image as 8-bit, scaled by `gain` and clamped (difference images made visible).
 Image to_8bit(const std::vector<float>& rgb, int width, int height, float gain);
 
 }  // namespace qf::render

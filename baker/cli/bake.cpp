@@ -40,7 +40,7 @@ CommandSpec bake_spec() {
                     {"margin", 0, "M", "0", "extra rectangle margin, in mean point radii"},
                     {"lod-file", 0, "", "", "also write STEM_lods.glb: every level in one file under MSFT_lod (finest in the scene,\n"
                                              "the others as its lower LODs, switched by MSFT_screencoverage)"},
-                    {"lod-screen-height", 0, "PX", "1080", "screen height the MSFT_screencoverage values assume"},
+                    {"lod-screen-height", 0, "PX", "1080", "screen height the MSFT_screencoverage values and the chain's switch distances assume"},
                     {"point-seed", 0, "S", "1", "mesh inputs: seed of the point impostor's random order (STEM_points.glb)"},
                     {"no-points", 0, "", "", "mesh inputs: do not write the point impostor"},
                     {"mesh-lods", 0, "simplify|clustering|none", "simplify",
@@ -51,10 +51,11 @@ CommandSpec bake_spec() {
                     {"chain", 0, "", "", "also measure the recommended chain (manifest recommended_chain): every mesh LOD,\n"
                                          "impostor level and the point impostor drawn by the engine method against the input\n"
                                          "at 256, 128, 64, 32 and 16 px on screen; per band the smallest file that reaches\n"
-                                         "--chain-psnr and IoU 0.9, with its switch distance (1080 px screen, 60 degree field\n"
-                                         "of view). It costs about as much as the bake itself, more for large point impostors"},
-                    {"chain-views", 0, "N", "6", "--chain: directions drawn per size"},
-                    {"chain-psnr", 0, "DB", "30", "--chain: the quality bar, dB (engine method against the input)"},
+                                         "--chain-psnr and IoU 0.9, with its switch distance (--lod-screen-height, 60 degree\n"
+                                         "field of view); with --lod-file, STEM_lods.glb holds the chain's files. It costs\n"
+                                         "about as much as the bake itself, more for large point impostors"},
+                    {"chain-views", 0, "N", "6", "--chain: directions drawn per size (implies --chain)"},
+                    {"chain-psnr", 0, "DB", "30", "--chain: the quality bar, dB (engine method against the input; implies --chain)"},
                     drop_nonfinite_option(), quiet_option()},
                    1, 1};
   append_point_input_options(spec.options);
@@ -97,7 +98,9 @@ AssetOptions read_asset_options(const OptionValues& args) {
   render::ChainOptions chain;
   chain.views = static_cast<int>(args.get_int("chain-views", chain.views, 1, 1000));
   chain.min_psnr = args.get_double("chain-psnr", chain.min_psnr, 0.0, 99.0);
-  if (args.flag("chain"))
+  chain.screen_height = o.lod_screen_height;
+  chain.read = a.read;
+  if (args.flag("chain") || args.has("chain-views") || args.has("chain-psnr"))
     a.measure_chain = [chain](const std::string& input, const nlohmann::json& manifest, const std::vector<OutputFile>& files) {
       return render::recommend_chain(input, manifest, files, chain);
     };

@@ -1,5 +1,5 @@
-// One LOD file from finished .glb files (the recommended chain's: mesh LODs, impostor levels, the
-// point impostor), laid out as encode_lod_glb lays out the impostor levels.
+// One MSFT_lod file from finished .glb files: the impostor levels of --lod-file, or the
+// recommended chain's files (mesh LODs, impostor levels, the point impostor).
 #include "gltf/glb.h"
 
 #include <tiny_gltf.h>
@@ -29,6 +29,17 @@ tinygltf::Model parse_glb(const std::vector<std::uint8_t>& bytes) {
     throw std::invalid_argument("combine_lod_glb: a part with several buffers, skins, animations or cameras");
   for (const std::string& e : m.extensionsRequired)
     throw std::invalid_argument("combine_lod_glb: a part requires " + e);
+  // Only what append_part remaps: extensions may hold indices it would leave pointing elsewhere.
+  for (const std::string& e : m.extensionsUsed)
+    if (e != kImpostorExtension && e != kPointExtension) throw std::invalid_argument("combine_lod_glb: a part uses " + e);
+  for (const tinygltf::Accessor& a : m.accessors)
+    if (a.sparse.isSparse) throw std::invalid_argument("combine_lod_glb: a part with a sparse accessor");
+  for (const tinygltf::Mesh& mesh : m.meshes)
+    for (const tinygltf::Primitive& prim : mesh.primitives)
+      if (!prim.targets.empty()) throw std::invalid_argument("combine_lod_glb: a part with morph targets");
+  const int scene = m.defaultScene >= 0 ? m.defaultScene : 0;
+  if (static_cast<std::size_t>(scene) >= m.scenes.size() || m.scenes[static_cast<std::size_t>(scene)].nodes.size() != 1)
+    throw std::invalid_argument("combine_lod_glb: a part whose scene has not exactly one root node");
   return m;
 }
 
@@ -36,9 +47,10 @@ void shift(int& index, std::size_t base) {
   if (index >= 0) index += static_cast<int>(base);
 }
 
-// Appends part `p` to `m` (one buffer, every index shifted); returns the index of its scene's root
-// node in `m`.
-int append_part(tinygltf::Model& m, tinygltf::Model p) {
+// Appends part `p` to `m` (one buffer, every index shifted; its materials, images and textures
+// named PREFIX + their name, so that an importer keeps the parts' assets apart); returns the index
+// of its scene's root node in `m`.
+int append_part(tinygltf::Model& m, tinygltf::Model p, const std::string& prefix) {
   const std::size_t views = m.bufferViews.size(), accessors = m.accessors.size(), images = m.images.size(),
                     samplers = m.samplers.size(), textures = m.textures.size(), materials = m.materials.size(),
                     meshes = m.meshes.size(), nodes = m.nodes.size();
@@ -48,15 +60,16 @@ int append_part(tinygltf::Model& m, tinygltf::Model p) {
   if (!p.buffers.empty()) buffer.insert(buffer.end(), p.buffers[0].data.begin(), p.buffers[0].data.end());
   for (tinygltf::BufferView& v : p.bufferViews) v.buffer = 0, v.byteOffset += offset, m.bufferViews.push_back(v);
   for (tinygltf::Accessor& a : p.accessors) shift(a.bufferView, views), m.accessors.push_back(a);
-  for (tinygltf::Image& i : p.images) shift(i.bufferView, views), m.images.push_back(i);
+  for (tinygltf::Image& i : p.images) shift(i.bufferView, views), i.name = prefix + i.name, m.images.push_back(i);
   for (tinygltf::Sampler& s : p.samplers) m.samplers.push_back(s);
-  for (tinygltf::Texture& t : p.textures) shift(t.source, images), shift(t.sampler, samplers), m.textures.push_back(t);
+  for (tinygltf::Texture& t : p.textures) shift(t.source, images), shift(t.sampler, samplers), t.name = prefix + t.name, m.textures.push_back(t);
   for (tinygltf::Material& x : p.materials) {
     shift(x.pbrMetallicRoughness.baseColorTexture.index, textures);
     shift(x.pbrMetallicRoughness.metallicRoughnessTexture.index, textures);
     shift(x.normalTexture.index, textures);
     shift(x.occlusionTexture.index, textures);
     shift(x.emissiveTexture.index, textures);
+    x.name = prefix + x.name;
     m.materials.push_back(x);
   }
   for (tinygltf::Mesh& mesh : p.meshes) {
@@ -75,10 +88,7 @@ int append_part(tinygltf::Model& m, tinygltf::Model p) {
   for (const std::string& e : p.extensionsUsed)
     if (e != kImpostorExtension && e != kPointExtension && std::find(m.extensionsUsed.begin(), m.extensionsUsed.end(), e) == m.extensionsUsed.end())
       m.extensionsUsed.push_back(e);
-  const int scene = p.defaultScene >= 0 ? p.defaultScene : 0;
-  if (p.scenes.empty() || p.scenes[static_cast<std::size_t>(scene)].nodes.size() != 1)
-    throw std::invalid_argument("combine_lod_glb: a part whose scene has not exactly one root node");
-  return p.scenes[static_cast<std::size_t>(scene)].nodes[0] + static_cast<int>(nodes);
+  return p.scenes[static_cast<std::size_t>(p.defaultScene >= 0 ? p.defaultScene : 0)].nodes[0] + static_cast<int>(nodes);
 }
 
 }  // namespace
@@ -92,7 +102,8 @@ std::vector<std::uint8_t> combine_lod_glb(const std::vector<const std::vector<st
   m.asset.generator = "quasiflat";
   m.buffers.resize(1);
   std::vector<int> roots;
-  for (const std::vector<std::uint8_t>* part : parts) roots.push_back(append_part(m, parse_glb(*part)));
+  for (std::size_t i = 0; i < parts.size(); ++i)
+    roots.push_back(append_part(m, parse_glb(*parts[i]), name + "_LOD" + std::to_string(i) + "_"));
   // Named NAME_LOD0..n, finest first: the suffix Unity, Unreal and Godot importers group as LODs.
   for (std::size_t i = 0; i < roots.size(); ++i) m.nodes[static_cast<std::size_t>(roots[i])].name = name + "_LOD" + std::to_string(i);
   // Only the first part's node is in the scene: engines without MSFT_lod draw it alone.
@@ -102,7 +113,10 @@ std::vector<std::uint8_t> combine_lod_glb(const std::vector<const std::vector<st
     for (std::size_t i = 1; i < roots.size(); ++i) ids.push_back(Value(roots[i]));
     for (double c : screen_coverage) coverage.push_back(Value(c));
     root.extensions[kLodExtension] = Value(Value::Object{{"ids", Value(ids)}});
-    root.extras = Value(Value::Object{{kScreenCoverageExtra, Value(coverage)}});
+    // Beside the part's own extras (a cluster LOD's cellWidth).
+    Value::Object extras = root.extras.IsObject() ? root.extras.Get<Value::Object>() : Value::Object{};
+    extras[kScreenCoverageExtra] = Value(coverage);
+    root.extras = Value(extras);
     m.extensionsUsed.push_back(kLodExtension);
   }
   tinygltf::Scene scene;
@@ -111,7 +125,8 @@ std::vector<std::uint8_t> combine_lod_glb(const std::vector<const std::vector<st
   m.defaultScene = 0;
   tinygltf::TinyGLTF writer;
   std::ostringstream out;
-  writer.WriteGltfSceneToStream(&m, out, /*prettyPrint=*/false, /*writeBinary=*/true);
+  if (!writer.WriteGltfSceneToStream(&m, out, /*prettyPrint=*/false, /*writeBinary=*/true))
+    throw std::runtime_error("combine_lod_glb: tinygltf could not write the file");
   const std::string s = out.str();
   return std::vector<std::uint8_t>(s.begin(), s.end());
 }

@@ -2,6 +2,7 @@
 // outputs, and describe it all in a manifest and a report.
 #include "pipeline/asset.h"
 
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
@@ -165,7 +166,13 @@ nlohmann::json impostor_outputs(BakeResult& r, const AssetOptions& o, const std:
     const std::string name = stem + "_lods.glb";
     files.push_back({name, std::move(r.lod_glb)});
     r.lod_glb.clear();
-    manifest["lod_file"] = {{"file", name}, {"screen_height", o.bake.lod_screen_height}};
+    // Its parts, finest first (level numbers grow coarser).
+    std::vector<std::pair<std::size_t, std::string>> by_level;
+    for (const nlohmann::json& l : levels) by_level.push_back({l["level"].get<std::size_t>(), l["file"].get<std::string>()});
+    std::sort(by_level.begin(), by_level.end());
+    nlohmann::json parts = nlohmann::json::array();
+    for (const auto& [level, file] : by_level) parts.push_back(file);
+    manifest["lod_file"] = {{"file", name}, {"screen_height", o.bake.lod_screen_height}, {"parts", parts}};
   }
   return manifest;
 }

@@ -186,44 +186,19 @@ const PointSet& completed_points(const PointSet& input, PointSet& completed, Bak
   return completed;
 }
 
-// 4a. The chosen levels' bases (merged with --merge), in `levels` order of choice.
-std::vector<MergedLevel> level_bases(const AmgHierarchy& h, const BakeOptions& o, const PointSet& points,
-                                     const std::vector<Vec3f>& normals, std::vector<std::size_t>& levels) {
-  std::vector<MergedLevel> bases;  // quads and edges filled only when merged
-  if (o.merge && o.levels.empty()) {
-    // Chosen by the merged count; the bases come merged.
-    bases = choose_merged_levels(h, o, points.positions, normals);
-    for (const MergedLevel& b : bases) levels.push_back(b.level);
-    return bases;
-  }
-  levels = chosen_levels(h, o);
-  const std::size_t deepest = *std::max_element(levels.begin(), levels.end());
-  if (std::find(levels.begin(), levels.end(), std::size_t{0}) != levels.end()) bases.push_back({0, 0, basis_at_level(h, 0), {}});
-  for_each_basis(h, deepest, o.basis, [&](std::size_t l, const SparseMatrix& psi) {
-    if (std::find(levels.begin(), levels.end(), l) != levels.end()) bases.push_back({l, 0, psi, {}});
-  });
-  if (o.merge)
-    for (MergedLevel& b : bases) {
-      MergeReport report;
-      b.psi = merge_domains(b.psi, points.positions, normals, o.merge_options, &report);
-      b.edges = std::move(report.edges);
-    }
-  return bases;
-}
-
-// 4b. One level from its basis: domains, rectangles, textures, atlas, glb.
-BakedLevel bake_level(MergedLevel b, const PointSet& points, const std::vector<Vec3f>& normals, const BakeOptions& o, double diagonal,
-                      Stopwatch& watch) {
-  const std::string name = "level " + std::to_string(b.level);
-  SparseMatrix psi = std::move(b.psi);
+// 4b. One level from its basis `psi` (with --merge, merged, and its neighbour edges): domains,
+// rectangles, textures, atlas, glb.
+BakedLevel bake_level(std::size_t level, const SparseMatrix& psi, std::vector<std::array<std::uint32_t, 2>> merged_edges,
+                      const PointSet& points, const std::vector<Vec3f>& normals, const BakeOptions& o, double diagonal, Stopwatch& watch) {
+  const std::string name = "level " + std::to_string(level);
   Domains d = make_domains(psi, o.domains);
   // Merged faces trimmed at their crease no longer overlap but stay neighbours there.
-  if (o.merge) d.edges = std::move(b.edges);
+  if (o.merge) d.edges = std::move(merged_edges);
   const std::vector<SupportRect> rects = support_rectangles(points.positions, normals, points.radii, psi, d, o.support);
   SparseMatrix alpha = domain_partition(psi, d);  // what the rendered sum adds up
   watch.lap(name + " domains");
   BakedLevel out;
-  out.level = b.level;
+  out.level = level;
   out.primitives = rects.size();
   for (const SupportRect& q : rects) out.error += q.error;
   out.error = rects.empty() ? 0.0 : out.error / double(rects.size());
@@ -234,16 +209,59 @@ BakedLevel bake_level(MergedLevel b, const PointSet& points, const std::vector<V
   std::vector<Texture> textures = level_textures(points, normals, alpha, d, rects, texture);
   watch.lap(name + " textures");
   for (const Texture& t : textures) out.texels += static_cast<std::size_t>(t.width) * static_cast<std::size_t>(t.height);
-  // The level's per-point matrices are done with; its textures once packed into the atlas (at
-  // 10M sampled points a level's textures are ~0.8 GB, freed before the PNG encoding needs more).
-  psi = SparseMatrix(), alpha = SparseMatrix();
-  ImpostorLevel il = make_impostor_level(b.level, rects, textures, d, o.atlas);
+  // The level's partition is done with; its textures once packed into the atlas (at 10M sampled
+  // points a level's textures are ~0.8 GB, freed before the PNG encoding needs more).
+  alpha = SparseMatrix();
+  ImpostorLevel il = make_impostor_level(level, rects, textures, d, o.atlas);
   std::vector<Texture>().swap(textures);
   out.atlas_images = static_cast<int>(il.atlas.images.size());
   out.atlas_widths = il.atlas.widths, out.atlas_heights = il.atlas.heights;
   out.glb = encode_glb(il, o.gltf);
   watch.lap(name + " atlas+glb");
   return out;
+}
+
+// 4. Every chosen level, in the order of choice. Each is baked as soon as its basis is made, from
+// the hierarchy walk's own matrix: no basis is copied or held past its level (at 10M points the
+// four default levels' copies held 1.7 GB until the last was baked). With --merge, levels chosen
+// by their merged count come merged from choose_merged_levels.
+std::vector<BakedLevel> baked_levels(const AmgHierarchy& h, const BakeOptions& o, const PointSet& points,
+                                     const std::vector<Vec3f>& normals, double diagonal, Stopwatch& watch) {
+  std::vector<BakedLevel> out;
+  if (o.merge && o.levels.empty()) {
+    std::vector<MergedLevel> bases = choose_merged_levels(h, o, points.positions, normals);
+    watch.lap("basis");
+    for (MergedLevel& b : bases) {
+      out.push_back(bake_level(b.level, b.psi, std::move(b.edges), points, normals, o, diagonal, watch));
+      b.psi = SparseMatrix();  // done with
+    }
+    return out;
+  }
+  const std::vector<std::size_t> levels = chosen_levels(h, o);
+  const auto wanted = [&](std::size_t l) { return std::find(levels.begin(), levels.end(), l) != levels.end(); };
+  const auto visit = [&](std::size_t l, const SparseMatrix& psi) {
+    if (!wanted(l)) return;
+    if (!o.merge) {
+      watch.lap("level " + std::to_string(l) + " basis");
+      out.push_back(bake_level(l, psi, {}, points, normals, o, diagonal, watch));
+      return;
+    }
+    MergeReport report;
+    const SparseMatrix merged = merge_domains(psi, points.positions, normals, o.merge_options, &report);
+    watch.lap("level " + std::to_string(l) + " basis");
+    out.push_back(bake_level(l, merged, std::move(report.edges), points, normals, o, diagonal, watch));
+  };
+  if (wanted(0)) visit(0, basis_at_level(h, 0));
+  for_each_basis(h, *std::max_element(levels.begin(), levels.end()), o.basis, visit);
+  std::vector<BakedLevel> ordered;
+  for (std::size_t l : levels)
+    for (BakedLevel& b : out)
+      if (b.level == l) {
+        ordered.push_back(std::move(b));
+        break;
+      }
+  if (ordered.size() != levels.size()) throw std::logic_error("bake: a chosen level had no basis");
+  return ordered;
 }
 
 // 5. The MSFT_lod file of the levels' .glb files, finest first. Level i is shown down to the size
@@ -298,15 +316,7 @@ BakeResult bake(const PointSet& input, const BakeOptions& o, const std::string& 
   // Normals orient the planes and make the normal maps: the input's, else the analysis' estimate.
   const std::vector<Vec3f>& normals = points.has_normals() ? points.normals : estimated;
   // 4. Every chosen level: basis, then domains, rectangles, textures, atlas, glb.
-  std::vector<std::size_t> levels;
-  std::vector<MergedLevel> bases = level_bases(h, o, points, normals, levels);
-  watch.lap("basis");
-  for (std::size_t level : levels)
-    for (MergedLevel& b : bases)
-      if (b.level == level) {
-        r.levels.push_back(bake_level(std::move(b), points, normals, o, r.diagonal, watch));
-        break;
-      }
+  r.levels = baked_levels(h, o, points, normals, r.diagonal, watch);
   // 5. All levels in one file.
   if (o.lod_file) {
     r.lod_glb = lod_file(r.levels, o);

@@ -77,6 +77,16 @@ echo "mesh chain: $out"
 mapfile -t parts < <(python3 -c "import json,sys; [print(p) for p in json.load(open(sys.argv[1]))['lod_file']['parts']]" "$work/lod/manifest.json")
 chain=$(python3 -c "import json,sys; print(' '.join(e['file'] for e in json.load(open(sys.argv[1]))['recommended_chain']['chain']))" "$work/lod/manifest.json")
 [[ "${parts[*]}" == "$chain" ]] || fail "lod_file parts ${parts[*]}, the chain is $chain"
+python3 - "$work/lod" <<'PY' || fail "the combined file's screen coverages are not the chain's min_pixels / 1080"
+import json, struct, sys
+m = json.load(open(sys.argv[1] + "/manifest.json"))
+data = open(sys.argv[1] + "/sphere_lods.glb", "rb").read()
+doc = json.loads(data[20:20 + struct.unpack_from("<I", data, 12)[0]])
+root = doc["nodes"][doc["scenes"][0]["nodes"][0]]
+want = [min(1.0, e["min_pixels"] / 1080) for e in m["recommended_chain"]["chain"]]
+got = root["extras"]["MSFT_screencoverage"]
+sys.exit(0 if len(got) == len(want) and all(abs(a - b) < 1e-6 for a, b in zip(got, want)) else 1)
+PY
 (( ${#parts[@]} >= 2 )) || fail "a chain of one file at 45 dB: ${parts[*]}"
 for i in "${!parts[@]}"; do
   "$render" render "$work/lod/sphere_lods.glb" --lod "$i" -o "$work/lod$i.png" --method engine --size 64 2>/dev/null || fail "render --lod $i"
@@ -86,8 +96,8 @@ done
 "$render" render "$work/lod/sphere_lods.glb" --lod "${#parts[@]}" -o "$work/x.png" 2>/dev/null && fail "--lod past the last part"
 echo "lod file: ${parts[*]}"
 
-# 2. A point set: the impostor levels alone. The bar decides: at 99 dB nothing reaches it and each
-# band takes its best; at 0 dB and IoU 0.9 a cheaper file where one qualifies.
+# 2. A point set: the impostor levels alone. The bar decides: at 99 dB (an identical picture) nothing
+# reaches it and each band takes its best; at 0 dB and IoU 0.9 a cheaper file where one qualifies.
 "$bake" "$work/torus.ply" -o "$work/points" --chain --chain-views 3 -q || fail "point-set bake with --chain"
 out=$(check "$work/points/manifest.json") || fail "point-set chain: $out"
 echo "point-set chain: $out"

@@ -35,7 +35,7 @@ for f in files:
         root = doc["nodes"][doc["scenes"][0]["nodes"][0]]
         ids = root["extensions"]["MSFT_lod"]["ids"]
         cov = root["extras"]["MSFT_screencoverage"]
-        if len(doc["scenes"][0]["nodes"]) != 1 or len(ids) != 2 or len(cov) != 3 or cov != sorted(cov, reverse=True) \
+        if len(doc["scenes"][0]["nodes"]) != 1 or not ids or len(cov) != len(ids) + 1 or cov != sorted(cov, reverse=True) \
                 or "extensions" in doc or doc["extensionsUsed"] != ["MSFT_lod"]:
             print(f, "MSFT_lod structure wrong"); bad = 1
         continue

@@ -55,7 +55,11 @@ int main(int argc, char** argv) {
   const PointSet sampled = sample_mesh(generate_mesh("sphere", 6), so, "sphere", &st);
   PointImpostorInfo info;
   info.pixel = st.pixel;
-  write_bytes_atomically(dir + "/sphere_points.glb", encode_point_glb(permuted(sampled, point_permutation(sampled.size(), 1)), info));
+  const std::vector<std::uint8_t> points_glb = encode_point_glb(permuted(sampled, point_permutation(sampled.size(), 1)), info);
+  write_bytes_atomically(dir + "/sphere_points.glb", points_glb);
+  // A recommended chain's LOD file: a mesh LOD, then the point impostor.
+  const std::vector<std::uint8_t> mesh_glb = encode_mesh_glb(generate_mesh("sphere", 6), true);
+  write_bytes_atomically(dir + "/sphere_chain_lods.glb", combine_lod_glb({&mesh_glb, &points_glb}, {0.02, 0}, "chain"));
   // A vertex-clustering LOD with triangles, thick lines (_THICKNESS) and colours: a sphere with a
   // thin spike of two long triangles that collapses to an edge.
   TriangleMesh m = generate_mesh("sphere", 8);

@@ -28,6 +28,7 @@ m = json.load(open(sys.argv[1]))
 z0 = 512 / (2 * math.tan(math.radians(30)))
 if "recommended_chain" in m:
     pixels = [e["max_pixels"] for e in m["recommended_chain"]["chain"]]
+    if len(pixels) < 2: sys.exit("a chain of one file switches nothing")
 else:
     pixels = [None] + [l["max_screen_pixels"] for l in sorted(m["levels"], key=lambda l: -l["primitives"])[1:]]
 starts = [0 if p is None else m["bounding_box_diagonal"] * z0 / p for p in pixels]

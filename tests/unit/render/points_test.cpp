@@ -134,5 +134,33 @@ TEST(PointImpostor, ThinnedPointsCoverTheMeshAndFadeToItWhenNear) {
   EXPECT_LT(w, 0.7f);
 }
 
+// A recommended chain may end in the point impostor: combined into one MSFT_lod file after a mesh
+// LOD, it loads (the item view has no triangles to show there) and the engine draws either level.
+TEST(PointImpostor, CombinedLodFileWithAPointPartLoadsAndDraws) {
+  Fixture f;
+  std::ifstream in(f.path, std::ios::binary);
+  const std::vector<std::uint8_t> points_glb((std::istreambuf_iterator<char>(in)), {});
+  const std::vector<std::uint8_t> mesh_glb = encode_mesh_glb(f.mesh, true);
+  const std::vector<std::uint8_t> combined = combine_lod_glb({&mesh_glb, &points_glb}, {0.05, 0}, "chain");
+  const BakedScene b = load_baked(combined, "chain_lods.glb");
+  ASSERT_EQ(b.lods.size(), 2u);
+  EXPECT_EQ(b.lod_coverage, (std::vector<double>{0.05, 0}));
+  EXPECT_TRUE(b.lods[1].impostor.items.empty());
+  EXPECT_FALSE(b.lods[1].impostor.bounds.empty());
+  HeadlessContext context;
+  Renderer r(64, 64);
+  DrawSettings s;
+  s.method = Method::kEngine;
+  for (const BakedScene& level : b.lods) {
+    r.set_engine_scene(level.engine);
+    const Sphere sphere = bounding_sphere(level.impostor.bounds);
+    r.draw(orbit_camera(sphere, orbit_direction(30, 20), 0, 64, 64), s);
+    const Image img = r.read_pixels();
+    std::size_t lit = 0;
+    for (std::size_t i = 0; i < img.rgba.size(); i += 4) lit += img.rgba[i] + img.rgba[i + 1] + img.rgba[i + 2] > 0;
+    EXPECT_GT(lit, 64u * 64u / 5) << "a level of the combined file draws";
+  }
+}
+
 }  // namespace
 }  // namespace qf::render
