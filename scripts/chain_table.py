@@ -14,7 +14,7 @@ print("|---|---|---|---|---|---|")
 for model in sys.argv[4:]:
     src = model if os.path.isabs(model) else os.path.join(models, model)
     out = os.path.join(work, os.path.basename(model) + ".chain")
-    subprocess.run([os.path.join(bin_dir, "qf-bake"), "bake", src, "-o", out, "--chain", "-q"], check=True)
+    subprocess.run([os.path.join(bin_dir, "qf-bake"), "bake", src, "-o", out, "--chain", "--no-cache", "-q"], check=True)
     m = json.load(open(os.path.join(out, "manifest.json")))
     r = json.load(open(os.path.join(out, "report.json")))
     chain = m["recommended_chain"]["chain"]
