@@ -1,6 +1,7 @@
 // The recommended chain from near to far: every candidate a bake made (mesh LODs, impostor levels,
 // the point impostor) drawn by the engine method against the input at a ladder of on-screen sizes,
-// and for each screen-size band the fewest bytes that look good enough there (a quality bar), with
+// and for each screen-size band the fewest bytes that look good enough there (a quality bar; else
+// the best trade of PSNR against bytes, 1 dB per doubling; never more bytes than nearer), with
 // its switch distance. qf-bake hands it to the bake (AssetOptions::measure_chain): the drawing
 // needs runtime_gl, which the baker does not link. The figures come from the GL driver's pixels
 // (llvmpipe here): the same bytes on every run on one driver, not across drivers.

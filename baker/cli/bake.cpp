@@ -50,10 +50,11 @@ CommandSpec bake_spec() {
                     {"no-mesh-lods", 0, "", "", "the same as --mesh-lods none"},
                     {"chain", 0, "", "", "also measure the recommended chain (manifest recommended_chain): every mesh LOD,\n"
                                          "impostor level and the point impostor drawn by the engine method against the input\n"
-                                         "at 256, 128, 64, 32 and 16 px on screen; per band the smallest file that reaches\n"
-                                         "--chain-psnr and IoU 0.9, with its switch distance (--lod-screen-height, 60 degree\n"
-                                         "field of view); with --lod-file, STEM_lods.glb holds the chain's files. It costs\n"
-                                         "about three bakes (bunny00: 6.3 s), more for large point impostors"},
+                                         "at 256, 128, 64, 32 and 16 px on screen; per band, never more bytes than nearer, the\n"
+                                         "smallest file that reaches --chain-psnr and IoU 0.9 (else the best PSNR less 1 dB per\n"
+                                         "doubling of bytes), with its switch distance (--lod-screen-height, 60 degree field of\n"
+                                         "view); with --lod-file, STEM_lods.glb holds the chain's files. It costs about three\n"
+                                         "bakes (bunny00: 6.3 s), more for large point impostors"},
                     {"chain-views", 0, "N", "6", "--chain: directions drawn per size (implies --chain)"},
                     {"chain-psnr", 0, "DB", "30", "--chain: the quality bar, dB (engine method against the input; implies --chain)"},
                     drop_nonfinite_option(), quiet_option()},
