@@ -21,8 +21,7 @@ struct Candidate {
   std::vector<ViewMetrics> at_size;  // mean over views, one per ChainOptions::sizes
 };
 
-// 1. What the manifest lists: mesh LODs, impostor levels, the point impostor (not the combined
-// LOD file, which holds the impostor levels again).
+// 1. What the manifest lists: mesh LODs, impostor levels, the point impostor.
 std::vector<Candidate> listed_candidates(const nlohmann::json& manifest, const std::vector<OutputFile>& files) {
   std::map<std::string, const std::vector<std::uint8_t>*> by_name;
   for (const OutputFile& f : files) by_name[f.name] = &f.bytes;

@@ -86,8 +86,8 @@ AssetOptions read_asset_options(const OptionValues& args) {
       o.primitives.push_back(static_cast<std::size_t>(n));
   }
   o.cache_dir = read_cache_dir(args);
-  o.lod_file = args.flag("lod-file");
-  o.lod_screen_height = args.get_double("lod-screen-height", o.lod_screen_height, 1.0, 100000.0);
+  a.lod_file = args.flag("lod-file");
+  a.lod_screen_height = args.get_double("lod-screen-height", a.lod_screen_height, 1.0, 100000.0);
   a.read.drop_nonfinite = args.flag("drop-nonfinite");
   a.sample = read_sample_options(args);
   a.point_seed = static_cast<std::uint64_t>(args.get_int("point-seed", 1, 0, 1ll << 62));
@@ -99,7 +99,7 @@ AssetOptions read_asset_options(const OptionValues& args) {
   render::ChainOptions chain;
   chain.views = static_cast<int>(args.get_int("chain-views", chain.views, 1, 1000));
   chain.min_psnr = args.get_double("chain-psnr", chain.min_psnr, 0.0, 99.0);
-  chain.screen_height = o.lod_screen_height;
+  chain.screen_height = a.lod_screen_height;
   chain.read = a.read;
   if (args.flag("chain") || args.has("chain-views") || args.has("chain-psnr"))
     a.measure_chain = [chain](const std::string& input, const nlohmann::json& manifest, const std::vector<OutputFile>& files) {

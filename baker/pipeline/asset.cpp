@@ -148,8 +148,7 @@ nlohmann::json mesh_lod_outputs(const TriangleMesh& mesh, const AssetOptions& o,
 }
 
 // 3. The impostor levels' files (their .glb bytes moved out of `r`) and the manifest around them.
-nlohmann::json impostor_outputs(BakeResult& r, const AssetOptions& o, const std::string& stem, const std::string& input_name,
-                                std::vector<OutputFile>& files) {
+nlohmann::json impostor_outputs(BakeResult& r, const std::string& stem, const std::string& input_name, std::vector<OutputFile>& files) {
   nlohmann::json levels = nlohmann::json::array();
   for (BakedLevel& l : r.levels) {
     const std::string name = stem + "_L" + std::to_string(l.level) + ".glb";
@@ -162,18 +161,6 @@ nlohmann::json impostor_outputs(BakeResult& r, const AssetOptions& o, const std:
                           {"bounding_box_diagonal", canonical_double(r.diagonal)},
                           {"levels", levels},
                           {"generator", "quasiflat qf-bake"}};
-  if (!r.lod_glb.empty()) {
-    const std::string name = stem + "_lods.glb";
-    files.push_back({name, std::move(r.lod_glb)});
-    r.lod_glb.clear();
-    // Its parts, finest first (level numbers grow coarser).
-    std::vector<std::pair<std::size_t, std::string>> by_level;
-    for (const nlohmann::json& l : levels) by_level.push_back({l["level"].get<std::size_t>(), l["file"].get<std::string>()});
-    std::sort(by_level.begin(), by_level.end());
-    nlohmann::json parts = nlohmann::json::array();
-    for (const auto& [level, file] : by_level) parts.push_back(file);
-    manifest["lod_file"] = {{"file", name}, {"screen_height", o.bake.lod_screen_height}, {"parts", parts}};
-  }
   return manifest;
 }
 
@@ -194,7 +181,7 @@ nlohmann::json point_impostor_output(const PointSet& points, const AssetOptions&
           {"switch_fov_degrees", canonical_double(info.reference_fov_degrees)}};
 }
 
-// 6. The report: what was read, the settings, the figures, per-stage time and memory.
+// 7. The report: what was read, the settings, the figures, per-stage time and memory.
 nlohmann::json asset_report(AssetBake& a, const AssetOptions& o, const std::string& input_name, const nlohmann::json& levels) {
   BakeResult& r = a.result;
   nlohmann::json stages = nlohmann::json::array();
@@ -227,7 +214,7 @@ nlohmann::json asset_report(AssetBake& a, const AssetOptions& o, const std::stri
             {"texel_factor", canonical_double(o.bake.texture.texel_factor)},
             {"texel_density", canonical_double(static_cast<float>(o.bake.texel_density))},
             {"max_texture", o.bake.texture.max_side},
-            {"lod_file", o.bake.lod_file},
+            {"lod_file", o.lod_file},
             {"mesh_lods", o.mesh_lods == AssetOptions::MeshLods::kSimplify     ? "simplify"
                           : o.mesh_lods == AssetOptions::MeshLods::kClustering ? "clustering"
                                                                                : "none"},
@@ -238,23 +225,37 @@ nlohmann::json asset_report(AssetBake& a, const AssetOptions& o, const std::stri
           {"warnings", r.warnings}};
 }
 
-// 5. With a chain, the combined LOD file holds the chain's files (each shown down to its
-// min_pixels) instead of the impostor levels alone.
-void chain_lod_file(AssetBake& a, const AssetOptions& o) {
+// 6. The combined LOD file, nearest first: the recommended chain's files, each shown down to its
+// min_pixels; without a chain the impostor levels, finest first, each shown down to the size at
+// which the next coarser one is accurate enough (the coarsest is never culled).
+void lod_file_output(AssetBake& a, const AssetOptions& o, const std::string& stem) {
+  std::vector<std::pair<std::string, double>> steps;  // file, shown down to this many pixels
+  const bool chain = a.manifest.contains("recommended_chain");
+  if (chain) {
+    for (const nlohmann::json& e : a.manifest["recommended_chain"]["chain"])
+      steps.push_back({e["file"].get<std::string>(), e["min_pixels"].get<double>()});
+  } else {
+    std::vector<const BakedLevel*> levels;
+    for (const BakedLevel& l : a.result.levels) levels.push_back(&l);
+    std::sort(levels.begin(), levels.end(), [](const BakedLevel* x, const BakedLevel* y) { return x->level < y->level; });
+    for (std::size_t i = 0; i < levels.size(); ++i)
+      steps.push_back({stem + "_L" + std::to_string(levels[i]->level) + ".glb", i + 1 < levels.size() ? levels[i + 1]->max_screen_pixels : 0.0});
+  }
   std::vector<const std::vector<std::uint8_t>*> parts;
   std::vector<double> coverage;
   nlohmann::json names = nlohmann::json::array();
-  for (const nlohmann::json& e : a.manifest["recommended_chain"]["chain"]) {
+  for (const auto& [file, pixels] : steps) {
     for (const OutputFile& f : a.files)
-      if (f.name == e["file"]) parts.push_back(&f.bytes);
-    coverage.push_back(canonical_double(static_cast<float>(std::min(1.0, e["min_pixels"].get<double>() / o.bake.lod_screen_height))));
-    names.push_back(e["file"]);
+      if (f.name == file) parts.push_back(&f.bytes);
+    double c = std::min(1.0, pixels / o.lod_screen_height);
+    if (!coverage.empty()) c = std::min(c, coverage.back());
+    coverage.push_back(canonical_double(static_cast<float>(c)));
+    names.push_back(file);
   }
-  nlohmann::json& entry = a.manifest["lod_file"];
-  std::vector<std::uint8_t> combined = combine_lod_glb(parts, coverage, "chain");
-  for (OutputFile& f : a.files)
-    if (f.name == entry["file"]) f.bytes = std::move(combined);
-  entry["parts"] = names;
+  std::vector<std::uint8_t> combined = combine_lod_glb(parts, coverage, chain ? "chain" : "impostor");
+  const std::string name = stem + "_lods.glb";
+  a.files.push_back({name, std::move(combined)});
+  a.manifest["lod_file"] = {{"file", name}, {"screen_height", o.lod_screen_height}, {"parts", names}};
 }
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
@@ -275,7 +276,7 @@ AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::
   nlohmann::json mesh_lods = is_mesh ? mesh_lod_outputs(mesh, o, stem, a.files) : nlohmann::json(nullptr);
   const double lods_seconds = seconds_since(lods_start);
   a.result = bake(points, o.bake, path);
-  a.manifest = impostor_outputs(a.result, o, stem, input_name, a.files);
+  a.manifest = impostor_outputs(a.result, stem, input_name, a.files);
   if (is_mesh && o.point_impostor) a.manifest["point_impostor"] = point_impostor_output(points, o, a.sampled.pixel, stem, a.files);
   if (!mesh_lods.is_null()) {
     a.manifest["mesh_lods"] = std::move(mesh_lods);
@@ -286,10 +287,15 @@ AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::
     const auto chain_start = std::chrono::steady_clock::now();
     const nlohmann::json chain = o.measure_chain(path, a.manifest, a.files);
     if (!chain.is_null()) a.manifest["recommended_chain"] = chain;
-    if (!chain.is_null() && a.manifest.contains("lod_file")) chain_lod_file(a, o);
     a.result.times.push_back({"chain", seconds_since(chain_start), 0, 0});
   }
-  // 6. The report.
+  // 6. All of them in one file.
+  if (o.lod_file) {
+    const auto lod_start = std::chrono::steady_clock::now();
+    lod_file_output(a, o, stem);
+    a.result.times.push_back({"lod file", seconds_since(lod_start), 0, 0});
+  }
+  // 7. The report.
   a.report = asset_report(a, o, input_name, a.manifest["levels"]);
   return a;
 }

@@ -37,6 +37,11 @@ struct AssetOptions {
   // vertex clustering of seed 002 (STEM_C<i>.glb at default_cluster_cells) in every model x budget
   // case at 256 and 64 pixels, by 1-8 dB, with 4-60x fewer bytes at the same triangle count.
   enum class MeshLods { kSimplify, kClustering, kNone } mesh_lods = MeshLods::kSimplify;
+  // Also STEM_lods.glb: the recommended chain's files, else the impostor levels, in one .glb under
+  // MSFT_lod (for engines that switch LODs by it). Its screen coverages assume a screen this many
+  // pixels high.
+  bool lod_file = false;
+  double lod_screen_height = 1080;
   // The manifest's "recommended_chain" from the input's path, the manifest so far and the files:
   // the candidates measured by drawing them (tools/chain.h). qf-bake sets it, as it links the
   // renderer and the baker does not; empty: no chain.

@@ -264,24 +264,6 @@ std::vector<BakedLevel> baked_levels(const AmgHierarchy& h, const BakeOptions& o
   return ordered;
 }
 
-// 5. The MSFT_lod file of the levels' .glb files, finest first. Level i is shown down to the size
-// at which the next coarser one is accurate enough; the coarsest is never culled.
-std::vector<std::uint8_t> lod_file(const std::vector<BakedLevel>& levels, const BakeOptions& o) {
-  std::vector<std::size_t> order(levels.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return levels[a].level < levels[b].level; });
-  std::vector<const std::vector<std::uint8_t>*> parts;
-  std::vector<double> coverage;
-  for (std::size_t i = 0; i < order.size(); ++i) {
-    parts.push_back(&levels[order[i]].glb);
-    double c = 0;
-    if (i + 1 < order.size()) c = std::min(1.0, levels[order[i + 1]].max_screen_pixels / o.lod_screen_height);
-    if (!coverage.empty()) c = std::min(c, coverage.back());
-    coverage.push_back(canonical_double(static_cast<float>(c)));
-  }
-  return combine_lod_glb(parts, coverage, "impostor");
-}
-
 }  // namespace
 
 BakeResult bake(const PointSet& input, const BakeOptions& o, const std::string& source_name) {
@@ -317,11 +299,6 @@ BakeResult bake(const PointSet& input, const BakeOptions& o, const std::string& 
   const std::vector<Vec3f>& normals = points.has_normals() ? points.normals : estimated;
   // 4. Every chosen level: basis, then domains, rectangles, textures, atlas, glb.
   r.levels = baked_levels(h, o, points, normals, r.diagonal, watch);
-  // 5. All levels in one file.
-  if (o.lod_file) {
-    r.lod_glb = lod_file(r.levels, o);
-    watch.lap("lod file");
-  }
   return r;
 }
 

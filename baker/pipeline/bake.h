@@ -73,10 +73,6 @@ struct BakeOptions {
   std::vector<long long> levels;
   std::vector<std::size_t> primitives{1000, 300, 100, 30};
   std::string cache_dir;  // empty = no hierarchy cache
-  // Also one .glb with every level under MSFT_lod (for engines that switch LODs by it). Its screen
-  // coverages assume a screen this many pixels high.
-  bool lod_file = false;
-  double lod_screen_height = 1080;
 };
 
 struct BakedLevel {
@@ -103,7 +99,6 @@ struct StageTime {
 
 struct BakeResult {
   std::vector<BakedLevel> levels;
-  std::vector<std::uint8_t> lod_glb;  // every level under MSFT_lod, when asked for
   std::size_t points = 0, hierarchy_levels = 0, components = 0;
   float diagonal = 0;  // of the bounding box
   std::string cache;   // hit / miss / off
