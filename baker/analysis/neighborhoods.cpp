@@ -25,34 +25,8 @@ using Candidate = std::pair<float, std::uint32_t>;  // squared distance, input i
 // (bunny00 and fandisk at LDI 256-300: same time, same neighbourhoods).
 constexpr int kTieSlack = 1;
 
-// Points sorted along a Morton (Z-order) curve over their bounding box, ties by index. The tree is
-// built on this order and queried in it, so that consecutive queries touch nearby memory.
-std::vector<std::uint32_t> morton_order(const std::vector<Vec3f>& positions) {
-  Bounds box;
-  for (const Vec3f& p : positions) box.add(p);
-  const Vec3f size = box.size();
-  const float extent = std::max({size.x, size.y, size.z, 1e-30f});
-  auto spread = [](std::uint64_t v) {  // 21 bits -> every third bit of 63
-    v &= 0x1fffff;
-    v = (v | v << 32) & 0x1f00000000ffffull;
-    v = (v | v << 16) & 0x1f0000ff0000ffull;
-    v = (v | v << 8) & 0x100f00f00f00f00full;
-    v = (v | v << 4) & 0x10c30c30c30c30c3ull;
-    v = (v | v << 2) & 0x1249249249249249ull;
-    return v;
-  };
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> keys(positions.size());
-  for (std::size_t i = 0; i < positions.size(); ++i) {
-    std::uint64_t c[3];
-    for (int a = 0; a < 3; ++a)
-      c[a] = static_cast<std::uint64_t>(std::clamp((positions[i][a] - box.min[a]) / extent, 0.0f, 1.0f) * 2097151.0f);
-    keys[i] = {spread(c[0]) | spread(c[1]) << 1 | spread(c[2]) << 2, static_cast<std::uint32_t>(i)};
-  }
-  std::sort(keys.begin(), keys.end());
-  std::vector<std::uint32_t> order(positions.size());
-  for (std::size_t i = 0; i < keys.size(); ++i) order[i] = keys[i].second;
-  return order;
-}
+// The kd-tree is built on the points in Morton order (core/types.h morton_order) and queried in
+// it, so that consecutive queries touch nearby memory.
 
 // Exact neighbour queries on FLANN's single kd-tree, the index behind PCL's KdTreeFLANN, called
 // directly rather than through PCL: PCL's wrapper answers one point per call and allocates on each

@@ -47,6 +47,52 @@ static Bounds bounds_of(const std::vector<Vec3f>& points) {
 }
 
 Bounds PointSet::bounds() const { return bounds_of(positions); }
+
+std::vector<std::uint32_t> morton_order(const std::vector<Vec3f>& positions) {
+  const Bounds box = bounds_of(positions);
+  const Vec3f size = box.size();
+  const float extent = std::max({size.x, size.y, size.z, 1e-30f});
+  auto spread = [](std::uint64_t v) {  // 21 bits -> every third bit of 63
+    v &= 0x1fffff;
+    v = (v | v << 32) & 0x1f00000000ffffull;
+    v = (v | v << 16) & 0x1f0000ff0000ffull;
+    v = (v | v << 8) & 0x100f00f00f00f00full;
+    v = (v | v << 4) & 0x10c30c30c30c30c3ull;
+    v = (v | v << 2) & 0x1249249249249249ull;
+    return v;
+  };
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> keys(positions.size());
+  for (std::size_t i = 0; i < positions.size(); ++i) {
+    std::uint64_t c[3];
+    for (int a = 0; a < 3; ++a)
+      c[a] = static_cast<std::uint64_t>(std::clamp((positions[i][a] - box.min[a]) / extent, 0.0f, 1.0f) * 2097151.0f);
+    keys[i] = {spread(c[0]) | spread(c[1]) << 1 | spread(c[2]) << 2, static_cast<std::uint32_t>(i)};
+  }
+  std::sort(keys.begin(), keys.end());
+  std::vector<std::uint32_t> order(positions.size());
+  for (std::size_t i = 0; i < keys.size(); ++i) order[i] = keys[i].second;
+  return order;
+}
+
+PointSet permuted(const PointSet& points, const std::vector<std::uint32_t>& order) {
+  PointSet out;
+  auto take = [&order](const auto& in, auto& dst) {
+    if (in.empty()) return;
+    dst.reserve(order.size());
+    for (std::uint32_t i : order) dst.push_back(in[i]);
+  };
+  take(points.positions, out.positions);
+  take(points.normals, out.normals);
+  take(points.radii, out.radii);
+  take(points.colors, out.colors);
+  out.scalars.resize(points.scalars.size());
+  for (std::size_t f = 0; f < points.scalars.size(); ++f) {
+    out.scalars[f].name = points.scalars[f].name;
+    take(points.scalars[f].values, out.scalars[f].values);
+  }
+  out.comments = points.comments;
+  return out;
+}
 Bounds TriangleMesh::bounds() const { return bounds_of(positions); }
 
 std::vector<Vec3f> TriangleMesh::smooth_normals() const {

@@ -82,6 +82,14 @@ struct PointSet {
   std::size_t memory_bytes() const;
 };
 
+// The point indices in Morton (Z-order) along 21-bit cells of the bounding box's largest side,
+// ties by index: nearby points get nearby indices, so stages that read a point's neighbours touch
+// nearby memory. The same positions in any input order give the same sequence of positions.
+std::vector<std::uint32_t> morton_order(const std::vector<Vec3f>& positions);
+
+// The points in `order` (out[i] = points[order[i]]), every per-point array with them.
+PointSet permuted(const PointSet& points, const std::vector<std::uint32_t>& order);
+
 using Triangle = std::array<std::uint32_t, 3>;
 
 struct Vec2f {

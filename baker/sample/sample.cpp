@@ -242,19 +242,4 @@ std::vector<std::uint32_t> point_permutation(std::size_t n, std::uint64_t seed) 
   return order;
 }
 
-PointSet permuted(const PointSet& points, const std::vector<std::uint32_t>& order) {
-  PointSet out;
-  auto take = [&order](const auto& in, auto& dst) {
-    if (in.empty()) return;
-    dst.reserve(order.size());
-    for (std::uint32_t i : order) dst.push_back(in[i]);
-  };
-  take(points.positions, out.positions);
-  take(points.normals, out.normals);
-  take(points.radii, out.radii);
-  take(points.colors, out.colors);
-  out.comments = points.comments;
-  return out;
-}
-
 }  // namespace qf

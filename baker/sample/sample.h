@@ -103,8 +103,8 @@ PointSet sample_mesh(const TriangleMesh& mesh, const SampleOptions& options, con
 // Point impostors (paper section 5): a random permutation of the n sampled points, the same for
 // the same seed on every platform (splitmix64 + Fisher-Yates). Drawing any prefix of the permuted
 // set gives an evenly thinned sampling.
+// (core/types.h permuted applies it.)
 std::vector<std::uint32_t> point_permutation(std::size_t n, std::uint64_t seed);
-PointSet permuted(const PointSet& points, const std::vector<std::uint32_t>& order);
 
 // The axis a triangle is sampled on: the largest |normal component|, the lowest axis on ties; -1
 // for a degenerate triangle.

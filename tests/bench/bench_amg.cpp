@@ -44,7 +44,9 @@ int main(int argc, char** argv) {
   }
   if (argc < 2) return std::fprintf(stderr, "usage: qf-bench-amg --header | SOURCE [points]\n"), 2;
   std::string name;
-  const PointSet points = bench::load_input(argv[1], argc > 2 ? std::strtoull(argv[2], nullptr, 10) : 100000, name);
+  // In Morton order, as the bake hands them to the analysis (pipeline/bake.cpp).
+  const PointSet loaded = bench::load_input(argv[1], argc > 2 ? std::strtoull(argv[2], nullptr, 10) : 100000, name);
+  const PointSet points = permuted(loaded, morton_order(loaded.positions));
   const std::size_t base = process_memory("VmRSS:");
   auto t = std::chrono::steady_clock::now();
   AmgHierarchy h;

@@ -13,11 +13,12 @@ pass=0 fail=0
 ok() { pass=$((pass + 1)); }
 bad() { fail=$((fail + 1)); echo "FAIL: $*"; }
 
-# Inputs: the octahedron sample baked with its defaults and at its merged 8-domain level.
+# Inputs: the octahedron sample baked with its defaults (level 5 and the coarsest) and at its merged
+# 8-domain level.
 "$bake" "$root/samples/octahedron.ply" -o "$work/oct" --cache "$work/cache" -q || bad "bake defaults"
 "$bake" "$root/samples/octahedron.ply" -o "$work/oct8" --merge --levels 8 --cache "$work/cache" -q || bad "bake merged"
 declare -A file=([points]="$root/samples/octahedron.ply" [merged]="$work/oct8/octahedron_L8.glb"
-                 [level5]="$work/oct/octahedron_L5.glb" [level8]="$work/oct/octahedron_L8.glb")
+                 [level5]="$work/oct/octahedron_L5.glb" [coarsest]="$(ls "$work"/oct/octahedron_L*.glb | sort -V | tail -1)")
 
 # 1. Goldens. cases.tsv: name, input key, size, max channel difference, share of pixels allowed
 #    to exceed it (percent), then qf-render options.
