@@ -86,7 +86,9 @@ SplatScene splat_scene(PointSet points, const std::string& source) {
   if (!points.has_normals()) {
     // The baker's own estimate (same neighbourhoods, same orientation), so lighting matches.
     const Neighborhoods nb = compute_neighborhoods(points.positions);
-    s.normals = compute_local_frames(points.positions, nb).normal;
+    LocalFrames frames = compute_local_frames(points.positions, nb);
+    orient_normals(points.positions, nb, nullptr, frames);
+    s.normals = std::move(frames.normal);
   } else {
     s.normals = std::move(points.normals);
   }

@@ -41,9 +41,11 @@ SurfaceAnalysis analyze_surface(const PointSet& points, const AnalysisOptions& o
   a.neighborhoods = timer.run("neighbourhoods", [&] {
     return compute_neighborhoods(points.positions, options.neighborhoods, &r.neighborhoods);
   });
-  // 2. Moments, frames and consistently oriented normals.
-  a.frames = timer.run("frames", [&] {
-    return compute_local_frames(points.positions, a.neighborhoods, points.has_normals() ? &points.normals : nullptr);
+  // 2. Moments and frames, then consistently oriented normals (serial where the input has none).
+  a.frames = timer.run("frames", [&] { return compute_local_frames(points.positions, a.neighborhoods); });
+  timer.run("orientation", [&] {
+    orient_normals(points.positions, a.neighborhoods, points.has_normals() ? &points.normals : nullptr, a.frames);
+    return 0;
   });
   r.normals_flipped = a.frames.flipped;
   r.normal_components = a.frames.components;

@@ -48,6 +48,14 @@ void frame_of(std::size_t i, const std::vector<Vec3f>& pos, const Neighborhoods&
   f.radius[i] = e > b ? nb.distances[e - 1] : 0.0f;
 }
 
+// Turns point i's normal around, and e1 with it (cross(-n, e0) = -cross(n, e0), exactly), so the
+// frame stays right-handed.
+void turn_around(LocalFrames& f, std::size_t i) {
+  f.normal[i] = f.normal[i] * -1.0f;
+  f.e1[i] = f.e1[i] * -1.0f;
+  ++f.flipped;
+}
+
 // The tree edge by which Prim's algorithm reaches a point: its weight, the point, the tree point
 // it hangs from. Ordered by (w, to, from): the lowest index wins ties, so the tree is unique.
 struct TreeEdge {
@@ -163,7 +171,7 @@ void orient_by_propagation(const std::vector<Vec3f>& pos, const Neighborhoods& n
       const Vec3f d = pos[m] - centroid;
       if (dot(d, d) > best || (dot(d, d) == best && m < seed)) best = dot(d, d), seed = m;
     }
-    if (dot(f.normal[seed], pos[seed] - centroid) < 0) f.normal[seed] = f.normal[seed] * -1.0f, ++f.flipped;
+    if (dot(f.normal[seed], pos[seed] - centroid) < 0) turn_around(f, seed);
     done[seed] = 1;
     auto push_edges = [&](std::uint32_t i) {
       for (std::uint32_t a = degree[i]; a < degree[i + 1]; ++a)
@@ -173,7 +181,7 @@ void orient_by_propagation(const std::vector<Vec3f>& pos, const Neighborhoods& n
     while (!heap.empty()) {
       const TreeEdge e = heap.pop();
       done[e.to] = 1;
-      if (dot(f.normal[e.to], f.normal[e.from]) < 0) f.normal[e.to] = f.normal[e.to] * -1.0f, ++f.flipped;
+      if (dot(f.normal[e.to], f.normal[e.from]) < 0) turn_around(f, e.to);
       push_edges(e.to);
     }
   }
@@ -181,8 +189,7 @@ void orient_by_propagation(const std::vector<Vec3f>& pos, const Neighborhoods& n
 
 }  // namespace
 
-LocalFrames compute_local_frames(const std::vector<Vec3f>& positions, const Neighborhoods& nb,
-                                 const std::vector<Vec3f>* input_normals) {
+LocalFrames compute_local_frames(const std::vector<Vec3f>& positions, const Neighborhoods& nb) {
   const std::size_t n = positions.size();
   LocalFrames f;
   f.eigenvalues.resize(n);
@@ -193,18 +200,23 @@ LocalFrames compute_local_frames(const std::vector<Vec3f>& positions, const Neig
   f.radius.resize(n);
   // Dynamic chunks: a thread slowed by the machine's other jobs does not hold the other up.
 #pragma omp parallel for schedule(dynamic, 1024)
-  for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(n); ++i)
+  for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(n); ++i) {
     frame_of(static_cast<std::size_t>(i), positions, nb, f);
+    f.e1[static_cast<std::size_t>(i)] = cross(f.normal[static_cast<std::size_t>(i)], f.e0[static_cast<std::size_t>(i)]);
+  }
   for (std::size_t i = 0; i < n; ++i) f.isolated += nb.count(i) == 0;
+  return f;
+}
 
+void orient_normals(const std::vector<Vec3f>& positions, const Neighborhoods& nb, const std::vector<Vec3f>* input_normals,
+                    LocalFrames& f) {
+  const std::size_t n = positions.size();
   if (input_normals && input_normals->size() == n) {
     for (std::size_t i = 0; i < n; ++i)
-      if (dot(f.normal[i], (*input_normals)[i]) < 0) f.normal[i] = f.normal[i] * -1.0f, ++f.flipped;
+      if (dot(f.normal[i], (*input_normals)[i]) < 0) turn_around(f, i);
   } else {
     orient_by_propagation(positions, nb, f);
   }
-  for (std::size_t i = 0; i < n; ++i) f.e1[i] = cross(f.normal[i], f.e0[i]);  // right-handed frame
-  return f;
 }
 
 Classifier classify(const LocalFrames& frames, const Neighborhoods& nb, const ClassifierOptions& options) {

@@ -23,13 +23,18 @@ struct LocalFrames {
   std::size_t isolated = 0;    // points without neighbours (frame = world axes)
 };
 
-// Frames from neighbourhoods. The normal is oriented by `input_normals` where given (one per
-// point: e2 is turned to agree with it); otherwise consistently by propagation over the neighbour
-// graph (minimum spanning tree on 1 - |n_i . n_j|, Hoppe et al. 1992), each connected part seeded
-// at its highest point (largest z) with an upward normal, which makes closed surfaces outward.
-// Uses every core; the result does not depend on the thread count.
-LocalFrames compute_local_frames(const std::vector<Vec3f>& positions, const Neighborhoods& nb,
-                                 const std::vector<Vec3f>* input_normals = nullptr);
+// Frames from neighbourhoods, their normals not yet oriented (each e2 as the eigen-solver gives
+// it). Uses every core; the result does not depend on the thread count.
+LocalFrames compute_local_frames(const std::vector<Vec3f>& positions, const Neighborhoods& nb);
+
+// Orients the frames' normals (e1 turns with them, so the frames stay right-handed): by
+// `input_normals` where given (one per point: e2 is turned to agree with it); otherwise
+// consistently by propagation over the neighbour graph (minimum spanning tree on
+// 1 - |n_i . n_j|, Hoppe et al. 1992), each connected part seeded at its point farthest from the
+// part's centroid with a normal pointing away from it, which makes closed surfaces outward. The
+// propagation is serial.
+void orient_normals(const std::vector<Vec3f>& positions, const Neighborhoods& nb, const std::vector<Vec3f>* input_normals,
+                    LocalFrames& frames);
 
 enum class ClassifierKind { kPaper, kVariation };
 

@@ -99,7 +99,9 @@ class Searcher {
     out.clear();
     for (std::size_t r = 0; r < m; ++r)
       if (idx[r] != s) out.push_back({sq[r], order_[idx[r]]});
-    std::sort(out.begin(), out.end());
+    // The k-nearest answers come sorted by distance (FLANN's result set is an insertion sort), so
+    // only ties can be out of index order, and most lists need no sort (~7% of the bunny's search).
+    if (!std::is_sorted(out.begin(), out.end())) std::sort(out.begin(), out.end());
   }
 
   const std::vector<std::uint32_t>& order_;
