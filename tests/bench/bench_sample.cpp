@@ -36,27 +36,38 @@ TriangleMesh without_materials(TriangleMesh m) {
   return m;
 }
 
+// The same materials without their textures: base colour factors only (an untextured asset as
+// engines hold it), so the difference to the textured mesh is the texture lookups alone.
+TriangleMesh without_textures(TriangleMesh m) {
+  for (SurfaceMaterial& material : m.materials) material.texture = -1;
+  m.textures.clear();
+  return m;
+}
+
 void textured_table(const std::vector<std::string>& paths) {
-  std::printf("\ntextured vs untextured sampling (CPU backend, per-axis, best of 5 interleaved runs, seconds)\n");
-  std::printf("%-26s %6s %9s %5s %9s %11s %11s %9s\n", "mesh", "tris", "texels", "LDI", "points", "untextured", "textured", "overhead");
+  std::printf("\ntextured vs untextured sampling (CPU backend, per-axis, best of 5 interleaved runs, seconds;\n");
+  std::printf("no material: materials, UVs and textures removed; factors: materials kept, textures removed)\n");
+  std::printf("%-26s %6s %9s %5s %9s %11s %9s %9s %11s %11s\n", "mesh", "tris", "texels", "LDI", "points", "no material", "factors",
+              "textured", "vs no mat.", "vs factors");
   for (const std::string& path : paths) {
     const TriangleMesh textured = read_model(path).mesh;
-    const TriangleMesh plain = without_materials(textured);
+    const TriangleMesh plain = without_materials(textured), factors = without_textures(textured);
     std::size_t texels = 0;
     for (const TextureImage& t : textured.textures) texels += static_cast<std::size_t>(t.width) * static_cast<std::size_t>(t.height);
     const std::string name = path.substr(path.find_last_of('/') + 1);
     for (int ldi : {256, 1000}) {
       SampleOptions o;
       o.ldi_size = ldi;
-      std::size_t n_plain = 0, n_textured = 0;
-      double t_plain = 1e30, t_textured = 1e30;
-      // Interleaved, so that both see the same load on a shared machine; the best of 5 each.
+      std::size_t n_plain = 0, n_factors = 0, n_textured = 0;
+      double t_plain = 1e30, t_factors = 1e30, t_textured = 1e30;
+      // Interleaved, so that all see the same load on a shared machine; the best of 5 each.
       for (int run = 0; run < 5; ++run) {
         t_plain = std::min(t_plain, sample_seconds(plain, o, path, n_plain));
+        t_factors = std::min(t_factors, sample_seconds(factors, o, path, n_factors));
         t_textured = std::min(t_textured, sample_seconds(textured, o, path, n_textured));
       }
-      std::printf("%-26s %6zu %9zu %5d %9zu %11.4f %11.4f %8.1f%%\n", name.c_str(), textured.triangles.size(), texels, ldi, n_textured,
-                  t_plain, t_textured, 100 * (t_textured / t_plain - 1));
+      std::printf("%-26s %6zu %9zu %5d %9zu %11.4f %9.4f %9.4f %10.1f%% %10.1f%%\n", name.c_str(), textured.triangles.size(), texels, ldi,
+                  n_textured, t_plain, t_factors, t_textured, 100 * (t_textured / t_plain - 1), 100 * (t_textured / t_factors - 1));
       std::fflush(stdout);
     }
   }
