@@ -84,11 +84,16 @@ SplatScene splat_scene(PointSet points, const std::string& source) {
   estimate_radii(points);
   SplatScene s;
   if (!points.has_normals()) {
-    // The baker's own estimate (same neighbourhoods, same orientation), so lighting matches.
-    const Neighborhoods nb = compute_neighborhoods(points.positions);
-    LocalFrames frames = compute_local_frames(points.positions, nb);
-    orient_normals(points.positions, nb, nullptr, frames);
-    s.normals = std::move(frames.normal);
+    // The baker's own estimate (same neighbourhoods, same orientation, on the points in the bake's
+    // Morton order), so lighting matches and does not depend on the file's order.
+    const std::vector<std::uint32_t> order = morton_order(points.positions);
+    std::vector<Vec3f> sorted(points.size());
+    for (std::size_t i = 0; i < order.size(); ++i) sorted[i] = points.positions[order[i]];
+    const Neighborhoods nb = compute_neighborhoods(sorted);
+    LocalFrames frames = compute_local_frames(sorted, nb);
+    orient_normals(sorted, nb, nullptr, frames);
+    s.normals.resize(points.size());
+    for (std::size_t i = 0; i < order.size(); ++i) s.normals[order[i]] = frames.normal[i];
   } else {
     s.normals = std::move(points.normals);
   }

@@ -1,5 +1,6 @@
 // Surface analysis, stages 1-3 of method.md as one recipe: neighbourhoods -> local frames ->
-// classifier -> local Delaunay fans -> stiffness matrix. Each step is timed and reported.
+// orientation -> classifier -> local Delaunay fans -> stiffness matrix. Each step is timed and
+// reported.
 #pragma once
 
 #include <string>

@@ -48,8 +48,8 @@ void frame_of(std::size_t i, const std::vector<Vec3f>& pos, const Neighborhoods&
   f.radius[i] = e > b ? nb.distances[e - 1] : 0.0f;
 }
 
-// Turns point i's normal around, and e1 with it (cross(-n, e0) = -cross(n, e0), exactly), so the
-// frame stays right-handed.
+// Turns point i's normal around, and e1 with it (cross(-n, e0) = -cross(n, e0) in value; a zero
+// component may change sign), so the frame stays right-handed.
 void turn_around(LocalFrames& f, std::size_t i) {
   f.normal[i] = f.normal[i] * -1.0f;
   f.e1[i] = f.e1[i] * -1.0f;

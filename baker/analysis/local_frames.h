@@ -12,7 +12,8 @@ namespace qf {
 
 // Per point: the zero moment M0 (barycentre of the point and its neighbours), the first moment
 // M1 (their covariance around M0), its eigenvalues lambda0 >= lambda1 >= lambda2 >= 0 (world
-// units squared) and eigenvectors: e0, e1 span the tangent plane, normal = e2, oriented.
+// units squared) and eigenvectors: e0, e1 span the tangent plane, normal = e2 (oriented once
+// orient_normals has run; flipped and components count from then).
 struct LocalFrames {
   std::vector<std::array<float, 3>> eigenvalues;  // lambda0, lambda1, lambda2
   std::vector<Vec3f> e0, e1, normal;              // unit vectors; (e0, e1, normal) right-handed

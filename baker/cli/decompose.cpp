@@ -191,7 +191,9 @@ CommandSpec decompose_spec() {
                    "Writes the points coloured by domain (each basis function a colour, mixed by the weights\n"
                    "where domains overlap, as the paper's figure 5c/d), with the strongest function's index as\n"
                    "the float property 'domain' and its weight as 'weight'. Levels are numbered from the finest:\n"
-                   "0 is the points themselves; a negative number or L-K counts back from the coarsest level L.",
+                   "0 is the points themselves; a negative number or L-K counts back from the coarsest level L.\n"
+                   "The points are taken, and written, in the bake's order (along a Morton curve), so each level\n"
+                   "is the decomposition the bake's file of that level is made from.",
                    {{"output", 'o', "OUT.ply", "", "output point set (.ply); required"},
                     {"level", 0, "K", "", "the level to decompose at (0 = points, -K or L-K from the coarsest)"},
                     {"primitives", 'n', "N", "200", "instead of --level: the level with the number of basis functions nearest N"},
@@ -225,7 +227,12 @@ int run_decompose(const ParsedArgs& args) {
 
   // 2. The hierarchy: it depends only on the points and the settings, so it is reused when cached.
   ReadReport read_report;
-  const PointSet points = load_points(r.in, args, "decompose", read_report);
+  // In the bake's order (Morton), so that a level here is the decomposition the bake's file of
+  // that level was made from; the output lists the points in that order.
+  const PointSet points = [&] {
+    const PointSet loaded = load_points(r.in, args, "decompose", read_report);
+    return permuted(loaded, morton_order(loaded.positions));
+  }();
   r.cache_dir = read_cache_dir(args);
   const auto t0 = std::chrono::steady_clock::now();
   const AmgHierarchy h = cached_hierarchy(points, ao, AmgOptions{}, r.cache_dir, r.cache_state);

@@ -1,4 +1,4 @@
-// Small helpers of the plain value types (bounds, memory accounting).
+// Small helpers of the plain value types (bounds, memory accounting, Morton order, permutations).
 #include "core/types.h"
 
 #include <algorithm>
@@ -68,7 +68,16 @@ std::vector<std::uint32_t> morton_order(const std::vector<Vec3f>& positions) {
       c[a] = static_cast<std::uint64_t>(std::clamp((positions[i][a] - box.min[a]) / extent, 0.0f, 1.0f) * 2097151.0f);
     keys[i] = {spread(c[0]) | spread(c[1]) << 1 | spread(c[2]) << 2, static_cast<std::uint32_t>(i)};
   }
-  std::sort(keys.begin(), keys.end());
+  // Ties (points in one cell) by position, so that only points at the very same position keep
+  // their input order; then by index.
+  std::sort(keys.begin(), keys.end(), [&](const auto& a, const auto& b) {
+    if (a.first != b.first) return a.first < b.first;
+    const Vec3f &p = positions[a.second], &q = positions[b.second];
+    if (p.x != q.x) return p.x < q.x;
+    if (p.y != q.y) return p.y < q.y;
+    if (p.z != q.z) return p.z < q.z;
+    return a.second < b.second;
+  });
   std::vector<std::uint32_t> order(positions.size());
   for (std::size_t i = 0; i < keys.size(); ++i) order[i] = keys[i].second;
   return order;

@@ -83,8 +83,9 @@ struct PointSet {
 };
 
 // The point indices in Morton (Z-order) along 21-bit cells of the bounding box's largest side,
-// ties by index: nearby points get nearby indices, so stages that read a point's neighbours touch
-// nearby memory. The same positions in any input order give the same sequence of positions.
+// ties by position, then by index: nearby points get nearby indices, so stages that read a point's
+// neighbours touch nearby memory. The same points in any input order give the same sequence, but
+// for points at exactly the same position, which keep their input order.
 std::vector<std::uint32_t> morton_order(const std::vector<Vec3f>& positions);
 
 // The points in `order` (out[i] = points[order[i]]), every per-point array with them.

@@ -179,7 +179,7 @@ namespace {
 // 2. Complete the point set: a copy in Morton order, radii from spacing where missing; normals
 //    stay as given. Morton order because every later stage reads points beside their neighbours
 //    (on shuffled input the analysis, bases and textures were bound by cache misses), and it makes
-//    a reordered file bake to the same files (unless two of its points share a 2^-21 cell).
+//    a reordered file bake to the same files (unless two of its points share a position exactly).
 PointSet completed_points(const PointSet& input, BakeResult& r) {
   PointSet points = permuted(input, morton_order(input.positions));
   const bool needs_radii = !points.has_radii() || std::find(points.radii.begin(), points.radii.end(), 0.0f) != points.radii.end();
