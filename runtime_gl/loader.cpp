@@ -290,6 +290,18 @@ std::uint32_t texture_of(const tinygltf::Model& m, int material, std::uint32_t w
   return src >= 0 && src < static_cast<int>(m.images.size()) ? static_cast<std::uint32_t>(src) : white;
 }
 
+// The atlases' alpha back to the basis functions' weights: the writer stored 1 - (1 - w)^e
+// (the extension's alphaExponent) for engines' alpha test; the blend needs w. A 256-entry table,
+// applied before any mip level is made.
+void decode_weights(double exponent, const std::string& path, ImpostorScene& s) {
+  if (!(exponent >= 1) || !std::isfinite(exponent)) fail(path, "extension", "alphaExponent must be a number >= 1");
+  std::uint8_t table[256];
+  for (int a = 0; a < 256; ++a)
+    table[a] = static_cast<std::uint8_t>(std::lround(255.0 * (1.0 - std::pow(1.0 - a / 255.0, 1.0 / exponent))));
+  for (std::size_t t = 0; t + 1 < s.textures.size(); ++t)  // the last one is the white texture
+    for (std::size_t k = 3; k < s.textures[t].rgba.size(); k += 4) s.textures[t].rgba[k] = table[s.textures[t].rgba[k]];
+}
+
 // Step 2 with the extension: quad k is the next two triangles of the group of its atlas image
 // (the writer emits one primitive per atlas image, quads in index order).
 void extension_items(const tinygltf::Model& m, const tinygltf::Value& ext, const std::string& path,
@@ -323,6 +335,7 @@ void extension_items(const tinygltf::Model& m, const tinygltf::Value& ext, const
   s.has_extension = true;
   s.level = ext.Has("level") ? to_integer<int>(ext.Get("level").GetNumberAsDouble(), path, "level") : -1;
   if (ext.Has("alphaRef")) s.alpha_ref = static_cast<float>(ext.Get("alphaRef").GetNumberAsDouble());
+  if (ext.Has("alphaExponent")) decode_weights(ext.Get("alphaExponent").GetNumberAsDouble(), path, s);
 }
 
 // Step 2 for plain glTF: consecutive triangle pairs are quads; others stand alone; each item with

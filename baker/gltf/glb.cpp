@@ -249,6 +249,7 @@ Value impostor_extension(const ImpostorLevel& level) {
                     {"blend", Value(std::string("additive_sorted_lock_by_depth"))},
                     {"alphaRef", Value(canonical_double(level.alpha_ref))},
                     {"neighborOffsets", int_array(offsets)}};
+  if (level.alpha_exponent != 1) ext["alphaExponent"] = Value(canonical_double(level.alpha_exponent));
   if (!level.quads.empty()) {
     ext["domain"] = int_array(domain);
     ext["center"] = number_array(centers);

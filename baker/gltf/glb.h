@@ -25,16 +25,18 @@ struct ImpostorLevel {
   Atlas atlas;
   std::vector<std::array<std::uint32_t, 2>> edges;  // neighbour graph between quads (indices into quads)
   float alpha_ref = 0.1f;                   // the lock-by-depth alpha test (paper 4, fig. 10)
+  double alpha_exponent = 1;                // alpha = 1 - (1 - Psi)^e (primitives/texture.h); 1 = Psi
 };
 
 struct GltfOptions {
-  // Material for engines without the extension: MASK at 0.2. Measured with `qf-render eval`
-  // (engine path, 26 views): BLEND leaves 73% of bunny00's pixels as holes at ~300 quads (engines
-  // draw one mesh unsorted with depth writes, so transparent texels hide what is behind them) and
-  // 32% on the octahedron; MASK 0.1/0.2/0.3/0.5 leaves 0.4/1.8/7.6/40% (bunny) and
-  // 0.6/1.3/2.2/5.0% (octahedron), silhouette IoU best at 0.2 on both, never see-through.
+  // Material for engines without the extension: MASK. Measured with `qf-render eval` (engine path,
+  // 26 views): BLEND leaves 73% of bunny00's pixels as holes at ~300 quads (engines draw one mesh
+  // unsorted with depth writes, so transparent texels hide what is behind them) and 32% on the
+  // octahedron. With alpha = Psi, MASK 0.1/0.2/0.3/0.5 left 0.4/1.8/7.6/40% holes (bunny), IoU best
+  // at 0.2. Mesh inputs store alpha with exponent 2 (primitives/texture.h alpha_exponent), where
+  // 0.3 cuts the seams at Psi 0.16 and the outer edges nearer the surface.
   std::string alpha_mode = "MASK";
-  float alpha_cutoff = 0.2f;  // MASK only
+  float alpha_cutoff = 0.2f;  // MASK only; mesh inputs 0.3 (pipeline/bake.h use_mesh_edges)
   std::string generator = "quasiflat";
 };
 

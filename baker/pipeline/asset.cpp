@@ -275,7 +275,9 @@ AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::
   const auto lods_start = std::chrono::steady_clock::now();
   nlohmann::json mesh_lods = is_mesh ? mesh_lod_outputs(mesh, o, stem, a.files) : nlohmann::json(nullptr);
   const double lods_seconds = seconds_since(lods_start);
-  a.result = bake(points, o.bake, path);
+  BakeOptions bake_options = o.bake;
+  if (is_mesh) use_mesh_edges(bake_options);
+  a.result = bake(points, bake_options, path);
   a.manifest = impostor_outputs(a.result, stem, input_name, a.files);
   if (is_mesh && o.point_impostor) a.manifest["point_impostor"] = point_impostor_output(points, o, a.sampled.pixel, stem, a.files);
   if (!mesh_lods.is_null()) {

@@ -214,6 +214,7 @@ BakedLevel bake_level(std::size_t level, const SparseMatrix& psi, std::vector<st
   // points a level's textures are ~0.8 GB, freed before the PNG encoding needs more).
   alpha = SparseMatrix();
   ImpostorLevel il = make_impostor_level(level, rects, textures, d, o.atlas);
+  il.alpha_exponent = texture.alpha_exponent;
   std::vector<Texture>().swap(textures);
   out.atlas_images = static_cast<int>(il.atlas.images.size());
   out.atlas_widths = il.atlas.widths, out.atlas_heights = il.atlas.heights;

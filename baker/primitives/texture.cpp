@@ -186,6 +186,10 @@ std::array<double, 3> within_cone(const double* v, double min_z) {
 
 }  // namespace
 
+double encode_alpha(double psi, double exponent) { return 1.0 - std::pow(1.0 - std::clamp(psi, 0.0, 1.0), exponent); }
+
+double decode_alpha(double alpha, double exponent) { return 1.0 - std::pow(1.0 - std::clamp(alpha, 0.0, 1.0), 1.0 / exponent); }
+
 Texture resample_texture(const std::vector<Vec3f>& positions, const std::vector<Rgb8>& colors,
                          const std::vector<Vec3f>& normals, const std::vector<float>& radii, const SparseMatrix& psi,
                          const Domains& domains, const SupportRect& rect, const TextureOptions& o) {
@@ -241,7 +245,7 @@ Texture resample_texture(const std::vector<Vec3f>& positions, const std::vector<
     const bool normalize = o.normalization == RadialNormalization::kWhenPositive ? w > 0 : w >= 1.0;
     const double alpha = normalize ? acc.alpha[k] / w : acc.alpha[k];
     for (int c = 0; c < 3; ++c) tex.rgba[4 * k + static_cast<std::size_t>(c)] = to8(acc.value[kChannels * k + static_cast<std::size_t>(c)] / vw);
-    tex.rgba[4 * k + 3] = to8(255.0 * alpha);
+    tex.rgba[4 * k + 3] = to8(255.0 * encode_alpha(alpha, o.alpha_exponent));
     tex.covered += tex.rgba[4 * k + 3] > 0;
   }
   if (o.extend_colors) extend_colors(tex);

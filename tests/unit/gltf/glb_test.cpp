@@ -67,8 +67,13 @@ TEST(Glb, QuadsMaterialsAndExtension) {
   EXPECT_EQ(ext.Get("atlasRect").ArrayLen(), 40u);
   EXPECT_EQ(ext.Get("neighborOffsets").ArrayLen(), 9u);
   EXPECT_EQ(ext.Get("neighbors").ArrayLen(), 24u);
+  EXPECT_FALSE(ext.Has("alphaExponent"));  // Psi itself
   // Same input, same bytes.
   EXPECT_EQ(encode_glb(level), glb);
+  // A level whose alpha is stored with an exponent says so, for runtimes that blend Psi.
+  ImpostorLevel sharp = level;
+  sharp.alpha_exponent = 2;
+  EXPECT_DOUBLE_EQ(load(encode_glb(sharp)).extensions.at(kImpostorExtension).Get("alphaExponent").GetNumberAsDouble(), 2.0);
 }
 
 }  // namespace

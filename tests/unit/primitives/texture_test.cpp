@@ -91,6 +91,31 @@ TEST(Texture, PartitionOfUnityAcrossDomains) {
       EXPECT_NEAR(texel_at(t0, r0, x, y)[3] + texel_at(t1, r0, x, y)[3], 255, 2) << x << "," << y;
 }
 
+// Mesh inputs store alpha as 1 - (1 - Psi)^e (TextureOptions::alpha_exponent): every texel's alpha
+// is the encoded Psi of the plain texture, colours unchanged, and a runtime's decoding gives Psi back.
+TEST(Texture, AlphaExponentEncodesPsiInvertibly) {
+  const Scene s = grid([](float, float) { return true; });
+  DomainOptions all;
+  all.tau = 0.0;
+  const Domains d = make_domains(s.psi, all);
+  const SupportRect r = support_rectangles(s.positions, s.normals, s.radii, s.psi, d)[0];
+  TextureOptions sharp;
+  sharp.alpha_exponent = 2;
+  const Texture plain = resample_texture(s.positions, s.colors, {}, s.radii, s.psi, d, r);
+  const Texture encoded = resample_texture(s.positions, s.colors, {}, s.radii, s.psi, d, r, sharp);
+  ASSERT_EQ(plain.rgba.size(), encoded.rgba.size());
+  for (std::size_t k = 0; k < plain.rgba.size(); k += 4) {
+    for (std::size_t c = 0; c < 3; ++c) EXPECT_EQ(plain.rgba[k + c], encoded.rgba[k + c]) << k;
+    // (the plain texel's rounding, up to 1/2, doubles where the encoding's slope is 2)
+    EXPECT_NEAR(encoded.rgba[k + 3], 255 * encode_alpha(plain.rgba[k + 3] / 255.0, 2), 1.5) << k;
+  }
+  // Psi = 0.5 is stored as 0.75; the seams' Psi of 0.163 lands on the mesh cutoff 0.3.
+  EXPECT_DOUBLE_EQ(encode_alpha(0.5, 2), 0.75);
+  EXPECT_NEAR(encode_alpha(0.163, 2), 0.3, 0.001);
+  for (double psi : {0.0, 0.1, 0.37, 0.8, 1.0}) EXPECT_NEAR(decode_alpha(encode_alpha(psi, 2), 2), psi, 1e-12) << psi;
+  EXPECT_DOUBLE_EQ(encode_alpha(0.3, 1), 0.3);
+}
+
 TEST(Texture, ConcavitiesStayEmptyAndColoursExtend) {
   // An L: the quadrant x > 1, y > 1 has no points. Delaunay triangles across it have edges much
   // longer than two radii and are dropped.

@@ -10,7 +10,11 @@
 #include <unistd.h>
 
 #include "gl/egl.h"
+#include "amg/basis.h"
+#include "amg/hierarchy.h"
+#include "analysis/analysis.h"
 #include "gltf/glb.h"
+#include "primitives/texture.h"
 #include "runtime_gl/camera.h"
 #include "runtime_gl/draw_gl11.h"
 #include "runtime_gl/loader.h"
@@ -20,6 +24,37 @@
 
 namespace qf::render {
 namespace {
+
+// The runtime blends Psi: a level written with alphaExponent (mesh inputs) loads with the same
+// alpha as the level written with Psi itself, within the 8-bit rounding of the two encodings.
+TEST(ImpostorLoader, DecodesTheAlphaExponent) {
+  const PointSet p = generate_shape("octahedron");
+  const AmgHierarchy h = build_hierarchy(analyze_surface(p).stiffness);
+  const std::size_t level = h.level_count() - 2;
+  const SparseMatrix psi = basis_at_level(h, level);
+  const Domains d = make_domains(psi);
+  const std::vector<SupportRect> rects = support_rectangles(p.positions, p.normals, p.radii, psi, d);
+  auto written = [&](double exponent) {
+    TextureOptions o;
+    o.alpha_exponent = exponent;
+    std::vector<Texture> textures;
+    for (const SupportRect& r : rects) textures.push_back(resample_texture(p.positions, p.colors, p.normals, p.radii, psi, d, r, o));
+    ImpostorLevel il = make_impostor_level(level, rects, textures, d);
+    il.alpha_exponent = exponent;
+    return load_baked(encode_glb(il), "level.glb").impostor;
+  };
+  const ImpostorScene plain = written(1), sharp = written(2);
+  ASSERT_EQ(plain.textures.size(), sharp.textures.size());
+  int worst = 0;
+  for (std::size_t t = 0; t < plain.textures.size(); ++t)
+    for (std::size_t k = 3; k < plain.textures[t].rgba.size(); k += 4) {
+      const int a = plain.textures[t].rgba[k], b = sharp.textures[t].rgba[k];
+      worst = std::max(worst, std::abs(a - b));
+    }
+  // Near Psi = 1 the stored alpha is flat (1 - (1 - Psi)^2), so one stored step spans several.
+  // Undecoded, Psi = 0.5 would load as 191 instead of 128.
+  EXPECT_LE(worst, 12);
+}
 
 TEST(PointImpostor, PermutationIsSeededAndComplete) {
   const auto a = point_permutation(1000, 7), b = point_permutation(1000, 7), c = point_permutation(1000, 8);
