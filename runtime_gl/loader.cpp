@@ -4,6 +4,8 @@
 #include "runtime_gl/loader.h"
 #include "runtime_gl/gltf_read.h"
 
+#include "core/weight_alpha.h"
+
 #include <tiny_gltf.h>
 
 #include <algorithm>
@@ -290,14 +292,14 @@ std::uint32_t texture_of(const tinygltf::Model& m, int material, std::uint32_t w
   return src >= 0 && src < static_cast<int>(m.images.size()) ? static_cast<std::uint32_t>(src) : white;
 }
 
-// The atlases' alpha back to the basis functions' weights: the writer stored 1 - (1 - w)^e
-// (the extension's alphaExponent) for engines' alpha test; the blend needs w. A 256-entry table,
-// applied before any mip level is made.
+// The atlases' alpha back to the basis functions' weights (core/weight_alpha.h): the writer
+// stored them with the extension's alphaExponent for engines' alpha test; the blend needs the
+// weights. A 256-entry table, applied before any mip level is made.
 void decode_weights(double exponent, const std::string& path, ImpostorScene& s) {
   if (!(exponent >= 1) || !std::isfinite(exponent)) fail(path, "extension", "alphaExponent must be a number >= 1");
   std::uint8_t table[256];
   for (int a = 0; a < 256; ++a)
-    table[a] = static_cast<std::uint8_t>(std::lround(255.0 * (1.0 - std::pow(1.0 - a / 255.0, 1.0 / exponent))));
+    table[a] = static_cast<std::uint8_t>(std::lround(255.0 * decode_alpha(a / 255.0, exponent)));
   for (std::size_t t = 0; t + 1 < s.textures.size(); ++t)  // the last one is the white texture
     for (std::size_t k = 3; k < s.textures[t].rgba.size(); k += 4) s.textures[t].rgba[k] = table[s.textures[t].rgba[k]];
 }

@@ -87,8 +87,7 @@ SplatScene splat_scene(PointSet points, const std::string& source) {
     // The baker's own estimate (same neighbourhoods, same orientation, on the points in the bake's
     // Morton order), so lighting matches and does not depend on the file's order.
     const std::vector<std::uint32_t> order = morton_order(points.positions);
-    std::vector<Vec3f> sorted(points.size());
-    for (std::size_t i = 0; i < order.size(); ++i) sorted[i] = points.positions[order[i]];
+    const std::vector<Vec3f> sorted = permuted(points, order).positions;
     const Neighborhoods nb = compute_neighborhoods(sorted);
     LocalFrames frames = compute_local_frames(sorted, nb);
     orient_normals(sorted, nb, nullptr, frames);

@@ -186,10 +186,6 @@ std::array<double, 3> within_cone(const double* v, double min_z) {
 
 }  // namespace
 
-double encode_alpha(double psi, double exponent) { return 1.0 - std::pow(1.0 - std::clamp(psi, 0.0, 1.0), exponent); }
-
-double decode_alpha(double alpha, double exponent) { return 1.0 - std::pow(1.0 - std::clamp(alpha, 0.0, 1.0), 1.0 / exponent); }
-
 Texture resample_texture(const std::vector<Vec3f>& positions, const std::vector<Rgb8>& colors,
                          const std::vector<Vec3f>& normals, const std::vector<float>& radii, const SparseMatrix& psi,
                          const Domains& domains, const SupportRect& rect, const TextureOptions& o) {

@@ -8,6 +8,7 @@
 
 #include "core/sparse.h"
 #include "core/types.h"
+#include "core/weight_alpha.h"
 #include "domains/domains.h"
 #include "primitives/support.h"
 
@@ -46,7 +47,7 @@ struct TextureOptions {
   // (12: +0.4..+2.2 at ~30, but -0.23 at bunny00's 363 quads; 0 = the front hemisphere only).
   double normal_flattening = 8;
   double max_min_normal_z = 0.9;
-  // Alpha is stored as 1 - (1 - Psi)^alpha_exponent (encode_alpha), which a runtime inverts to
+  // Alpha is stored as 1 - (1 - Psi)^alpha_exponent (core/weight_alpha.h), which a runtime inverts to
   // blend Psi (the extension's alphaExponent). Engines draw the quads with an alpha test
   // (glb.h alpha_cutoff), not the paper's blend: on plain Psi, a cutoff low enough to close the
   // seams between quads (where 3-4 domains share the points, none above 0.5) lies on the outer
@@ -56,10 +57,6 @@ struct TextureOptions {
   // (pipeline/bake.h use_mesh_edges); 1 stores Psi itself.
   double alpha_exponent = 1;
 };
-
-// The stored alpha of a Psi value in 0..1 (TextureOptions::alpha_exponent), and its inverse.
-double encode_alpha(double psi, double exponent);
-double decode_alpha(double alpha, double exponent);
 
 // An RGBA8 image, rows from t = -half_v (row 0) upward; texel (i, j) is centred at
 // s = -half_u + (i + 0.5) texel, t = -half_v + (j + 0.5) texel in the rectangle's axes.
