@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <deque>
+#include <limits>
 
 namespace qf {
 namespace {
@@ -86,31 +87,57 @@ void splat_radial(const std::vector<Sample>& samples, const Texture& tex, const 
   }
 }
 
+// An edge of the kept triangles' outline (a kept triangle on one side only), with its end points'
+// Psi.
+struct Segment {
+  double s0, t0, s1, t1, psi0, psi1;
+};
+
+// The kept triangles' outline and the samples on it (an end of an outline edge, or a corner of
+// no kept triangle): only their discs can reach past the triangles.
+struct Outline {
+  std::vector<Segment> segments;
+  std::vector<char> on_edge;  // per sample
+};
+
 // Linear affine interpolation over the Delaunay triangles whose edges are all no longer than the
-// sum of their end points' radii.
-void interpolate_triangles(const std::vector<Sample>& samples, const Texture& tex, const SupportRect& rect, Accumulator& acc) {
+// sum of their end points' radii. With `outline`, the kept triangles' outline goes there.
+void interpolate_triangles(const std::vector<Sample>& samples, const Texture& tex, const SupportRect& rect, Accumulator& acc,
+                           Outline* outline) {
+  if (outline) outline->on_edge.assign(samples.size(), 1);
   std::vector<std::pair<Kernel::Point_2, VertexInfo>> pts;
   pts.reserve(samples.size());
   for (std::uint32_t k = 0; k < samples.size(); ++k) pts.push_back({Kernel::Point_2(samples[k].s, samples[k].t), {k, samples[k].r}});
   Delaunay dt;
   dt.insert(pts.begin(), pts.end());
   if (dt.dimension() < 2) return;
-  for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) {
-    struct Corner {
-      double s, t, r;
-    } v[3];
+  struct Corner {
+    double s, t, r;
+  };
+  const auto corners = [](Delaunay::Face_handle f, Corner* v) {
     for (int c = 0; c < 3; ++c) {
       const auto vh = f->vertex(c);
       v[c] = {vh->point().x(), vh->point().y(), vh->info().r};
     }
-    bool concave = false;
-    for (int c = 0; c < 3 && !concave; ++c) {
+  };
+  const auto kept = [&](Delaunay::Face_handle f) {
+    if (dt.is_infinite(f)) return false;
+    Corner v[3];
+    corners(f, v);
+    for (int c = 0; c < 3; ++c) {
       const Corner &a = v[c], &b = v[(c + 1) % 3];
-      concave = std::hypot(a.s - b.s, a.t - b.t) > a.r + b.r;
+      const double ds = a.s - b.s, dt2 = a.t - b.t;
+      if (ds * ds + dt2 * dt2 > (a.r + b.r) * (a.r + b.r)) return false;  // concave
     }
-    if (concave) continue;
+    return (v[1].s - v[0].s) * (v[2].t - v[0].t) - (v[2].s - v[0].s) * (v[1].t - v[0].t) != 0;
+  };
+  for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) {
+    if (!kept(f)) continue;
+    Corner v[3];
+    corners(f, v);
     const double det = (v[1].s - v[0].s) * (v[2].t - v[0].t) - (v[2].s - v[0].s) * (v[1].t - v[0].t);
-    if (det == 0) continue;
+    if (outline)
+      for (int c = 0; c < 3; ++c) outline->on_edge[f->vertex(c)->info().sample] = 0;
     const double smin = std::min({v[0].s, v[1].s, v[2].s}), smax = std::max({v[0].s, v[1].s, v[2].s});
     const double tmin = std::min({v[0].t, v[1].t, v[2].t}), tmax = std::max({v[0].t, v[1].t, v[2].t});
     const int i0 = std::max(0, static_cast<int>(std::ceil((smin + rect.half_u) / tex.texel - 0.5)));
@@ -137,6 +164,17 @@ void interpolate_triangles(const std::vector<Sample>& samples, const Texture& te
         }
         acc.weight[k] = 1.0;
       }
+  }
+  if (!outline) return;
+  for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) {
+    if (!kept(f)) continue;
+    for (int c = 0; c < 3; ++c) {
+      if (kept(f->neighbor(c))) continue;
+      const std::uint32_t ia = f->vertex(f->cw(c))->info().sample, ib = f->vertex(f->ccw(c))->info().sample;
+      const Sample &a = samples[ia], &b = samples[ib];
+      outline->segments.push_back({a.s, a.t, b.s, b.t, a.alpha, b.alpha});
+      outline->on_edge[ia] = outline->on_edge[ib] = 1;
+    }
   }
 }
 
@@ -171,6 +209,117 @@ void extend_colors(Texture& tex) {
   }
 }
 
+// |(x, y)| without std::hypot's care for overflow (texel distances are far from it; hypot was
+// the ramp's largest cost).
+double length(double x, double y) { return std::sqrt(x * x + y * y); }
+
+// The texel grid's centres in rectangle coordinates, and the texels within `reach` of a point.
+struct Grid {
+  int width, height;
+  double texel, half_u, half_v;
+  double s(int i) const { return -half_u + (i + 0.5) * texel; }
+  double t(int j) const { return -half_v + (j + 0.5) * texel; }
+  template <class F>
+  void around(double ps, double pt, double reach, F&& f) const {
+    const int i0 = std::max(0, static_cast<int>(std::ceil((ps - reach + half_u) / texel - 0.5)));
+    const int i1 = std::min(width - 1, static_cast<int>(std::floor((ps + reach + half_u) / texel - 0.5)));
+    const int j0 = std::max(0, static_cast<int>(std::ceil((pt - reach + half_v) / texel - 0.5)));
+    const int j1 = std::min(height - 1, static_cast<int>(std::floor((pt + reach + half_v) / texel - 0.5)));
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) f(static_cast<std::size_t>(j) * static_cast<std::size_t>(width) + static_cast<std::size_t>(i), s(i), t(j));
+  }
+};
+
+// The distance from (s, t) to the segment a-b, and (in `u`) the nearest point's parameter.
+double distance_to_segment(double s, double t, double as, double at, double bs, double bt, double* u = nullptr) {
+  const double es = bs - as, et = bt - at, len2 = es * es + et * et;
+  const double x = len2 > 0 ? std::clamp(((s - as) * es + (t - at) * et) / len2, 0.0, 1.0) : 0.0;
+  if (u) *u = x;
+  return length(s - as - x * es, t - at - x * et);
+}
+
+// Sub-texel outer edges (TextureOptions::edge_cutoff). The support is the union of the kept
+// triangles (`inside` texels) and of discs of radius edge_radius x width x r about the points
+// (those on the outline: the others' lie in their triangles but for slivers).
+// Alpha is capped by cutoff + slope x (signed distance to the support's edge, in texels): a ramp
+// that bilinear filtering reproduces, so the alpha test cuts on the edge wherever it falls between
+// texel centres. Texels outside get their alpha from the ramp alone, at most the (encoded) Psi at
+// their nearest support point; their colours are those extend_colors gave them.
+void ramp_edges(const std::vector<Sample>& samples, const Outline& outline, const std::vector<char>& inside,
+                const Grid& g, const TextureOptions& o, Texture& tex) {
+  const double cutoff = o.edge_cutoff, slope = o.edge_slope / g.texel;  // alpha per unit distance
+  const double reach_out = std::max(cutoff / slope, g.texel);           // the outside ramp's width
+  const double reach_in = (1 - cutoff) / slope;                         // the inside ramp's width
+  const std::size_t n = inside.size();
+  constexpr double kFar = std::numeric_limits<double>::infinity();
+  // 1. Outside texels: the distance to the support and its nearest point there (with its Psi).
+  struct Nearest {
+    double d = kFar, s = 0, t = 0, psi = 0;
+  };
+  std::vector<Nearest> near(n);
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    if (!outline.on_edge[i]) continue;
+    const Sample& p = samples[i];
+    const double rho = o.edge_radius * o.width * p.r;
+    g.around(p.s, p.t, rho + reach_out, [&](std::size_t k, double s, double t) {
+      const double len = length(s - p.s, t - p.t), d = len - rho;
+      if (d >= near[k].d) return;
+      const double f = len > 0 ? rho / len : 0.0;
+      near[k] = {d, p.s + f * (s - p.s), p.t + f * (t - p.t), p.alpha};
+    });
+  }
+  for (const Segment& e : outline.segments) {
+    const double es = e.s1 - e.s0, et = e.t1 - e.t0;
+    g.around(0.5 * (e.s0 + e.s1), 0.5 * (e.t0 + e.t1), 0.5 * length(es, et) + reach_out, [&](std::size_t k, double s, double t) {
+      double u = 0;
+      const double d = distance_to_segment(s, t, e.s0, e.t0, e.s1, e.t1, &u);
+      if (d < near[k].d) near[k] = {d, e.s0 + u * es, e.t0 + u * et, e.psi0 + u * (e.psi1 - e.psi0)};
+    });
+  }
+  // 2. Inside texels: the distance to the edge, approximated by the polyline through the nearest
+  //    support points of the outside texels next to it (chords between 4-neighbours, each point
+  //    itself where it has none). The points lie on the edge about a texel apart, so the polyline
+  //    follows it to a chord's sagitta; a tangent line per point does not: on a union of discs
+  //    the local normal swings by +-45 degrees between points, and lines a texel long cut deep
+  //    into the inside. A spike narrower than a texel falls between the points: there the bound
+  //    |x - y| - d(x) over the outside texels x holds the distance (the segment from y to x
+  //    leaves the support at least the distance from y, and then runs at least d(x)).
+  const auto in_support = [&](std::size_t k) { return inside[k] || near[k].d < 0; };
+  const auto rim = [&](std::size_t k) { return !in_support(k) && near[k].d < reach_out; };
+  std::vector<double> depth(n, kFar);
+  const auto chord = [&](const Nearest& a, const Nearest& b) {
+    const double cs = 0.5 * (a.s + b.s), ct = 0.5 * (a.t + b.t);
+    g.around(cs, ct, 0.5 * length(b.s - a.s, b.t - a.t) + reach_in, [&](std::size_t q, double s, double t) {
+      if (in_support(q)) depth[q] = std::min(depth[q], distance_to_segment(s, t, a.s, a.t, b.s, b.t));
+    });
+  };
+  const std::size_t w = static_cast<std::size_t>(g.width);
+  for (std::size_t k = 0; k < n; ++k) {
+    if (!rim(k)) continue;
+    const double xs = g.s(static_cast<int>(k % w)), xt = g.t(static_cast<int>(k / w)), dk = near[k].d;
+    g.around(xs, xt, reach_in + dk, [&](std::size_t q, double s, double t) {
+      if (in_support(q)) depth[q] = std::min(depth[q], length(s - xs, t - xt) - dk);
+    });
+    const bool right = k % w + 1 < w && rim(k + 1), up = k + w < n && rim(k + w);
+    if (right) chord(near[k], near[k + 1]);
+    if (up) chord(near[k], near[k + w]);
+    if (!right && !up) chord(near[k], near[k]);
+  }
+  // 3. The ramp.
+  tex.covered = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    std::uint8_t& a = tex.rgba[4 * k + 3];
+    if (in_support(k)) {
+      if (depth[k] < kFar) a = std::min(a, to8(255.0 * (cutoff + slope * depth[k])));
+    } else if (near[k].d < kFar) {
+      a = std::min(to8(255.0 * encode_alpha(near[k].psi, o.alpha_exponent)), to8(255.0 * (cutoff - slope * near[k].d)));
+    } else {
+      a = 0;
+    }
+    tex.covered += a > 0;
+  }
+}
+
 // The unit normal of an accumulated normal `v` (tangent space), tilted towards the quad's normal
 // until its z is at least `min_z`, its direction about z kept (TextureOptions::normal_flattening).
 std::array<double, 3> within_cone(const double* v, double min_z) {
@@ -191,13 +340,18 @@ Texture resample_texture(const std::vector<Vec3f>& positions, const std::vector<
                          const Domains& domains, const SupportRect& rect, const TextureOptions& o) {
   Texture tex;
   // 1. The texel grid: texel = factor x mean radius (or min_texel where larger), at most max_side
-  //    texels a side.
+  //    texels a side. With sub-texel edges, one texel more on every side: the support's edge may
+  //    lie anywhere in the rectangle's outer texel, and its ramp needs a texel centre beyond it (an
+  //    engine clamps to the outer texels: without one the quad would show up to its rim).
+  const bool ramp = o.edge_cutoff > 0 && o.method == ResampleMethod::kLinearAffine;
+  const int pad = ramp ? 2 : 0;
   double texel = std::max({1e-30, double(o.texel_factor) * rect.mean_radius, o.min_texel});
   const double longest = 2.0 * std::max(rect.half_u, rect.half_v);
-  if (longest / texel > o.max_side) texel = longest / o.max_side;
+  const int max_side = std::max(1, o.max_side - pad);
+  if (longest / texel > max_side) texel = longest / max_side;
   tex.texel = static_cast<float>(texel);
-  tex.width = std::max(1, static_cast<int>(std::ceil(2.0 * rect.half_u / texel)));
-  tex.height = std::max(1, static_cast<int>(std::ceil(2.0 * rect.half_v / texel)));
+  tex.width = std::max(1, static_cast<int>(std::ceil(2.0 * rect.half_u / texel))) + pad;
+  tex.height = std::max(1, static_cast<int>(std::ceil(2.0 * rect.half_v / texel))) + pad;
   // The grid is centred on the rectangle: texel centres run from -half to +half.
   SupportRect r = rect;
   r.half_u = static_cast<float>(0.5 * tex.width * texel);
@@ -220,7 +374,8 @@ Texture resample_texture(const std::vector<Vec3f>& positions, const std::vector<
   // 3. Resample.
   const std::size_t n = static_cast<std::size_t>(tex.width) * static_cast<std::size_t>(tex.height);
   Accumulator acc(n);
-  if (o.method == ResampleMethod::kLinearAffine) interpolate_triangles(samples, tex, r, acc);
+  Outline outline;
+  if (o.method == ResampleMethod::kLinearAffine) interpolate_triangles(samples, tex, r, acc, ramp ? &outline : nullptr);
   splat_radial(samples, tex, r, o, acc);
   tex.rgba.assign(4 * n, 0);
   const double deviation = rect.error / std::max(1e-30, std::hypot(double(rect.half_u), double(rect.half_v)));
@@ -245,6 +400,7 @@ Texture resample_texture(const std::vector<Vec3f>& positions, const std::vector<
     tex.covered += tex.rgba[4 * k + 3] > 0;
   }
   if (o.extend_colors) extend_colors(tex);
+  if (ramp) ramp_edges(samples, outline, acc.done, {tex.width, tex.height, texel, r.half_u, r.half_v}, o, tex);
   return tex;
 }
 

@@ -56,6 +56,20 @@ struct TextureOptions {
   // cut nearer their middle. The bake sets it for mesh inputs
   // (pipeline/bake.h use_mesh_edges); 1 stores Psi itself.
   double alpha_exponent = 1;
+  // Sub-texel outer edges for an alpha test at this cutoff (0 = off; linear affine only): near the
+  // edge of the domain's support (the union of the kept triangles and of discs of edge_radius x
+  // the fallback's radius about the points), alpha is capped by cutoff - edge_slope x (signed
+  // distance to that edge, in texels), a ramp that bilinear filtering reproduces, so the alpha
+  // test cuts on the edge wherever it falls between texel centres; the grid gets one texel more
+  // on every side for the ramp's outer end. Without it, an edge steps with the texel grid (at
+  // coarse levels a texel spans several point spacings: wavy, and on average half a texel
+  // outside the surface) and a quad shows up to its rectangle's rim, where engines clamp to the
+  // outer texels. A point's radius is ~0.71 of the spacing of a sampled face, so 0.7 puts the
+  // edge half a spacing past the outermost points, where the sampled surface ends. The bake sets
+  // the cutoff for mesh inputs (pipeline/bake.h use_mesh_edges).
+  double edge_cutoff = 0;
+  double edge_radius = 0.7;
+  double edge_slope = 0.5;
 };
 
 // An RGBA8 image, rows from t = -half_v (row 0) upward; texel (i, j) is centred at

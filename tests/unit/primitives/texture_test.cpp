@@ -2,6 +2,7 @@
 // partition of unity across overlapping domains.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "primitives/support.h"
@@ -131,6 +132,69 @@ TEST(Texture, ConcavitiesStayEmptyAndColoursExtend) {
   plain.extend_colors = false;
   const auto black = texel_at(resample_texture(s.positions, s.colors, {}, s.radii, s.psi, d, r, plain), r, 1.6f, 1.6f);
   EXPECT_EQ(black[0] + black[1] + black[2] + black[3], 0);
+}
+
+// The texture's alpha at world point (x, y, 0) as an engine samples it: bilinear between texel
+// centres, clamped to the outer texels.
+double filtered_alpha(const Texture& t, const SupportRect& r, double x, double y) {
+  const Vec3f d = Vec3f{static_cast<float>(x), static_cast<float>(y), 0} - r.center;
+  const double fi = std::clamp((dot(d, r.axis_u) + 0.5 * t.width * t.texel) / t.texel - 0.5, 0.0, t.width - 1.0);
+  const double fj = std::clamp((dot(d, r.axis_v) + 0.5 * t.height * t.texel) / t.texel - 0.5, 0.0, t.height - 1.0);
+  const int i = std::min(static_cast<int>(fi), t.width - 2), j = std::min(static_cast<int>(fj), t.height - 2);
+  const double a = fi - i, b = fj - j;
+  auto at = [&](int u, int v) { return t.rgba[4 * (static_cast<std::size_t>(v) * static_cast<std::size_t>(t.width) + static_cast<std::size_t>(u)) + 3] / 255.0; };
+  return (1 - b) * ((1 - a) * at(i, j) + a * at(i + 1, j)) + b * ((1 - a) * at(i, j + 1) + a * at(i + 1, j + 1));
+}
+
+// Sub-texel edges (TextureOptions::edge_cutoff): a disc of points (radius 0.8, spacing 0.05,
+// point radius 0.05, Psi 1) on texels of 0.23, 4.6 spacings. Along 24 directions, an alpha test at
+// the cutoff on the filtered alpha cuts where the support ends (edge_radius x 0.05 past the
+// outermost points) to 0.15 texel (measured: -0.02..+0.12; outward where the texels around the
+// cut reach past the ramp's zero); the interior keeps its Psi. Without the ramp the cut lay
+// -0.1..+0.36 texel off the fallback discs' edge, and +1.5 towards the rectangle's corners.
+TEST(Texture, EdgeRampCutsOnTheSupportEdge) {
+  Scene s;
+  std::vector<std::int32_t> outer{0}, inner;
+  std::vector<double> values;
+  // Rings 0.05 apart about (1, 1), points 0.05 apart on each: the outline is a circle of 0.8.
+  for (int ring = 0; ring <= 16; ++ring) {
+    const int count = std::max(1, static_cast<int>(std::lround(2 * 3.14159265 * ring)));
+    for (int c = 0; c < count; ++c) {
+      const double a = 2 * 3.14159265 * c / count;
+      const float px = static_cast<float>(1 + 0.05 * ring * std::cos(a)), py = static_cast<float>(1 + 0.05 * ring * std::sin(a));
+      s.positions.push_back({px, py, 0});
+      s.normals.push_back({0, 0, 1});
+      s.radii.push_back(0.05f);
+      s.colors.push_back({200, 50, 100});
+      inner.push_back(0), values.push_back(1.0);
+      outer.push_back(static_cast<std::int32_t>(inner.size()));
+    }
+  }
+  s.psi = from_rows(static_cast<Eigen::Index>(s.positions.size()), 1, outer, inner, values);
+  const Domains d = make_domains(s.psi);
+  const SupportRect r = support_rectangles(s.positions, s.normals, s.radii, s.psi, d)[0];
+  TextureOptions o;
+  o.min_texel = 0.23;
+  o.edge_cutoff = 0.3;
+  const Texture t = resample_texture(s.positions, s.colors, {}, s.radii, s.psi, d, r, o);
+  EXPECT_EQ(t.width, static_cast<int>(std::ceil(2 * r.half_u / 0.23)) + 2);  // a texel more on every side
+  const double rho = o.edge_radius * 0.05;
+  for (int k = 0; k < 24; ++k) {
+    const double cs = std::cos(0.2618 * k + 0.1), sn = std::sin(0.2618 * k + 0.1);
+    // The support's edge along the ray: the last distance within rho of a point (the kept
+    // triangles lie inside the discs here: the outline's edges are at most 0.071 long).
+    double edge = 0, cut = 0;
+    for (double u = 0.5; u < 1.2; u += 0.0005) {
+      const double x = 1 + u * cs, y = 1 + u * sn;
+      double nearest = 1e9;
+      for (const Vec3f& p : s.positions) nearest = std::min(nearest, std::hypot(x - p.x, y - p.y));
+      if (nearest <= rho) edge = u;
+      if (filtered_alpha(t, r, x, y) >= 0.3) cut = u;
+    }
+    EXPECT_NEAR(cut, edge, 0.15 * 0.23) << "direction " << k;
+    // Three texels inside, past the ramp's (1 - 0.3) / 0.5 = 1.4 texels: Psi itself.
+    EXPECT_NEAR(filtered_alpha(t, r, 1 + (edge - 0.69) * cs, 1 + (edge - 0.69) * sn), 1.0, 0.01) << "direction " << k;
+  }
 }
 
 TEST(Texture, RadialProfiles) {
