@@ -62,28 +62,47 @@ double profile(RadialProfile p, double d, double support) {
   return 0.0;
 }
 
+// |(x, y)| without std::hypot's care for overflow (texel distances are far from it; hypot was
+// the edge ramp's largest cost).
+double length(double x, double y) { return std::sqrt(x * x + y * y); }
+
+// The texel grid in rectangle coordinates (centred on the rectangle: texel centres run from
+// -half to +half), and walks over the texels whose centres lie in a box or near a point.
+struct Grid {
+  int width, height;
+  double texel, half_u, half_v;
+  double s(int i) const { return -half_u + (i + 0.5) * texel; }
+  double t(int j) const { return -half_v + (j + 0.5) * texel; }
+  // f(k, s, t) for every texel centre (s, t) in [s0, s1] x [t0, t1]; k = the texel's index.
+  template <class F>
+  void box(double s0, double s1, double t0, double t1, F&& f) const {
+    const int i0 = std::max(0, static_cast<int>(std::ceil((s0 + half_u) / texel - 0.5)));
+    const int i1 = std::min(width - 1, static_cast<int>(std::floor((s1 + half_u) / texel - 0.5)));
+    const int j0 = std::max(0, static_cast<int>(std::ceil((t0 + half_v) / texel - 0.5)));
+    const int j1 = std::min(height - 1, static_cast<int>(std::floor((t1 + half_v) / texel - 0.5)));
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) f(static_cast<std::size_t>(j) * static_cast<std::size_t>(width) + static_cast<std::size_t>(i), s(i), t(j));
+  }
+  template <class F>
+  void around(double ps, double pt, double reach, F&& f) const {
+    box(ps - reach, ps + reach, pt - reach, pt + reach, f);
+  }
+};
+
 // Adds every sample's radial profile to the texels it reaches (skipping texels already done).
-void splat_radial(const std::vector<Sample>& samples, const Texture& tex, const SupportRect& rect, const TextureOptions& o,
-                  Accumulator& acc) {
+void splat_radial(const std::vector<Sample>& samples, const Grid& g, const TextureOptions& o, Accumulator& acc) {
+  const RadialProfile shape = o.method == ResampleMethod::kLinearAffine ? o.fallback_profile : o.profile;
   for (const Sample& p : samples) {
     const double support = o.width * p.r;
-    const int i0 = std::max(0, static_cast<int>(std::floor((p.s - support + rect.half_u) / tex.texel - 0.5)));
-    const int i1 = std::min(tex.width - 1, static_cast<int>(std::ceil((p.s + support + rect.half_u) / tex.texel - 0.5)));
-    const int j0 = std::max(0, static_cast<int>(std::floor((p.t - support + rect.half_v) / tex.texel - 0.5)));
-    const int j1 = std::min(tex.height - 1, static_cast<int>(std::ceil((p.t + support + rect.half_v) / tex.texel - 0.5)));
-    for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i) {
-        const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(tex.width) + static_cast<std::size_t>(i);
-        if (acc.done[k]) continue;
-        const double s = -rect.half_u + (i + 0.5) * tex.texel, t = -rect.half_v + (j + 0.5) * tex.texel;
-        const double w = profile(o.method == ResampleMethod::kLinearAffine ? o.fallback_profile : o.profile,
-                                 std::hypot(s - p.s, t - p.t), support);
-        if (w <= 0) continue;
-        for (int c = 0; c < kChannels; ++c) acc.value[kChannels * k + static_cast<std::size_t>(c)] += w * p.alpha * p.value[c];
-        acc.value_weight[k] += w * p.alpha;
-        acc.alpha[k] += w * p.alpha;
-        acc.weight[k] += w;
-      }
+    g.around(p.s, p.t, support, [&](std::size_t k, double s, double t) {
+      if (acc.done[k]) return;
+      const double w = profile(shape, std::hypot(s - p.s, t - p.t), support);
+      if (w <= 0) return;
+      for (int c = 0; c < kChannels; ++c) acc.value[kChannels * k + static_cast<std::size_t>(c)] += w * p.alpha * p.value[c];
+      acc.value_weight[k] += w * p.alpha;
+      acc.alpha[k] += w * p.alpha;
+      acc.weight[k] += w;
+    });
   }
 }
 
@@ -102,14 +121,13 @@ struct Outline {
 
 // Linear affine interpolation over the Delaunay triangles whose edges are all no longer than the
 // sum of their end points' radii. With `outline`, the kept triangles' outline goes there.
-void interpolate_triangles(const std::vector<Sample>& samples, const Texture& tex, const SupportRect& rect, Accumulator& acc,
-                           Outline* outline) {
-  if (outline) outline->on_edge.assign(samples.size(), 1);
+void interpolate_triangles(const std::vector<Sample>& samples, const Grid& g, Accumulator& acc, Outline* outline) {
   std::vector<std::pair<Kernel::Point_2, VertexInfo>> pts;
   pts.reserve(samples.size());
   for (std::uint32_t k = 0; k < samples.size(); ++k) pts.push_back({Kernel::Point_2(samples[k].s, samples[k].t), {k, samples[k].r}});
   Delaunay dt;
   dt.insert(pts.begin(), pts.end());
+  if (outline) outline->on_edge.assign(samples.size(), 1);
   if (dt.dimension() < 2) return;
   struct Corner {
     double s, t, r;
@@ -131,51 +149,42 @@ void interpolate_triangles(const std::vector<Sample>& samples, const Texture& te
     }
     return (v[1].s - v[0].s) * (v[2].t - v[0].t) - (v[2].s - v[0].s) * (v[1].t - v[0].t) != 0;
   };
+  std::vector<char> on_outline;  // per sample: an end of an outline edge
+  if (outline) on_outline.assign(samples.size(), 0);
   for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) {
     if (!kept(f)) continue;
     Corner v[3];
     corners(f, v);
-    const double det = (v[1].s - v[0].s) * (v[2].t - v[0].t) - (v[2].s - v[0].s) * (v[1].t - v[0].t);
     if (outline)
-      for (int c = 0; c < 3; ++c) outline->on_edge[f->vertex(c)->info().sample] = 0;
-    const double smin = std::min({v[0].s, v[1].s, v[2].s}), smax = std::max({v[0].s, v[1].s, v[2].s});
-    const double tmin = std::min({v[0].t, v[1].t, v[2].t}), tmax = std::max({v[0].t, v[1].t, v[2].t});
-    const int i0 = std::max(0, static_cast<int>(std::ceil((smin + rect.half_u) / tex.texel - 0.5)));
-    const int i1 = std::min(tex.width - 1, static_cast<int>(std::floor((smax + rect.half_u) / tex.texel - 0.5)));
-    const int j0 = std::max(0, static_cast<int>(std::ceil((tmin + rect.half_v) / tex.texel - 0.5)));
-    const int j1 = std::min(tex.height - 1, static_cast<int>(std::floor((tmax + rect.half_v) / tex.texel - 0.5)));
-    for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i) {
-        const double s = -rect.half_u + (i + 0.5) * tex.texel, t = -rect.half_v + (j + 0.5) * tex.texel;
-        const double b1 = ((s - v[0].s) * (v[2].t - v[0].t) - (v[2].s - v[0].s) * (t - v[0].t)) / det;
-        const double b2 = ((v[1].s - v[0].s) * (t - v[0].t) - (s - v[0].s) * (v[1].t - v[0].t)) / det;
-        const double b0 = 1 - b1 - b2;
-        constexpr double kEdge = -1e-9;  // texels on a shared edge belong to the first triangle that sees them
-        if (b0 < kEdge || b1 < kEdge || b2 < kEdge) continue;
-        const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(tex.width) + static_cast<std::size_t>(i);
-        if (acc.done[k]) continue;
-        acc.done[k] = 1;
-        const double b[3] = {b0, b1, b2};
-        for (int c = 0; c < 3; ++c) {
-          const Sample& p = samples[f->vertex(c)->info().sample];
-          for (int ch = 0; ch < kChannels; ++ch) acc.value[kChannels * k + static_cast<std::size_t>(ch)] += b[c] * p.alpha * p.value[ch];
-          acc.value_weight[k] += b[c] * p.alpha;
-          acc.alpha[k] += b[c] * p.alpha;
-        }
-        acc.weight[k] = 1.0;
+      for (int c = 0; c < 3; ++c) {
+        outline->on_edge[f->vertex(c)->info().sample] = 0;  // a corner of a kept triangle
+        if (kept(f->neighbor(c))) continue;
+        const std::uint32_t ia = f->vertex(f->cw(c))->info().sample, ib = f->vertex(f->ccw(c))->info().sample;
+        outline->segments.push_back({samples[ia].s, samples[ia].t, samples[ib].s, samples[ib].t, samples[ia].alpha, samples[ib].alpha});
+        on_outline[ia] = on_outline[ib] = 1;
       }
+    const double det = (v[1].s - v[0].s) * (v[2].t - v[0].t) - (v[2].s - v[0].s) * (v[1].t - v[0].t);
+    g.box(std::min({v[0].s, v[1].s, v[2].s}), std::max({v[0].s, v[1].s, v[2].s}), std::min({v[0].t, v[1].t, v[2].t}),
+          std::max({v[0].t, v[1].t, v[2].t}), [&](std::size_t k, double s, double t) {
+            const double b1 = ((s - v[0].s) * (v[2].t - v[0].t) - (v[2].s - v[0].s) * (t - v[0].t)) / det;
+            const double b2 = ((v[1].s - v[0].s) * (t - v[0].t) - (s - v[0].s) * (v[1].t - v[0].t)) / det;
+            const double b0 = 1 - b1 - b2;
+            constexpr double kEdge = -1e-9;  // texels on a shared edge belong to the first triangle that sees them
+            if (b0 < kEdge || b1 < kEdge || b2 < kEdge) return;
+            if (acc.done[k]) return;
+            acc.done[k] = 1;
+            const double b[3] = {b0, b1, b2};
+            for (int c = 0; c < 3; ++c) {
+              const Sample& p = samples[f->vertex(c)->info().sample];
+              for (int ch = 0; ch < kChannels; ++ch) acc.value[kChannels * k + static_cast<std::size_t>(ch)] += b[c] * p.alpha * p.value[ch];
+              acc.value_weight[k] += b[c] * p.alpha;
+              acc.alpha[k] += b[c] * p.alpha;
+            }
+            acc.weight[k] = 1.0;
+          });
   }
-  if (!outline) return;
-  for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) {
-    if (!kept(f)) continue;
-    for (int c = 0; c < 3; ++c) {
-      if (kept(f->neighbor(c))) continue;
-      const std::uint32_t ia = f->vertex(f->cw(c))->info().sample, ib = f->vertex(f->ccw(c))->info().sample;
-      const Sample &a = samples[ia], &b = samples[ib];
-      outline->segments.push_back({a.s, a.t, b.s, b.t, a.alpha, b.alpha});
-      outline->on_edge[ia] = outline->on_edge[ib] = 1;
-    }
-  }
+  if (outline)
+    for (std::size_t i = 0; i < samples.size(); ++i) outline->on_edge[i] |= on_outline[i];
 }
 
 std::uint8_t to8(double v) { return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 255.0))); }
@@ -208,27 +217,6 @@ void extend_colors(Texture& tex) {
     }
   }
 }
-
-// |(x, y)| without std::hypot's care for overflow (texel distances are far from it; hypot was
-// the ramp's largest cost).
-double length(double x, double y) { return std::sqrt(x * x + y * y); }
-
-// The texel grid's centres in rectangle coordinates, and the texels within `reach` of a point.
-struct Grid {
-  int width, height;
-  double texel, half_u, half_v;
-  double s(int i) const { return -half_u + (i + 0.5) * texel; }
-  double t(int j) const { return -half_v + (j + 0.5) * texel; }
-  template <class F>
-  void around(double ps, double pt, double reach, F&& f) const {
-    const int i0 = std::max(0, static_cast<int>(std::ceil((ps - reach + half_u) / texel - 0.5)));
-    const int i1 = std::min(width - 1, static_cast<int>(std::floor((ps + reach + half_u) / texel - 0.5)));
-    const int j0 = std::max(0, static_cast<int>(std::ceil((pt - reach + half_v) / texel - 0.5)));
-    const int j1 = std::min(height - 1, static_cast<int>(std::floor((pt + reach + half_v) / texel - 0.5)));
-    for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i) f(static_cast<std::size_t>(j) * static_cast<std::size_t>(width) + static_cast<std::size_t>(i), s(i), t(j));
-  }
-};
 
 // The distance from (s, t) to the segment a-b, and (in `u`) the nearest point's parameter.
 double distance_to_segment(double s, double t, double as, double at, double bs, double bt, double* u = nullptr) {
@@ -374,9 +362,10 @@ Texture resample_texture(const std::vector<Vec3f>& positions, const std::vector<
   // 3. Resample.
   const std::size_t n = static_cast<std::size_t>(tex.width) * static_cast<std::size_t>(tex.height);
   Accumulator acc(n);
+  const Grid grid{tex.width, tex.height, tex.texel, r.half_u, r.half_v};
   Outline outline;
-  if (o.method == ResampleMethod::kLinearAffine) interpolate_triangles(samples, tex, r, acc, ramp ? &outline : nullptr);
-  splat_radial(samples, tex, r, o, acc);
+  if (o.method == ResampleMethod::kLinearAffine) interpolate_triangles(samples, grid, acc, ramp ? &outline : nullptr);
+  splat_radial(samples, grid, o, acc);
   tex.rgba.assign(4 * n, 0);
   const double deviation = rect.error / std::max(1e-30, std::hypot(double(rect.half_u), double(rect.half_v)));
   const double min_z = std::clamp(o.normal_flattening * deviation, 0.0, o.max_min_normal_z);
@@ -400,7 +389,7 @@ Texture resample_texture(const std::vector<Vec3f>& positions, const std::vector<
     tex.covered += tex.rgba[4 * k + 3] > 0;
   }
   if (o.extend_colors) extend_colors(tex);
-  if (ramp) ramp_edges(samples, outline, acc.done, {tex.width, tex.height, texel, r.half_u, r.half_v}, o, tex);
+  if (ramp) ramp_edges(samples, outline, acc.done, grid, o, tex);
   return tex;
 }
 

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The engine method is engine-true: baked files of every kind (an impostor level of the bundled
-# octahedron; the simplified mesh LOD, a vertex-clustering LOD with thick lines and the point
+# octahedron, a point set; one of a generated sphere mesh, whose alpha is encoded and ramped at
+# its edges (pipeline/bake.h use_mesh_edges); the simplified mesh LOD, a vertex-clustering LOD with thick lines and the point
 # impostor of a generated sphere mesh) rendered by three.js
 # r187 in headless Chromium (scripts/three-render) and by `qf-render eval`'s engine method from the
 # same 8 cameras with the same lights score the same against the reference: PSNR within 1 dB and
@@ -22,7 +23,9 @@ fail() { echo "FAIL: $*"; exit 1; }
 "$bake" "$work/sphere.ply" -o "$work/sphere" --primitives 30 --ldi 96 -q || fail "bake sphere"
 "$bake" cluster "$work/sphere.ply" -o "$work/cluster" --cells 0.6 -q || fail "cluster sphere"
 level=$(ls "$work"/oct/octahedron_L*.glb | head -n 1)
-cases=("$src/samples/octahedron.ply|$level" "$work/sphere.ply|$work/sphere/sphere_S1.glb" "$work/sphere.ply|$work/cluster/sphere_C0.glb"
+mesh_level=$(ls "$work"/sphere/sphere_L*.glb | head -n 1)
+cases=("$src/samples/octahedron.ply|$level" "$work/sphere.ply|$mesh_level" "$work/sphere.ply|$work/sphere/sphere_S1.glb"
+       "$work/sphere.ply|$work/cluster/sphere_C0.glb"
        "$work/sphere.ply|$work/sphere/sphere_points.glb")
 
 jobs="["
