@@ -226,6 +226,47 @@ double distance_to_segment(double s, double t, double as, double at, double bs, 
   return length(s - as - x * es, t - at - x * et);
 }
 
+double mean_radius(const std::vector<Sample>& samples) {
+  double sum = 0;
+  for (const Sample& p : samples) sum += p.r;
+  return samples.empty() ? 0.0 : sum / static_cast<double>(samples.size());
+}
+
+// A texel's distance to the support (negative inside a disc) and the support's nearest point, with
+// its Psi.
+struct Nearest {
+  double d = std::numeric_limits<double>::infinity(), s = 0, t = 0, psi = 0;
+};
+
+// Marks as `support` every component of non-support texels (4-neighbourhood) that touches no
+// texel of the grid's rim and whose distances to the support (`d`) are all within `reach`.
+void fill_gaps(const std::vector<Nearest>& near, const Grid& g, double reach, std::vector<char>& support) {
+  const std::size_t w = static_cast<std::size_t>(g.width), h = static_cast<std::size_t>(g.height), n = support.size();
+  std::vector<char> seen(n, 0);
+  std::vector<std::size_t> component;
+  for (std::size_t first = 0; first < n; ++first) {
+    if (support[first] || seen[first]) continue;
+    component.assign(1, first);
+    seen[first] = 1;
+    bool enclosed = true;
+    double farthest = 0;
+    for (std::size_t c = 0; c < component.size(); ++c) {
+      const std::size_t k = component[c], i = k % w, j = k / w;
+      enclosed = enclosed && i > 0 && j > 0 && i + 1 < w && j + 1 < h;
+      farthest = std::max(farthest, near[k].d);
+      const auto visit = [&](std::size_t q) {
+        if (!support[q] && !seen[q]) seen[q] = 1, component.push_back(q);
+      };
+      if (i > 0) visit(k - 1);
+      if (i + 1 < w) visit(k + 1);
+      if (j > 0) visit(k - w);
+      if (j + 1 < h) visit(k + w);
+    }
+    if (enclosed && farthest <= reach)
+      for (const std::size_t k : component) support[k] = 1;
+  }
+}
+
 // Sub-texel outer edges (TextureOptions::edge_cutoff). The support is the union of the kept
 // triangles (`inside` texels) and of discs of radius edge_radius x width x r about the points
 // (those on the outline: the others' lie in their triangles but for slivers).
@@ -241,9 +282,6 @@ void ramp_edges(const std::vector<Sample>& samples, const Outline& outline, cons
   const std::size_t n = inside.size();
   constexpr double kFar = std::numeric_limits<double>::infinity();
   // 1. Outside texels: the distance to the support and its nearest point there (with its Psi).
-  struct Nearest {
-    double d = kFar, s = 0, t = 0, psi = 0;
-  };
   std::vector<Nearest> near(n);
   for (std::size_t i = 0; i < samples.size(); ++i) {
     if (!outline.on_edge[i]) continue;
@@ -264,7 +302,18 @@ void ramp_edges(const std::vector<Sample>& samples, const Outline& outline, cons
       if (d < near[k].d) near[k] = {d, e.s0 + u * es, e.t0 + u * et, e.psi0 + u * (e.psi1 - e.psi0)};
     });
   }
-  // 2. Inside texels: the distance to the edge, approximated by the polyline through the nearest
+  // 2. Gaps (TextureOptions::edge_gap): a component of texels outside the support that does not
+  //    reach the grid's rim and lies within edge_gap x the mean radius of its edge joins it, with
+  //    the Psi of its edge where the splats left it none.
+  std::vector<char> support(n);
+  for (std::size_t k = 0; k < n; ++k) support[k] = inside[k] || near[k].d < 0;
+  fill_gaps(near, g, o.edge_gap * o.width * mean_radius(samples), support);
+  for (std::size_t k = 0; k < n; ++k)  // where no splat reached into a gap: Psi at its edge
+    if (support[k] && !inside[k] && !(near[k].d < 0) && tex.rgba[4 * k + 3] == 0)
+      tex.rgba[4 * k + 3] = to8(255.0 * encode_alpha(near[k].psi, o.alpha_exponent));
+  const auto in_support = [&](std::size_t k) { return support[k] != 0; };
+  const auto rim = [&](std::size_t k) { return !in_support(k) && near[k].d < reach_out; };
+  // 3. Inside texels: the distance to the edge, approximated by the polyline through the nearest
   //    support points of the outside texels next to it (chords between 4-neighbours, each point
   //    itself where it has none). The points lie on the edge about a texel apart, so the polyline
   //    follows it to a chord's sagitta; a tangent line per point does not: on a union of discs
@@ -272,8 +321,6 @@ void ramp_edges(const std::vector<Sample>& samples, const Outline& outline, cons
   //    into the inside. A spike narrower than a texel falls between the points: there the bound
   //    |x - y| - d(x) over the outside texels x holds the distance (the segment from y to x
   //    leaves the support at least the distance from y, and then runs at least d(x)).
-  const auto in_support = [&](std::size_t k) { return inside[k] || near[k].d < 0; };
-  const auto rim = [&](std::size_t k) { return !in_support(k) && near[k].d < reach_out; };
   std::vector<double> depth(n, kFar);
   const auto chord = [&](const Nearest& a, const Nearest& b) {
     const double cs = 0.5 * (a.s + b.s), ct = 0.5 * (a.t + b.t);
@@ -293,7 +340,7 @@ void ramp_edges(const std::vector<Sample>& samples, const Outline& outline, cons
     if (up) chord(near[k], near[k + w]);
     if (!right && !up) chord(near[k], near[k]);
   }
-  // 3. The ramp.
+  // 4. The ramp.
   tex.covered = 0;
   for (std::size_t k = 0; k < n; ++k) {
     std::uint8_t& a = tex.rgba[4 * k + 3];

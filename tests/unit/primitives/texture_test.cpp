@@ -146,17 +146,13 @@ double filtered_alpha(const Texture& t, const SupportRect& r, double x, double y
   return (1 - b) * ((1 - a) * at(i, j) + a * at(i + 1, j)) + b * ((1 - a) * at(i, j + 1) + a * at(i + 1, j + 1));
 }
 
-// Sub-texel edges (TextureOptions::edge_cutoff): a disc of points (radius 0.8, spacing 0.05,
-// point radius 0.05, Psi 1) on texels of 0.23, 4.6 spacings. Along 24 directions, an alpha test at
-// the cutoff on the filtered alpha cuts where the support ends (edge_radius x 0.05 past the
-// outermost points) to 0.15 texel (measured: -0.02..+0.12; outward where the texels around the
-// cut reach past the ramp's zero); the interior keeps its Psi. Without the ramp the cut lay
-// -0.1..+0.36 texel off the fallback discs' edge, and +1.5 towards the rectangle's corners.
-TEST(Texture, EdgeRampCutsOnTheSupportEdge) {
+// A disc of points with Psi 1: 17 rings 0.05 apart about (1, 1), points 0.05 apart on each; a
+// point's radius is radius(its distance from the centre).
+template <class Radius>
+Scene disc(Radius radius) {
   Scene s;
   std::vector<std::int32_t> outer{0}, inner;
   std::vector<double> values;
-  // Rings 0.05 apart about (1, 1), points 0.05 apart on each: the outline is a circle of 0.8.
   for (int ring = 0; ring <= 16; ++ring) {
     const int count = std::max(1, static_cast<int>(std::lround(2 * 3.14159265 * ring)));
     for (int c = 0; c < count; ++c) {
@@ -164,13 +160,25 @@ TEST(Texture, EdgeRampCutsOnTheSupportEdge) {
       const float px = static_cast<float>(1 + 0.05 * ring * std::cos(a)), py = static_cast<float>(1 + 0.05 * ring * std::sin(a));
       s.positions.push_back({px, py, 0});
       s.normals.push_back({0, 0, 1});
-      s.radii.push_back(0.05f);
+      s.radii.push_back(radius(0.05 * ring));
       s.colors.push_back({200, 50, 100});
       inner.push_back(0), values.push_back(1.0);
       outer.push_back(static_cast<std::int32_t>(inner.size()));
     }
   }
   s.psi = from_rows(static_cast<Eigen::Index>(s.positions.size()), 1, outer, inner, values);
+  return s;
+}
+
+// Sub-texel edges (TextureOptions::edge_cutoff): a disc of points (radius 0.8, spacing 0.05,
+// point radius 0.05, Psi 1) on texels of 0.23, 4.6 spacings. Along 24 directions, an alpha test at
+// the cutoff on the filtered alpha cuts where the support ends (edge_radius x 0.05 past the
+// outermost points) to 0.15 texel (measured: -0.02..+0.12; outward where the texels around the
+// cut reach past the ramp's zero); the interior keeps its Psi. Without the ramp the cut lay
+// -0.1..+0.36 texel off the fallback discs' edge, and +1.5 towards the rectangle's corners.
+TEST(Texture, EdgeRampCutsOnTheSupportEdge) {
+  // Rings 0.05 apart about (1, 1), points 0.05 apart on each: the outline is a circle of 0.8.
+  const Scene s = disc([](double) { return 0.05f; });
   const Domains d = make_domains(s.psi);
   const SupportRect r = support_rectangles(s.positions, s.normals, s.radii, s.psi, d)[0];
   TextureOptions o;
@@ -195,6 +203,29 @@ TEST(Texture, EdgeRampCutsOnTheSupportEdge) {
     // Three texels inside, past the ramp's (1 - 0.3) / 0.5 = 1.4 texels: Psi itself.
     EXPECT_NEAR(filtered_alpha(t, r, 1 + (edge - 0.69) * cs, 1 + (edge - 0.69) * sn), 1.0, 0.01) << "direction " << k;
   }
+}
+
+// An unevenly sampled face: the points within 0.15 of the centre have radius 0.02, so the
+// triangles among them (edges 0.05 > 0.02 + 0.02) are not kept, and the outline has an inner loop
+// there; the splats leave parts of it uncovered. The gap joins the support and alpha keeps its Psi
+// there, as across the rest of the face; without edge_gap the ramp cuts a hole into it.
+TEST(Texture, EdgeRampKeepsGapsBetweenTriangles) {
+  const Scene s = disc([](double rho) { return rho < 0.16 ? 0.02f : 0.05f; });
+  const Domains d = make_domains(s.psi);
+  const SupportRect r = support_rectangles(s.positions, s.normals, s.radii, s.psi, d)[0];
+  TextureOptions o;
+  o.min_texel = 0.02;
+  o.edge_cutoff = 0.3;
+  const Texture t = resample_texture(s.positions, s.colors, {}, s.radii, s.psi, d, r, o);
+  for (const double u : {0.0, 0.03, 0.06, 0.09})
+    for (int k = 0; k < 8; ++k)
+      EXPECT_NEAR(filtered_alpha(t, r, 1 + u * std::cos(0.785 * k), 1 + u * std::sin(0.785 * k)), 1.0, 0.02)
+          << "at " << u << ", direction " << k;
+  o.edge_gap = 0;
+  const Texture cut = resample_texture(s.positions, s.colors, {}, s.radii, s.psi, d, r, o);
+  double lowest = 1;
+  for (double u = 0; u < 0.15; u += 0.005) lowest = std::min(lowest, filtered_alpha(cut, r, 1 + u, 1.0));
+  EXPECT_LT(lowest, 0.3);  // measured: 0.23, 0.06 from the centre
 }
 
 TEST(Texture, RadialProfiles) {
