@@ -226,20 +226,15 @@ double distance_to_segment(double s, double t, double as, double at, double bs, 
   return length(s - as - x * es, t - at - x * et);
 }
 
-double mean_radius(const std::vector<Sample>& samples) {
-  double sum = 0;
-  for (const Sample& p : samples) sum += p.r;
-  return samples.empty() ? 0.0 : sum / static_cast<double>(samples.size());
-}
-
 // A texel's distance to the support (negative inside a disc) and the support's nearest point, with
 // its Psi.
 struct Nearest {
   double d = std::numeric_limits<double>::infinity(), s = 0, t = 0, psi = 0;
 };
 
-// Marks as `support` every component of non-support texels (4-neighbourhood) that touches no
-// texel of the grid's rim and whose distances to the support (`d`) are all within `reach`.
+// Marks as kGap in `support` every component of non-support texels (4-neighbourhood) that touches
+// no texel of the grid's rim and whose distances to the support (`d`) are all within `reach`.
+constexpr char kGap = 2;
 void fill_gaps(const std::vector<Nearest>& near, const Grid& g, double reach, std::vector<char>& support) {
   const std::size_t w = static_cast<std::size_t>(g.width), h = static_cast<std::size_t>(g.height), n = support.size();
   std::vector<char> seen(n, 0);
@@ -263,7 +258,7 @@ void fill_gaps(const std::vector<Nearest>& near, const Grid& g, double reach, st
       if (j + 1 < h) visit(k + w);
     }
     if (enclosed && farthest <= reach)
-      for (const std::size_t k : component) support[k] = 1;
+      for (const std::size_t k : component) support[k] = kGap;
   }
 }
 
@@ -275,7 +270,7 @@ void fill_gaps(const std::vector<Nearest>& near, const Grid& g, double reach, st
 // texel centres. Texels outside get their alpha from the ramp alone, at most the (encoded) Psi at
 // their nearest support point; their colours are those extend_colors gave them.
 void ramp_edges(const std::vector<Sample>& samples, const Outline& outline, const std::vector<char>& inside,
-                const Grid& g, const TextureOptions& o, Texture& tex) {
+                const Grid& g, double mean_radius, const TextureOptions& o, Texture& tex) {
   const double cutoff = o.edge_cutoff, slope = o.edge_slope / g.texel;  // alpha per unit distance
   const double reach_out = std::max(cutoff / slope, g.texel);           // the outside ramp's width
   const double reach_in = (1 - cutoff) / slope;                         // the inside ramp's width
@@ -307,10 +302,9 @@ void ramp_edges(const std::vector<Sample>& samples, const Outline& outline, cons
   //    the Psi of its edge where the splats left it none.
   std::vector<char> support(n);
   for (std::size_t k = 0; k < n; ++k) support[k] = inside[k] || near[k].d < 0;
-  fill_gaps(near, g, o.edge_gap * o.width * mean_radius(samples), support);
-  for (std::size_t k = 0; k < n; ++k)  // where no splat reached into a gap: Psi at its edge
-    if (support[k] && !inside[k] && !(near[k].d < 0) && tex.rgba[4 * k + 3] == 0)
-      tex.rgba[4 * k + 3] = to8(255.0 * encode_alpha(near[k].psi, o.alpha_exponent));
+  fill_gaps(near, g, o.edge_gap * o.width * mean_radius, support);
+  for (std::size_t k = 0; k < n; ++k)
+    if (support[k] == kGap && tex.rgba[4 * k + 3] == 0) tex.rgba[4 * k + 3] = to8(255.0 * encode_alpha(near[k].psi, o.alpha_exponent));
   const auto in_support = [&](std::size_t k) { return support[k] != 0; };
   const auto rim = [&](std::size_t k) { return !in_support(k) && near[k].d < reach_out; };
   // 3. Inside texels: the distance to the edge, approximated by the polyline through the nearest
@@ -436,7 +430,7 @@ Texture resample_texture(const std::vector<Vec3f>& positions, const std::vector<
     tex.covered += tex.rgba[4 * k + 3] > 0;
   }
   if (o.extend_colors) extend_colors(tex);
-  if (ramp) ramp_edges(samples, outline, acc.done, grid, o, tex);
+  if (ramp) ramp_edges(samples, outline, acc.done, grid, rect.mean_radius, o, tex);
   return tex;
 }
 
