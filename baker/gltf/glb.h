@@ -36,7 +36,7 @@ struct GltfOptions {
   // at 0.2. Mesh inputs store alpha with exponent 2 (primitives/texture.h alpha_exponent), where
   // 0.3 cuts the seams at Psi 0.16 and the outer edges nearer the surface.
   std::string alpha_mode = "MASK";
-  float alpha_cutoff = 0.2f;  // MASK only; mesh inputs 0.3 (pipeline/bake.h use_mesh_edges)
+  float alpha_cutoff = 0.2f;  // MASK only; mesh inputs 0.3 (pipeline/bake.h use_surface_edges)
   std::string generator = "quasiflat";
 };
 

@@ -276,7 +276,7 @@ AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::
   nlohmann::json mesh_lods = is_mesh ? mesh_lod_outputs(mesh, o, stem, a.files) : nlohmann::json(nullptr);
   const double lods_seconds = seconds_since(lods_start);
   BakeOptions bake_options = o.bake;
-  if (is_mesh) use_mesh_edges(bake_options);
+  use_surface_edges(bake_options, is_mesh);
   a.result = bake(points, bake_options, path);
   a.manifest = impostor_outputs(a.result, stem, input_name, a.files);
   if (is_mesh && o.point_impostor) a.manifest["point_impostor"] = point_impostor_output(points, o, a.sampled.pixel, stem, a.files);

@@ -77,25 +77,42 @@ struct BakeOptions {
   std::string cache_dir;  // empty = no hierarchy cache
 };
 
-// The quads' alpha edges for a mesh input: alpha stored with exponent 2
-// (TextureOptions::alpha_exponent) under an alpha cutoff of 0.3. A mesh's surface ends at its
-// outermost sampled points, and these edges stay nearer them than Psi at 0.2 does. Engine method,
-// 8 views, the 16 levels of bunny00, fandisk, elephant and the dragon at ~30-1000 quads, summed:
-// +3.7 dB at 64 px and +0.3 dB at 256 px (fandisk's 88 quads at 64 px 25.58 -> 26.20 dB), holes
-// within 0.4 points of before. Cutoff 0.35 gained +2.5 / +1.9 dB but opened 0.3-5 points more
-// holes; 0.26 lost 2.1 dB at 256 px. A point set is drawn as splats, whose edge reaches a radius
-// past its outermost points as the fallback discs do: it keeps Psi at 0.2 (the generated torus'
-// finest default level at 256 px scored 0.3 dB and 0.005 IoU lower with sharper edges).
-// The edges are also cut to the texel at that cutoff (TextureOptions::edge_cutoff: a ramp on the
-// distance to the support's edge, a texel of room around every texture). Same 16 levels, summed:
-// +4.8 dB at 64 px and +4.2 dB at 256 px, IoU up to +0.025 (fandisk's 88 quads at 64 px 26.20 ->
-// 27.18 dB, IoU 0.960 -> 0.967); the overlap method +3.5 / +4.2 dB, IoU down to -0.017; holes
-// within 0.5 points but at 22-77 quads (elephant and dragon, up to +2 points); bytes +3..10%.
-// Edge radius 0.6 gained 0.3 dB more and opened up to 0.5 points more holes; slope 0.4 +0.5 dB
-// at 64 px, with the dragon's 143 quads at 64 px past 2% holes.
-inline void use_mesh_edges(BakeOptions& o) {
-  o.texture.alpha_exponent = 2;
-  o.gltf.alpha_cutoff = 0.3f;
+// The quads' alpha edges, cut to the texel where the input's surface ends
+// (TextureOptions::edge_cutoff: a ramp on the distance to the support's edge at the alpha cutoff,
+// a texel of room around every texture). Without it an edge steps with the texel grid: wavy at
+// coarse levels, where a texel spans several point spacings, and on average half a texel outside.
+// - A mesh input: alpha stored with exponent 2 (TextureOptions::alpha_exponent) under a cutoff of
+//   0.3; a mesh's surface ends at its outermost sampled points, and these edges stay nearer them
+//   than Psi at 0.2 does. Engine method, 8 views, the 16 levels of bunny00, fandisk, elephant and
+//   the dragon at ~30-1000 quads, summed: +3.7 dB at 64 px and +0.3 dB at 256 px (fandisk's 88
+//   quads at 64 px 25.58 -> 26.20 dB), holes within 0.4 points of before. Cutoff 0.35 gained
+//   +2.5 / +1.9 dB but opened 0.3-5 points more holes; 0.26 lost 2.1 dB at 256 px. The ramp on
+//   top, at 0.7 x the fallback radius past the points (half a spacing, where the sampled surface
+//   ends): +4.8 dB at 64 px and +4.2 dB at 256 px, IoU up to +0.025 (fandisk's 88 quads at 64 px
+//   26.20 -> 27.18 dB, IoU 0.960 -> 0.967); the overlap method +3.5 / +4.2 dB; holes within 0.5
+//   points but at 22-77 quads (elephant and dragon, up to +2 points); bytes +3..10%. Edge radius
+//   0.6 gained 0.3 dB more and opened up to 0.5 points more holes; slope 0.4 +0.5 dB at 64 px,
+//   with the dragon's 143 quads at 64 px past 2% holes.
+// - A point set is drawn as splats, whose edge reaches a radius past its outermost points: Psi
+//   stays at cutoff 0.2 (exponent 2 and cutoff 0.3 without the ramp cost the generated torus'
+//   finest level 0.3 dB and 0.005 IoU at 256 px), and the ramp cuts a whole fallback radius past
+//   the points. The default levels of b9_training, kitten, oni, ball, a 100k-point torus and the
+//   octahedron (24 levels, engine method, 8 views), summed: +4.1 dB at 256 px and +3.5 at 64 px;
+//   IoU at most 0.009 lower (b9_training at 64 px), oni's +0.02..+0.08; holes up 0.6..2.3 points
+//   on b9_training's unevenly scanned ground and 0.3..1.7 on oni's three finer levels, within 0.3
+//   elsewhere; bytes +1..4%. The octahedron's merged 8 quads (8k/16k/64k points, seeds 1-3) went
+//   from -1.3..+0.4 dB against the metric's floor (a second sampling) to +1.2..+4.3 dB, IoU
+//   0.970..0.986 -> 0.989..0.993. Exponent 2 and cutoff 0.3 with the ramp: +4.8 / +6.8 dB, but
+//   IoU down to -0.019 (torus, kitten, ball); radius 1.2 / 1.4: +2.0 / +0.8 dB at 256 px, with
+//   fewer of b9_training's holes (+0.2..+1.6 points).
+inline void use_surface_edges(BakeOptions& o, bool mesh_input) {
+  if (mesh_input) {
+    o.texture.alpha_exponent = 2;
+    o.gltf.alpha_cutoff = 0.3f;
+    o.texture.edge_radius = 0.7;
+  } else {
+    o.texture.edge_radius = 1.0;
+  }
   o.texture.edge_cutoff = o.gltf.alpha_cutoff;
 }
 

@@ -54,7 +54,7 @@ struct TextureOptions {
   // edge's filtered ramp, outside the surface. With exponent 2 and cutoff 0.3 the seams close at
   // Psi 0.16 (0.2 before) and the outer edges, a step in the texture that filtering ramps, are
   // cut nearer their middle. The bake sets it for mesh inputs
-  // (pipeline/bake.h use_mesh_edges); 1 stores Psi itself.
+  // (pipeline/bake.h use_surface_edges); 1 stores Psi itself.
   double alpha_exponent = 1;
   // Sub-texel outer edges for an alpha test at this cutoff (0 = off; linear affine only): near the
   // edge of the domain's support (the union of the kept triangles and of discs of edge_radius x
@@ -65,8 +65,8 @@ struct TextureOptions {
   // coarse levels a texel spans several point spacings: wavy, and on average half a texel
   // outside the surface) and a quad shows up to its rectangle's rim, where engines clamp to the
   // outer texels. A point's radius is ~0.71 of the spacing of a sampled face, so 0.7 puts the
-  // edge half a spacing past the outermost points, where the sampled surface ends. The bake sets
-  // the cutoff for mesh inputs (pipeline/bake.h use_mesh_edges).
+  // edge half a spacing past the outermost points, where the sampled surface ends; a point set's
+  // splats end a whole radius past them (1). The bake sets both (pipeline/bake.h use_surface_edges).
   double edge_cutoff = 0;
   double edge_radius = 0.7;
   double edge_slope = 0.5;

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The engine method is engine-true: baked files of every kind (an impostor level of the bundled
-# octahedron, a point set; one of a generated sphere mesh, whose alpha is encoded and ramped at
-# its edges (pipeline/bake.h use_mesh_edges); the simplified mesh LOD, a vertex-clustering LOD with thick lines and the point
+# octahedron, a point set; one of a generated sphere mesh, whose alpha is encoded; both ramped at
+# their edges, pipeline/bake.h use_surface_edges; the simplified mesh LOD, a vertex-clustering LOD with thick lines and the point
 # impostor of a generated sphere mesh) rendered by three.js
 # r187 in headless Chromium (scripts/three-render) and by `qf-render eval`'s engine method from the
 # same 8 cameras with the same lights score the same against the reference: PSNR within 1 dB and
