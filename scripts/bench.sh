@@ -9,10 +9,14 @@
 # vertex clustering (vertices/s per level) on bunny00, the dragon and a 1M-triangle sphere.
 # batch: assets per minute on the CGAL model set with -j 1 and -j 2 (cold and warm hierarchy
 # cache), and the per-asset overhead of a rerun with nothing to do (10 models, 200 small sets).
-# fidelity: the league of issue 15 (scripts/fidelity_table.py): impostor levels (engine and overlap
+# fidelity: the league of issues 15 and 31 (scripts/fidelity_table.py). CGAL models (bunny00, fandisk,
+# elephant, the dragon, the coloured point set b9_training): impostor levels (engine and overlap
 # methods) vs meshoptimizer simplify at twice the triangles (flat, smooth normals) and the nearest
-# vertex-clustering LOD, PSNR / IoU / holes / bytes at 256 and 64 pixels, on bunny00, fandisk,
-# elephant, the dragon and the coloured point set b9_training.
+# vertex-clustering LOD, PSNR / IoU / holes / bytes at 256 and 64 pixels and each level's own size.
+# Assets (generated bushes and lattices of seeds 3 and 4, the generated tree, and assimp's
+# 2CylinderEngine and spider when installed): impostor levels vs the asset as drawn, simplify and
+# simplifySloppy at twice the quads in triangles and the crossed billboard at equal bytes (engine
+# method), PSNR / IoU / soft IoU / holes / bytes at each level's own size and half of it (~25 min).
 # chain: the recommended chain (qf-bake bake --chain, scripts/chain_table.py) on bunny00, fandisk,
 # elephant, the dragon and assimp's textured spider: the chain, its bytes, bake and chain seconds.
 # big: one big asset (issue 20): a generated torus and bunny00's mesh sampled by depth peeling, at
@@ -159,10 +163,22 @@ for w in "${what[@]}"; do
     fidelity)
       models=$(scripts/fetch-models.sh bunny00.off fandisk.off elephant.off ChineseDragon-10kv.off b9_training.ply | tail -1)
       tmp=$(mktemp -d)
-      # The generated tree (issue 17): thousands of alpha-masked leaves, nothing for simplify to collapse.
+      # Assets (issue 31): seeded foliage and lattices (seeds not used by any test), the generated
+      # tree (issue 17: thousands of alpha-masked leaves, nothing for simplify to collapse), and
+      # assimp-testmodels' engine and spider. Named by absolute paths, they get the asset tables.
+      assets=""
+      for s in 3 4; do
+        build/bin/qf-bake generate bush --seed $s -o "$tmp/bush$s.glb" -q
+        build/bin/qf-bake generate lattice --seed $s -o "$tmp/lattice$s.glb" -q
+        assets+=",$tmp/bush$s.glb,$tmp/lattice$s.glb"
+      done
       build/bin/qf-bake generate tree -o "$tmp/tree.glb" -q
+      assets+=",$tmp/tree.glb"
+      for f in /usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb /usr/share/assimp/models/OBJ/spider.obj; do
+        if [[ -f $f ]]; then assets+=",$f"; else echo "(assimp-testmodels not installed: $(basename "$f") skipped)"; fi
+      done
       python3 scripts/fidelity_table.py build/bin "$models" "$tmp" \
-        --models "bunny00.off,fandisk.off,elephant.off,ChineseDragon-10kv.off,b9_training.ply,$tmp/tree.glb"
+        --models "bunny00.off,fandisk.off,elephant.off,ChineseDragon-10kv.off,b9_training.ply$assets"
       rm -rf "$tmp" ;;
     chain)
       models=$(scripts/fetch-models.sh bunny00.off fandisk.off elephant.off ChineseDragon-10kv.off | tail -1)

@@ -95,12 +95,12 @@ int AnyScene::lod_for_coverage(double coverage) const {
 }
 
 ViewMetrics mean_of(const std::vector<ViewMetrics>& v) {
-  ViewMetrics m{0, 0, 0, 0, 0, 0, 0, 0};
+  ViewMetrics m{0, 0, 0, 0, 0, 0, 0, 0, 0};
   for (const ViewMetrics& x : v)
-    m.psnr += x.psnr, m.iou += x.iou, m.mae += x.mae, m.holes += x.holes, m.see_through += x.see_through, m.brightness += x.brightness,
+    m.psnr += x.psnr, m.iou += x.iou, m.soft_iou += x.soft_iou, m.mae += x.mae, m.holes += x.holes, m.see_through += x.see_through, m.brightness += x.brightness,
         m.reference_brightness += x.reference_brightness;
   const double n = static_cast<double>(std::max<std::size_t>(1, v.size()));
-  m.psnr /= n, m.iou /= n, m.mae /= n, m.holes /= n, m.see_through /= n, m.brightness /= n, m.reference_brightness /= n;
+  m.psnr /= n, m.iou /= n, m.soft_iou /= n, m.mae /= n, m.holes /= n, m.see_through /= n, m.brightness /= n, m.reference_brightness /= n;
   return m;
 }
 

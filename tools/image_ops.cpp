@@ -119,6 +119,9 @@ ViewMetrics compare_renders(const RenderPair& reference, const RenderPair& impos
   const double sum = total(masked), sum2 = total(IBA::mul(masked, masked));
   m.covered = static_cast<std::size_t>(n_ref);
   m.iou = n_either > 0 ? n_both / n_either : 1.0;
+  const OIIO::ImageBuf cr = IBA::clamp(cov_r, 0.0f, 1.0f), ci = IBA::clamp(cov_i, 0.0f, 1.0f);
+  const double soft_max = total(IBA::max(cr, ci));
+  m.soft_iou = soft_max > 0 ? total(IBA::min(cr, ci)) / soft_max : 1.0;
   m.mae = n_either > 0 ? sum / (3 * n_either) : 0.0;
   const double mse = n_either > 0 ? sum2 / (3 * n_either) : 0.0;
   m.psnr = mse > 0 ? std::min(99.0, 10 * std::log10(1.0 / mse)) : 99.0;

@@ -29,6 +29,9 @@ Image contact_sheet(const std::vector<Image>& images, int columns, Rgb8 backgrou
 struct ViewMetrics {
   double psnr = 0;         // dB, over pixels covered (c >= 0.5) by either image; 99 when identical
   double iou = 1;          // silhouette intersection over union (c >= 0.5)
+  // Sum of min(c_ref, c) / sum of max(c_ref, c) over all pixels: the IoU of fractional coverage
+  // (a leaf or a beam covers part of a pixel, which the silhouette's 0.5 threshold rounds away).
+  double soft_iou = 1;
   double mae = 0;          // mean absolute difference, 0..1, over the same pixels
   double holes = 0;        // share of reference-covered pixels where the impostor's c < 0.5
   double see_through = 0;  // share of reference-covered pixels where the impostor's 0.5 <= c < 0.9

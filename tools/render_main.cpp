@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <iostream>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <thread>
@@ -209,11 +210,12 @@ CommandSpec eval_spec() {
     if (o.name == "background") o.default_text = "128,128,128";
   }
   CommandSpec s{"eval", "REFERENCE BAKED [options]", "measure an impostor against its reference (points as splats, or a mesh) from many views",
-      "Renders both with the same cameras from N viewpoints spread evenly over the sphere, framing the\n"
+      "Renders both with the same cameras from N viewpoints (the reference as the truth: drawn at --truth times the size\n"
+      "and box-filtered down) spread evenly over the sphere, framing the\n"
       "reference's bounding sphere, once with --method and once with the engine method (both the file and\n"
       "the reference drawn as a standard PBR engine draws glTF: base colour and normal maps, lighting in\n"
       "linear light, double-sided where the material says; three.js r187's MeshStandardMaterial). Per view and on average: PSNR over the pixels covered\n"
-      "by either image, silhouette IoU, mean absolute error, and the shares of reference pixels that are\n"
+      "by either image, silhouette IoU, soft IoU (of fractional coverage), mean absolute error, and the shares of reference pixels that are\n"
       "holes (impostor coverage < 0.5) or see-through (0.5 <= coverage < 0.9). Coverage is measured from\n"
       "renders over black and over white; colours are compared over --background. BAKED is a baked .glb\n"
       "(impostor level, cluster LOD, point impostor), or another point set or mesh: a second sampling of\n"
@@ -222,6 +224,10 @@ CommandSpec eval_spec() {
       "MTL, drawn with its textures): it is then drawn, and BAKED scored, by the engine method only.",
       {{"output", 'o', "REPORT.json", "", "write the report here (default: print it)"},
        {"views", 0, "N", "26", "number of viewpoints"},
+       {"truth", 0, "F", "8",
+        "score against the truth: the reference drawn at F x the size (at most 4096 px a side) and box-filtered\n"
+        "down (what its pixels should show); the reference drawn at the size is scored against it too (as_drawn, engine method).\n"
+        "1 = against the reference as drawn at the size"},
        {"diff", 0, "PREFIX", "REPORT's path without .json", "write PREFIX.exr and PREFIX.png: per-view |difference| sheets (PNG x4)"},
        {"no-engine", 0, "", "", "skip the engine-path evaluation"},
        {"cameras", 0, "FILE", "", "write the views' cameras and the engine lights as JSON (for renders made elsewhere)"},
@@ -237,6 +243,7 @@ CommandSpec eval_spec() {
 ordered_json metrics_json(const ViewMetrics& m) {
   return {{"psnr", canonical_double(static_cast<float>(m.psnr))},
           {"iou", canonical_double(static_cast<float>(m.iou))},
+          {"soft_iou", canonical_double(static_cast<float>(m.soft_iou))},
           {"mae", canonical_double(static_cast<float>(m.mae))},
           {"holes", canonical_double(static_cast<float>(m.holes))},
           {"see_through", canonical_double(static_cast<float>(m.see_through))},
@@ -278,15 +285,30 @@ RenderPair external_pair(const std::string& dir, int view, int w, int h) {
 // What an eval measured: per view and method, the metrics, cameras and difference images.
 struct EvalViews {
   std::vector<ViewMetrics> main, engine, external, agreement;  // agreement: engine method vs external renders
+  std::vector<ViewMetrics> as_drawn;  // the reference drawn at the size (engine method) vs the truth
   std::vector<Camera> cams;
   std::vector<Image> diff_sheet;
   std::vector<float> exr_sheet;  // views stacked vertically
   ordered_json per_view = ordered_json::array();
 };
 
+// The reference as the pixels should show it: drawn `factor` times larger and box-filtered down
+// (the truth), or drawn at the size where factor is 1.
+struct ReferenceViews {
+  Renderer& at_size;
+  Renderer* supersampled;  // factor x the size; null when factor is 1
+  int factor = 1;
+  RenderPair draw(const Sphere& sphere, Vec3f d, int w, int h, const DrawSettings& s) const {
+    if (factor <= 1) return render_pair(at_size, orbit_camera(sphere, d, 0, w, h), s);
+    const RenderPair p = render_pair(*supersampled, orbit_camera(sphere, d, 0, w * factor, h * factor), s);
+    return {box_downsample(p.over_black, factor), box_downsample(p.over_white, factor)};
+  }
+};
+
 // Draws both from `views` directions spread over the reference's bounding sphere and compares them:
-// with `settings`, with the engine method (unless off), and against external renders (if any).
-EvalViews measure_views(const Sphere& sphere, int views, int w, int h, Renderer& ref_renderer, Renderer& imp_renderer,
+// with `settings`, with the engine method (unless off), and against external renders (if any);
+// with a supersampled truth, the reference as drawn at the size is scored against it too.
+EvalViews measure_views(const Sphere& sphere, int views, int w, int h, const ReferenceViews& ref, Renderer& imp_renderer,
                         const DrawSettings& settings, bool with_engine, const std::string& external, Rgb8 background) {
   DrawSettings engine = settings;
   engine.method = Method::kEngine;
@@ -295,16 +317,21 @@ EvalViews measure_views(const Sphere& sphere, int views, int w, int h, Renderer&
     const Vec3f d = sphere_direction(i, views);
     const Camera cam = orbit_camera(sphere, d, 0, w, h);
     e.cams.push_back(cam);
-    const RenderPair ref = render_pair(ref_renderer, cam, settings);
+    const RenderPair truth = ref.draw(sphere, d, w, h, settings);
     std::vector<float> diff;
-    e.main.push_back(compare_renders(ref, render_pair(imp_renderer, cam, settings), background, &diff));
+    e.main.push_back(compare_renders(truth, render_pair(imp_renderer, cam, settings), background, &diff));
     ordered_json v{{"view", i}, {"direction", {canonical_double(d.x), canonical_double(d.y), canonical_double(d.z)}}};
     v[method_name(settings.method)] = metrics_json(e.main.back());
-    const RenderPair engine_ref = with_engine || !external.empty() ? render_pair(ref_renderer, cam, engine) : RenderPair{};
+    const bool engine_views = with_engine || !external.empty() || ref.factor > 1;
+    const RenderPair engine_ref = !engine_views ? RenderPair{} : settings.method == Method::kEngine ? truth : ref.draw(sphere, d, w, h, engine);
     const RenderPair engine_baked = with_engine || !external.empty() ? render_pair(imp_renderer, cam, engine) : RenderPair{};
     if (with_engine) {
       e.engine.push_back(compare_renders(engine_ref, engine_baked, background));
       v["engine"] = metrics_json(e.engine.back());
+    }
+    if (ref.factor > 1) {
+      e.as_drawn.push_back(compare_renders(engine_ref, render_pair(ref.at_size, cam, engine), background));
+      v["as_drawn"] = metrics_json(e.as_drawn.back());
     }
     if (!external.empty()) {
       const RenderPair ext = external_pair(external, i, w, h);
@@ -321,7 +348,7 @@ EvalViews measure_views(const Sphere& sphere, int views, int w, int h, Renderer&
 }
 
 // The eval report (README: qf-render eval): inputs, settings, the means and every view.
-ordered_json eval_report(const ParsedArgs& a, const AnyScene& baked, const EvalViews& e, int views, int w, int h,
+ordered_json eval_report(const ParsedArgs& a, const AnyScene& baked, const EvalViews& e, int views, int w, int h, int truth,
                          const DrawSettings& settings, Rgb8 background) {
   const ImpostorScene& s = baked.impostor;
   ordered_json report{{"reference", a.positional[0]}, {"baked", a.positional[1]}, {"baked_contents", baked.describe()}};
@@ -329,10 +356,12 @@ ordered_json eval_report(const ParsedArgs& a, const AnyScene& baked, const EvalV
   report.update(ordered_json{{"views", views},
                       {"size", {w, h}},
                       {"background", {background.r, background.g, background.b}},
-                      {"method", method_name(settings.method)}});
+                      {"method", method_name(settings.method)},
+                      {"truth_supersampling", truth}});
   if (baked.kind == AnyScene::kImpostor) report["engine_alpha_mode"] = settings.alpha_mode ? *settings.alpha_mode : s.alpha_mode;
   report["mean"][method_name(settings.method)] = metrics_json(mean_of(e.main));
   if (!e.engine.empty()) report["mean"]["engine"] = metrics_json(mean_of(e.engine));
+  if (!e.as_drawn.empty()) report["mean"]["as_drawn"] = metrics_json(mean_of(e.as_drawn));
   if (!e.external.empty()) {
     report["mean"]["external"] = metrics_json(mean_of(e.external));
     report["mean"]["engine_vs_external"] = metrics_json(mean_of(e.agreement));
@@ -364,11 +393,12 @@ void write_eval_outputs(const ParsedArgs& a, const ordered_json& report, const E
 void print_eval_summary(const EvalViews& e, int views, Method method) {
   auto say = [&](const std::string& what, const std::vector<ViewMetrics>& v) {
     const ViewMetrics m = mean_of(v);
-    std::cerr << "qf-render eval: " << what << ": PSNR " << m.psnr << " dB, IoU " << m.iou << ", holes " << 100 * m.holes
+    std::cerr << "qf-render eval: " << what << ": PSNR " << m.psnr << " dB, IoU " << m.iou << ", soft IoU " << m.soft_iou << ", holes " << 100 * m.holes
               << "%, see-through " << 100 * m.see_through << "%\n";
   };
   say(std::to_string(views) + " views, " + method_name(method), e.main);
   if (!e.engine.empty()) say("engine method", e.engine);
+  if (!e.as_drawn.empty()) say("the reference as drawn (engine method)", e.as_drawn);
   if (!e.external.empty()) say("external renders", e.external), say("engine method vs external renders", e.agreement);
 }
 
@@ -387,19 +417,26 @@ int run_eval(const ParsedArgs& a) {
   if (reference.asset) settings.method = Method::kEngine;
   const Sphere sphere = bounding_sphere(reference.bounds());
   choose_lod(baked, a, orbit_camera(sphere, sphere_direction(0, views), 0, w, h));
+  // The truth's side is capped (kMaxTruthSide): 8 x 512 px would be 4096 px a side, and 4 x is as
+  // good a box filter at that size.
+  constexpr int kMaxTruthSide = 4096;
+  const int truth = std::max(1, std::min(static_cast<int>(a.get_int("truth", 8, 1, 16)), kMaxTruthSide / std::max(w, h)));
   HeadlessContext context;
   Renderer ref_renderer(w, h), imp_renderer(w, h);
+  std::unique_ptr<Renderer> truth_renderer = truth > 1 ? std::make_unique<Renderer>(w * truth, h * truth) : nullptr;
   reference.attach(ref_renderer);
+  if (truth_renderer) reference.attach(*truth_renderer);
   baked.attach(imp_renderer);
   // 2. Every view. The engine path: both drawn as an engine draws glTF (the reference as if exported).
   const bool with_engine = !a.flag("no-engine") && settings.method != Method::kEngine;
-  const EvalViews e = measure_views(sphere, views, w, h, ref_renderer, imp_renderer, settings, with_engine, a.get("external"), background);
+  const ReferenceViews ref{ref_renderer, truth_renderer.get(), truth};
+  const EvalViews e = measure_views(sphere, views, w, h, ref, imp_renderer, settings, with_engine, a.get("external"), background);
   // 3. The outputs.
   if (a.has("cameras")) {
     const std::string text = cameras_json(e.cams, settings.lights, background).dump(1) + "\n";
     write_file_atomically(a.get("cameras"), [&](std::ostream& out) { out << text; });
   }
-  write_eval_outputs(a, eval_report(a, baked, e, views, w, h, settings, background), e, views, w, h);
+  write_eval_outputs(a, eval_report(a, baked, e, views, w, h, truth, settings, background), e, views, w, h);
   print_eval_summary(e, views, settings.method);
   return 0;
 }

@@ -5,13 +5,16 @@
 
 #include <cstdlib>
 #include <iostream>
+#include <limits>
 
 #include "analysis/neighborhoods.h"
 #include "core/error.h"
 #include "core/file_io.h"
 #include "gltf/glb.h"
 #include "io/model_io.h"
+#include "primitives/billboard.h"
 #include "shapes/shapes.h"
+#include "shapes/lattice.h"
 #include "shapes/tree.h"
 
 namespace qf::cli {
@@ -53,7 +56,10 @@ std::vector<OptionSpec> sample_option_specs() {
            "OpenGL through EGL (the paper's method; falls back to cpu without a context); same points but ~0.01%"},
           {"all-triangles", 0, "", "",
            "mesh inputs: draw every triangle on every axis (the paper's basic method; same points, more layers)\n"
-           "instead of each triangle only on the axis its normal is most parallel to"}};
+           "instead of each triangle only on the axis its normal is most parallel to"},
+          {"visibility-views", 0, "N", std::to_string(d.visibility.views),
+           "mesh inputs: keep only the sampled points one of N orthographic views from outside sees (inner parts,\n"
+           "the inside of a closed housing: gone); 0 keeps every depth layer"}};
 }
 
 SampleOptions read_sample_options(const OptionValues& args) {
@@ -61,6 +67,7 @@ SampleOptions read_sample_options(const OptionValues& args) {
   o.ldi_size = static_cast<int>(args.get_int("ldi", o.ldi_size, 2, 16000));
   o.backend = args.get_choice("sampler", {"gl", "cpu"}, o.backend);
   o.per_axis_triangles = !args.flag("all-triangles");
+  o.visibility.views = static_cast<int>(args.get_int("visibility-views", o.visibility.views, 0, 1024));
   return o;
 }
 
@@ -144,11 +151,14 @@ const std::vector<Command>& commands() {
                        quiet_option()}),
         2, 2},
        run_convert},
-      {{"generate", "SHAPE -o OUT [options]", "write an analytic sample shape as a point set, or a sample tree as a .glb",
+      {{"generate", "SHAPE -o OUT [options]", "write an analytic sample shape as a point set, or a sample game asset as a .glb",
         "SHAPE is one of:\n" + shape_list() +
             "  tree         a trunk, branches and --leaves alpha-masked leaf quads with generated bark and\n"
             "               leaf textures: a textured game asset (OUT must be .glb), where mesh\n"
             "               simplification has nothing to collapse\n"
+            "  bush         stems and --leaves (default 1800) small alpha-masked leaves: foliage (.glb)\n"
+            "  lattice      a tower of thin square beams, flat-shaded, one material (.glb); --seed sets\n"
+            "               its storeys, taper, bracing and beam width\n"
             "Points are spread uniformly by area with a seeded generator (identical output for\n"
             "identical settings), with outward normals, colours, and radii from local spacing.",
         {{"output", 'o', "OUT", "", "output file (.ply, .qs, .xyz or .pwn); required"},
@@ -156,10 +166,22 @@ const std::vector<Command>& commands() {
          {"seed", 0, "S", "1", "random seed"},
          {"mesh", 0, "", "", "write a closed triangle mesh instead (octahedron, cube, sphere; OUT must be .ply)"},
          {"subdivisions", 0, "N", "16", "--mesh: each face split into N x N triangles"},
-         {"leaves", 0, "N", "3000", "tree: number of leaf quads"},
+         {"leaves", 0, "N", "3000", "tree, bush: number of leaf quads (bush default: 1800)"},
          quiet_option()},
         1, 1},
        run_generate},
+      {{"billboard", "MESH -o OUT.glb [options]", "write the crossed billboard engines ship for far foliage (a peer)",
+        "Three vertical cards through the asset's centre, 60 degrees apart, and one horizontal card, each\n"
+        "an orthographic view of the whole asset (its materials, 4 x 4 samples a texel, coverage as alpha),\n"
+        "alpha-tested at 0.5 and double-sided: the classic far-foliage LOD that the fidelity league\n"
+        "measures the impostor levels against at equal bytes.",
+        {{"output", 'o', "OUT.glb", "", "output file; required"},
+         {"side", 0, "N", "128", "texels along each card's longer side"},
+         {"bytes", 0, "B", "", "instead of --side: the largest side whose file has at most B bytes"},
+         drop_nonfinite_option(),
+         quiet_option()},
+        1, 1},
+       run_billboard},
       {analyze_spec(), run_analyze},
       {decompose_spec(), run_decompose},
       {bake_spec(), run_bake},
@@ -215,23 +237,72 @@ int run_convert(const ParsedArgs& args) {
   return 0;
 }
 
+int run_billboard(const ParsedArgs& args) {
+  const std::string out = args.require("output");
+  if (file_extension(out) != "glb") throw UsageError("billboard writes a .glb, not '" + out + "'");
+  ReadOptions ro;
+  ro.drop_nonfinite = args.flag("drop-nonfinite");
+  const Model model = read_model(args.positional[0], ro, nullptr);
+  if (!model.is_mesh || model.mesh.triangles.empty())
+    throw InputError("billboard.needs_mesh", args.positional[0], "", "is not a mesh with triangles; a billboard draws triangles");
+  const auto encode = [&](int side) {
+    BillboardOptions o;
+    o.side = side;
+    return encode_textured_mesh_glb(crossed_billboard(model.mesh, o));
+  };
+  std::vector<std::uint8_t> bytes;
+  int side = static_cast<int>(args.get_int("side", 128, 1, 4096));
+  if (args.has("bytes")) {
+    // The file grows with the side: bisect for the largest side within the budget (at least 1).
+    const long long budget = args.get_int("bytes", 0, 1, std::numeric_limits<long long>::max());
+    int lo = 1, hi = 2048;
+    while (lo < hi) {
+      const int mid = (lo + hi + 1) / 2;
+      if (static_cast<long long>(encode(mid).size()) <= budget)
+        lo = mid;
+      else
+        hi = mid - 1;
+    }
+    side = lo;
+  }
+  bytes = encode(side);
+  write_bytes_atomically(out, bytes);
+  if (!args.flag("quiet"))
+    std::cerr << "qf-bake billboard: " << args.positional[0] << " -> " << out << ": 4 cards of " << side << " texels, " << bytes.size()
+              << " bytes\n";
+  return 0;
+}
+
 int run_generate(const ParsedArgs& args) {
   args.require("output");
   ShapeOptions o;
   o.points = static_cast<std::size_t>(args.get_int("points", static_cast<long long>(o.points), 1, 100000000));
   o.seed = static_cast<std::uint64_t>(args.get_int("seed", static_cast<long long>(o.seed), 0, (1ll << 62)));
   const std::string out = args.get("output");
-  if (args.positional[0] == "tree") {
-    if (file_extension(out) != "glb") throw UsageError("generate tree writes a .glb, not '" + out + "'");
-    TreeOptions t;
-    t.seed = o.seed;
-    t.leaves = static_cast<std::size_t>(args.get_int("leaves", static_cast<long long>(t.leaves), 1, 1000000));
-    const TriangleMesh tree = generate_tree(t);
-    const std::vector<std::uint8_t> bytes = encode_textured_mesh_glb(tree);
+  const std::string& shape = args.positional[0];
+  if (shape == "tree" || shape == "bush" || shape == "lattice") {
+    if (file_extension(out) != "glb") throw UsageError("generate " + shape + " writes a .glb, not '" + out + "'");
+    TriangleMesh asset;
+    if (shape == "tree") {
+      TreeOptions t;
+      t.seed = o.seed;
+      t.leaves = static_cast<std::size_t>(args.get_int("leaves", static_cast<long long>(t.leaves), 1, 1000000));
+      asset = generate_tree(t);
+    } else if (shape == "bush") {
+      BushOptions b;
+      b.seed = o.seed;
+      b.leaves = static_cast<std::size_t>(args.get_int("leaves", static_cast<long long>(b.leaves), 1, 1000000));
+      asset = generate_bush(b);
+    } else {
+      LatticeOptions l;
+      l.seed = o.seed;
+      asset = generate_lattice(l);
+    }
+    const std::vector<std::uint8_t> bytes = encode_textured_mesh_glb(asset);
     write_bytes_atomically(out, bytes);
     if (!args.flag("quiet"))
-      std::cerr << "qf-bake generate: tree -> " << out << ": " << tree.triangles.size() << " triangles (" << t.leaves << " leaves), "
-                << bytes.size() << " bytes\n";
+      std::cerr << "qf-bake generate: " << shape << " -> " << out << ": " << asset.triangles.size() << " triangles, " << bytes.size()
+                << " bytes\n";
     return 0;
   }
   if (args.flag("mesh")) {

@@ -24,6 +24,7 @@ const std::vector<Command>& commands();
 int run_info(const ParsedArgs& args);
 int run_convert(const ParsedArgs& args);
 int run_generate(const ParsedArgs& args);
+int run_billboard(const ParsedArgs& args);
 int run_analyze(const ParsedArgs& args);
 CommandSpec analyze_spec();
 

@@ -25,6 +25,9 @@ CommandSpec simplify_spec() {
           {output_option("OUTDIR", "output folder (created if needed); required"),
            {"triangles", 't', "N,N,...", "", "triangle budgets, one LOD each; required"},
            {"normals", 0, "smooth|flat", "smooth", "vertex normals area-weighted over the LOD's triangles, or none"},
+           {"method", 0, "collapse|sloppy", "collapse",
+            "meshoptimizer's edge collapse (simplify: keeps the topology), or simplifySloppy (clusters vertices\n"
+            "on a grid: reaches any budget, merging thin parts and pieces)"},
            drop_nonfinite_option(), quiet_option()},
           1, 1};
 }
@@ -34,6 +37,7 @@ int run_simplify(const ParsedArgs& args) {
   const std::string outdir = args.require("output");
   args.require("triangles");
   const std::string normals = args.get_choice("normals", {"smooth", "flat"}, "smooth");
+  const bool sloppy = args.get_choice("method", {"collapse", "sloppy"}, "collapse") == "sloppy";
   std::vector<std::size_t> budgets;
   for (long long n : args.get_int_list("triangles", 1, std::numeric_limits<long long>::max())) budgets.push_back(static_cast<std::size_t>(n));
   ReadOptions ro;
@@ -45,12 +49,14 @@ int run_simplify(const ParsedArgs& args) {
   const auto start = std::chrono::steady_clock::now();
   const std::string stem = std::filesystem::path(in).stem().string();
   std::vector<OutputFile> files;
-  const nlohmann::json levels = simplify_level_files(model.mesh, budgets, stem, files, normals == "smooth");
+  const nlohmann::json levels = simplify_level_files(model.mesh, budgets, stem, files, normals == "smooth",
+                                                      sloppy ? SimplifyMethod::kSloppy : SimplifyMethod::kCollapse);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const nlohmann::json manifest{{"input", in},
                                 {"triangles", model.mesh.triangles.size()},
                                 {"vertices", model.mesh.positions.size()},
-                                {"method", "meshoptimizer simplify (edge collapse, quadric error)"},
+                                {"method", sloppy ? "meshoptimizer simplifySloppy (vertex clustering, topology not kept)"
+                                                  : "meshoptimizer simplify (edge collapse, quadric error)"},
                                 {"normals", normals},
                                 {"levels", levels},
                                 {"generator", "quasiflat qf-bake simplify"}};

@@ -17,11 +17,12 @@
 namespace qf {
 
 PointSet load_point_set(const std::string& path, const ReadOptions& read, const SampleOptions& sample,
-                        const std::string& command, ReadReport& report, SampleStats* sampled, TriangleMesh* mesh) {
+                        const std::string& command, ReadReport& report, SampleStats* sampled, TriangleMesh* mesh,
+                        std::vector<std::uint32_t>* triangles) {
   Model model = read_model(path, read, &report);
   if (model.is_mesh) {
     SampleStats stats;
-    PointSet points = sample_mesh(model.mesh, sample, path, &stats);
+    PointSet points = sample_mesh(model.mesh, sample, path, &stats, triangles);
     if (sampled) *sampled = stats;
     if (mesh) *mesh = std::move(model.mesh);
     return points;
@@ -44,11 +45,11 @@ std::vector<std::size_t> default_simplify_budgets(const TriangleMesh& mesh) {
 }
 
 nlohmann::json simplify_level_files(const TriangleMesh& mesh, const std::vector<std::size_t>& budgets, const std::string& stem,
-                                    std::vector<OutputFile>& files, bool smooth) {
+                                    std::vector<OutputFile>& files, bool smooth, SimplifyMethod method) {
   const double diagonal = mesh.bounds().diagonal();
   nlohmann::json levels = nlohmann::json::array();
   for (std::size_t i = 0; i < budgets.size(); ++i) {
-    SimplifiedMesh s = simplify_mesh(mesh, budgets[i]);
+    SimplifiedMesh s = simplify_mesh(mesh, budgets[i], method);
     const std::string name = stem + "_S" + std::to_string(i) + ".glb";
     // A mesh with materials (textured glTF, OBJ + MTL) keeps them, its textures sized for the
     // level's screen: at most 2 x max_screen_pixels texels a side (the spider's 768-px texture in
@@ -196,6 +197,8 @@ nlohmann::json asset_report(AssetBake& a, const AssetOptions& o, const std::stri
                 {"layers", a.sampled.layers},
                 {"points_per_axis", a.sampled.points},
                 {"degenerate_triangles", a.sampled.degenerate_triangles},
+                {"visibility_views", o.sample.visibility.views},
+                {"hidden", a.sampled.hidden},
                 {"seconds", canonical_double(static_cast<float>(a.sampled.seconds))}};
     if (!a.sampled.fallback.empty()) r.warnings.push_back(a.sampled.fallback);
   }
@@ -269,15 +272,21 @@ AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::
   const std::string stem = std::filesystem::path(input_name).stem().string();
   // 1. Points (a mesh is sampled).
   TriangleMesh mesh;
-  const PointSet points = load_point_set(path, o.read, o.sample, "bake", a.read, &a.sampled, &mesh);
+  MeshSurface surface;  // a mesh input's quads draw the mesh itself
+  const PointSet points = load_point_set(path, o.read, o.sample, "bake", a.read, &a.sampled, &mesh, &surface.point_triangles);
   const bool is_mesh = !a.sampled.backend.empty();
+  if (is_mesh) {
+    surface.mesh = &mesh;
+    const bool gltf = a.read.format == "glb" || a.read.format == "gltf";
+    surface.normals = mesh.normals.size() == mesh.positions.size() ? mesh.normals : gltf ? std::vector<Vec3f>{} : mesh.smooth_normals();
+  }
   // 2-4. The outputs: mesh LODs, impostor levels, the point impostor.
   const auto lods_start = std::chrono::steady_clock::now();
   nlohmann::json mesh_lods = is_mesh ? mesh_lod_outputs(mesh, o, stem, a.files) : nlohmann::json(nullptr);
   const double lods_seconds = seconds_since(lods_start);
   BakeOptions bake_options = o.bake;
   use_surface_edges(bake_options, is_mesh);
-  a.result = bake(points, bake_options, path);
+  a.result = bake(points, bake_options, path, is_mesh ? &surface : nullptr);
   a.manifest = impostor_outputs(a.result, stem, input_name, a.files);
   if (is_mesh && o.point_impostor) a.manifest["point_impostor"] = point_impostor_output(points, o, a.sampled.pixel, stem, a.files);
   if (!mesh_lods.is_null()) {

@@ -18,6 +18,7 @@
 #include "io/model_io.h"
 #include "pipeline/bake.h"
 #include "sample/sample.h"
+#include "simplify/simplify.h"
 
 namespace qf {
 
@@ -62,7 +63,7 @@ struct AssetBake {
 // readers' InputErrors, and InputError `<command>.empty` for a set without points.
 PointSet load_point_set(const std::string& path, const ReadOptions& read, const SampleOptions& sample,
                         const std::string& command, ReadReport& report, SampleStats* sampled = nullptr,
-                        TriangleMesh* mesh = nullptr);
+                        TriangleMesh* mesh = nullptr, std::vector<std::uint32_t>* triangles = nullptr);
 
 // Bakes one asset. `input_name` is how the manifest and report name the input (the path as the
 // user wrote it); output files are named after its stem.
@@ -80,7 +81,8 @@ std::vector<std::size_t> default_simplify_budgets(const TriangleMesh& mesh);
 // the largest on-screen size of the object at which that error stays under half a pixel, as the
 // impostor levels give it). Shared by the bake and `qf-bake simplify`.
 nlohmann::json simplify_level_files(const TriangleMesh& mesh, const std::vector<std::size_t>& budgets, const std::string& stem,
-                                    std::vector<OutputFile>& files, bool smooth = true);
+                                    std::vector<OutputFile>& files, bool smooth = true,
+                                    SimplifyMethod method = SimplifyMethod::kCollapse);
 
 // Cluster levels as files STEM_C<i>.glb (and STEM_C<i>.draco.glb with `draco`), appended to
 // `files`; returns their manifest entries.

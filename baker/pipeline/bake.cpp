@@ -60,7 +60,8 @@ TextureOptions level_texture_options(const BakeOptions& o, double diagonal, doub
 // has a few big domains, and handed out in index order, in fours, one thread was left with most of
 // the work. Each texture depends on its domain alone, so the order changes no byte.
 std::vector<Texture> level_textures(const PointSet& points, const std::vector<Vec3f>& normals, const SparseMatrix& alpha,
-                                    const Domains& d, const std::vector<SupportRect>& rects, const TextureOptions& texture) {
+                                    const Domains& d, const std::vector<SupportRect>& rects, const TextureOptions& texture,
+                                    const MeshSurface* surface) {
   std::vector<std::size_t> by_size(rects.size());
   for (std::size_t k = 0; k < by_size.size(); ++k) by_size[k] = k;
   const auto domain_points = [&](std::size_t k) { return d.offsets[rects[k].domain + 1] - d.offsets[rects[k].domain]; };
@@ -69,7 +70,7 @@ std::vector<Texture> level_textures(const PointSet& points, const std::vector<Ve
 #pragma omp parallel for schedule(dynamic, 1)
   for (std::ptrdiff_t q = 0; q < static_cast<std::ptrdiff_t>(by_size.size()); ++q) {
     const std::size_t k = by_size[static_cast<std::size_t>(q)];
-    textures[k] = resample_texture(points.positions, points.colors, normals, points.radii, alpha, d, rects[k], texture);
+    textures[k] = resample_texture(points.positions, points.colors, normals, points.radii, alpha, d, rects[k], texture, surface);
   }
   return textures;
 }
@@ -180,8 +181,8 @@ namespace {
 //    stay as given. Morton order because every later stage reads points beside their neighbours
 //    (on shuffled input the analysis, bases and textures were bound by cache misses), and it makes
 //    a reordered file bake to the same files (unless two of its points share a position exactly).
-PointSet completed_points(const PointSet& input, BakeResult& r) {
-  PointSet points = permuted(input, morton_order(input.positions));
+PointSet completed_points(const PointSet& input, const std::vector<std::uint32_t>& order, BakeResult& r) {
+  PointSet points = permuted(input, order);
   const bool needs_radii = !points.has_radii() || std::find(points.radii.begin(), points.radii.end(), 0.0f) != points.radii.end();
   if (needs_radii && estimate_radii(points) && input.has_radii()) r.warnings.push_back("some radii were 0 and were estimated");
   return points;
@@ -190,7 +191,8 @@ PointSet completed_points(const PointSet& input, BakeResult& r) {
 // 4b. One level from its basis `psi` (with --merge, merged, and its neighbour edges): domains,
 // rectangles, textures, atlas, glb.
 BakedLevel bake_level(std::size_t level, const SparseMatrix& psi, std::vector<std::array<std::uint32_t, 2>> merged_edges,
-                      const PointSet& points, const std::vector<Vec3f>& normals, const BakeOptions& o, double diagonal, Stopwatch& watch) {
+                      const PointSet& points, const std::vector<Vec3f>& normals, const BakeOptions& o, double diagonal,
+                      const MeshSurface* surface, Stopwatch& watch) {
   const std::string name = "level " + std::to_string(level);
   Domains d = make_domains(psi, o.domains);
   // Merged faces trimmed at their crease no longer overlap but stay neighbours there.
@@ -207,7 +209,7 @@ BakedLevel bake_level(std::size_t level, const SparseMatrix& psi, std::vector<st
   out.max_screen_pixels = out.error > 0 ? std::min(0.5 * diagonal / out.error, 1e9) : 1e9;
   const TextureOptions texture = level_texture_options(o, diagonal, out.max_screen_pixels);
   out.texel = texture.min_texel;
-  std::vector<Texture> textures = level_textures(points, normals, alpha, d, rects, texture);
+  std::vector<Texture> textures = level_textures(points, normals, alpha, d, rects, texture, surface);
   watch.lap(name + " textures");
   for (const Texture& t : textures) out.texels += static_cast<std::size_t>(t.width) * static_cast<std::size_t>(t.height);
   // The level's partition is done with; its textures once packed into the atlas (at 10M sampled
@@ -228,13 +230,14 @@ BakedLevel bake_level(std::size_t level, const SparseMatrix& psi, std::vector<st
 // four default levels' copies held 1.7 GB until the last was baked). With --merge, levels chosen
 // by their merged count come merged from choose_merged_levels.
 std::vector<BakedLevel> baked_levels(const AmgHierarchy& h, const BakeOptions& o, const PointSet& points,
-                                     const std::vector<Vec3f>& normals, double diagonal, Stopwatch& watch) {
+                                     const std::vector<Vec3f>& normals, double diagonal, const MeshSurface* surface,
+                                     Stopwatch& watch) {
   std::vector<BakedLevel> out;
   if (o.merge && o.levels.empty()) {
     std::vector<MergedLevel> bases = choose_merged_levels(h, o, points.positions, normals);
     watch.lap("basis");
     for (MergedLevel& b : bases) {
-      out.push_back(bake_level(b.level, b.psi, std::move(b.edges), points, normals, o, diagonal, watch));
+      out.push_back(bake_level(b.level, b.psi, std::move(b.edges), points, normals, o, diagonal, surface, watch));
       b.psi = SparseMatrix();  // done with
     }
     return out;
@@ -245,13 +248,13 @@ std::vector<BakedLevel> baked_levels(const AmgHierarchy& h, const BakeOptions& o
     if (!wanted(l)) return;
     if (!o.merge) {
       watch.lap("level " + std::to_string(l) + " basis");
-      out.push_back(bake_level(l, psi, {}, points, normals, o, diagonal, watch));
+      out.push_back(bake_level(l, psi, {}, points, normals, o, diagonal, surface, watch));
       return;
     }
     MergeReport report;
     const SparseMatrix merged = merge_domains(psi, points.positions, normals, o.merge_options, &report);
     watch.lap("level " + std::to_string(l) + " basis");
-    out.push_back(bake_level(l, merged, std::move(report.edges), points, normals, o, diagonal, watch));
+    out.push_back(bake_level(l, merged, std::move(report.edges), points, normals, o, diagonal, surface, watch));
   };
   if (wanted(0)) visit(0, basis_at_level(h, 0));
   for_each_basis(h, *std::max_element(levels.begin(), levels.end()), o.basis, visit);
@@ -268,7 +271,7 @@ std::vector<BakedLevel> baked_levels(const AmgHierarchy& h, const BakeOptions& o
 
 }  // namespace
 
-BakeResult bake(const PointSet& input, const BakeOptions& o, const std::string& source_name) {
+BakeResult bake(const PointSet& input, const BakeOptions& o, const std::string& source_name, const MeshSurface* surface) {
   BakeResult r;
   Stopwatch watch(r.times);
   r.points = input.size();
@@ -279,8 +282,18 @@ BakeResult bake(const PointSet& input, const BakeOptions& o, const std::string& 
                          std::to_string(needed));
   // 1. Fail early, with the figures, where the bake would not fit in memory (not an OOM kill).
   check_bake_memory(input.size(), o.analysis, source_name);
-  // 2. Complete the point set.
-  const PointSet points = completed_points(input, r);
+  // 2. Complete the point set; a mesh surface's triangles follow its points into Morton order.
+  const std::vector<std::uint32_t> order = morton_order(input.positions);
+  const PointSet points = completed_points(input, order, r);
+  MeshSurface ordered_surface;
+  if (surface && surface->mesh) {
+    if (surface->point_triangles.size() != input.size()) throw std::logic_error("bake: a mesh surface needs one triangle per point");
+    ordered_surface.mesh = surface->mesh;
+    ordered_surface.normals = surface->normals;
+    ordered_surface.point_triangles.resize(order.size());
+    for (std::size_t i = 0; i < order.size(); ++i) ordered_surface.point_triangles[i] = surface->point_triangles[order[i]];
+  }
+  const MeshSurface* drawn = ordered_surface.mesh ? &ordered_surface : nullptr;
   r.diagonal = points.bounds().diagonal();
   watch.lap("prepare");
   // 3. Hierarchy (analysis + AMG), cached.
@@ -299,7 +312,7 @@ BakeResult bake(const PointSet& input, const BakeOptions& o, const std::string& 
   // Normals orient the planes and make the normal maps: the input's, else the analysis' estimate.
   const std::vector<Vec3f>& normals = points.has_normals() ? points.normals : estimated;
   // 4. Every chosen level: basis, then domains, rectangles, textures, atlas, glb.
-  r.levels = baked_levels(h, o, points, normals, r.diagonal, watch);
+  r.levels = baked_levels(h, o, points, normals, r.diagonal, drawn, watch);
   return r;
 }
 

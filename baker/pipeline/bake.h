@@ -93,6 +93,14 @@ struct BakeOptions {
 //   points but at 22-77 quads (elephant and dragon, up to +2 points); bytes +3..10%. Edge radius
 //   0.6 gained 0.3 dB more and opened up to 0.5 points more holes; slope 0.4 +0.5 dB at 64 px,
 //   with the dragon's 143 quads at 64 px past 2% holes.
+//   Since the quads draw the mesh itself (resample_texture's MeshSurface), the coverage of its
+//   triangles caps alpha too, so the ramp's radius bounds how far past the outermost points a
+//   quad may reach, and the coverage cuts the edge: against the truth (qf-render eval --truth 8,
+//   8 views, each level at its own size), the generated tree's four levels at radius 0.7 / 1.0 /
+//   1.5 / 2.0 with coverage_gain 2: L6 18.65 / 19.55 / 19.36 / 19.09 dB, IoU 0.728 / 0.781 /
+//   0.771 / 0.756 (the old route 18.77, 0.746); gain 1 / 2 / 4 at radius 0.7: 18.43 / 18.65 /
+//   18.70 dB. Radius 1.0 and gain 2 cost fandisk 0.5 dB at 682 quads against radius 0.7 and gain
+//   1 (36.98 against 37.48 dB; the old route 30.96), bunny00 and the elephant within 0.1 dB.
 // - A point set is drawn as splats, whose edge reaches a radius past its outermost points: Psi
 //   stays at cutoff 0.2 (exponent 2 and cutoff 0.3 without the ramp cost the generated torus'
 //   finest level 0.3 dB and 0.005 IoU at 256 px), and the ramp cuts a whole fallback radius past
@@ -109,7 +117,8 @@ inline void use_surface_edges(BakeOptions& o, bool mesh_input) {
   if (mesh_input) {
     o.texture.alpha_exponent = 2;
     o.gltf.alpha_cutoff = 0.3f;
-    o.texture.edge_radius = 0.7;
+    o.texture.edge_radius = 1.0;
+    o.texture.coverage_gain = 2;
   } else {
     o.texture.edge_radius = 1.0;
   }
@@ -164,7 +173,10 @@ std::vector<MergedLevel> choose_merged_levels(const AmgHierarchy& h, const BakeO
 // Bakes the chosen levels. Throws InputError("bake.too_small") when the set cannot be decomposed
 // (fewer points than a neighbourhood needs, or no surface: every fan empty), InputError
 // ("bake.memory") when it would need more memory than is available (check_bake_memory, before any
-// work), UsageError for a level number the hierarchy does not have.
-BakeResult bake(const PointSet& points, const BakeOptions& options, const std::string& source_name);
+// work), UsageError for a level number the hierarchy does not have. `surface`, for a mesh input
+// (its sampled points' triangles, one per point of `points`), gives the quads the mesh's own look
+// (resample_texture).
+BakeResult bake(const PointSet& points, const BakeOptions& options, const std::string& source_name,
+                const MeshSurface* surface = nullptr);
 
 }  // namespace qf

@@ -12,6 +12,9 @@
 #include <deque>
 #include <limits>
 
+#include "core/color.h"
+#include "primitives/surface_paint.h"
+
 namespace qf {
 namespace {
 
@@ -362,11 +365,53 @@ std::array<double, 3> within_cone(const double* v, double min_z) {
   return {n[0] * s, n[1] * s, min_z};
 }
 
+// The domain's triangles (surface.point_triangles of its points), ascending, without repeats.
+std::vector<std::uint32_t> domain_triangles(const MeshSurface& surface, const Domains& domains, std::size_t d) {
+  std::vector<std::uint32_t> out;
+  for (std::uint32_t q = domains.offsets[d]; q < domains.offsets[d + 1]; ++q) out.push_back(surface.point_triangles[domains.points[q]]);
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+// Colour and normals of the texels the mesh covers, from the mesh drawn onto the quad; returns
+// each texel's coverage.
+std::vector<double> paint_from_mesh(const MeshSurface& surface, const std::vector<std::uint32_t>& triangles, const SupportRect& r,
+                                    const Grid& grid, double slab, double min_z, const TextureOptions& o, Texture& tex) {
+  PaintGrid pg{r.center, r.axis_u, r.axis_v, r.normal, grid.width, grid.height, grid.texel, grid.half_u, grid.half_v,
+               slab, o.coverage_samples, o.base_color};
+  const std::vector<PaintedTexel> painted = paint_surface(*surface.mesh, surface.normals, triangles, pg);
+  std::vector<double> coverage(painted.size(), 0.0);
+  for (std::size_t k = 0; k < painted.size(); ++k) {
+    const PaintedTexel& p = painted[k];
+    coverage[k] = p.coverage;
+    if (!(p.coverage > 0)) continue;
+    for (int c = 0; c < 3; ++c) tex.rgba[4 * k + static_cast<std::size_t>(c)] = linear_to_srgb8(p.color[static_cast<std::size_t>(c)]);
+    if (!tex.normals.empty()) {
+      const double v[3] = {p.normal[0], p.normal[1], p.normal[2]};
+      const std::array<double, 3> nm = within_cone(v, min_z);
+      for (int c = 0; c < 3; ++c) tex.normals[4 * k + static_cast<std::size_t>(c)] = to8(127.5 * (nm[static_cast<std::size_t>(c)] + 1.0));
+    }
+  }
+  return coverage;
+}
+
+// Alpha no higher than the coverage says (TextureOptions::coverage_gain, encoded as Psi is);
+// `covered` recounted.
+void cap_by_coverage(const std::vector<double>& coverage, const TextureOptions& o, Texture& tex) {
+  tex.covered = 0;
+  for (std::size_t k = 0; k < coverage.size(); ++k) {
+    std::uint8_t& a = tex.rgba[4 * k + 3];
+    a = std::min(a, to8(255.0 * encode_alpha(std::min(1.0, o.coverage_gain * coverage[k]), o.alpha_exponent)));
+    tex.covered += a > 0;
+  }
+}
+
 }  // namespace
 
 Texture resample_texture(const std::vector<Vec3f>& positions, const std::vector<Rgb8>& colors,
                          const std::vector<Vec3f>& normals, const std::vector<float>& radii, const SparseMatrix& psi,
-                         const Domains& domains, const SupportRect& rect, const TextureOptions& o) {
+                         const Domains& domains, const SupportRect& rect, const TextureOptions& o, const MeshSurface* surface) {
   Texture tex;
   // 1. The texel grid: texel = factor x mean radius (or min_texel where larger), at most max_side
   //    texels a side. With sub-texel edges, one texel more on every side: the support's edge may
@@ -388,9 +433,11 @@ Texture resample_texture(const std::vector<Vec3f>& positions, const std::vector<
   // 2. The domain's points in rectangle coordinates.
   std::vector<Sample> samples;
   const std::size_t d = rect.domain;
+  double slab = 0;  // the points' farthest distance from the plane
   for (std::uint32_t q = domains.offsets[d]; q < domains.offsets[d + 1]; ++q) {
     const std::uint32_t i = domains.points[q];
     const Vec3f x = positions[i] - rect.center;
+    slab = std::max(slab, std::fabs(double(dot(x, rect.normal))));
     Sample sm{dot(x, rect.axis_u), dot(x, rect.axis_v), radii[i], {0, 0, 0, 0, 0, 1}, psi.coeff(i, static_cast<Eigen::Index>(d))};
     const Rgb8 c = colors.empty() ? o.base_color : colors[i];
     sm.value[0] = c.r, sm.value[1] = c.g, sm.value[2] = c.b;
@@ -429,8 +476,16 @@ Texture resample_texture(const std::vector<Vec3f>& positions, const std::vector<
     tex.rgba[4 * k + 3] = to8(255.0 * encode_alpha(alpha, o.alpha_exponent));
     tex.covered += tex.rgba[4 * k + 3] > 0;
   }
+  // 4. A mesh input: its surface drawn onto the quad (colour, normals, coverage), within the slab of
+  //    the domain's points and a spacing more.
+  std::vector<double> coverage;
+  if (surface && surface->mesh) {
+    coverage = paint_from_mesh(*surface, domain_triangles(*surface, domains, d), r, grid, slab + 2.0 * rect.mean_radius, min_z, o, tex);
+    cap_by_coverage(coverage, o, tex);
+  }
   if (o.extend_colors) extend_colors(tex);
   if (ramp) ramp_edges(samples, outline, acc.done, grid, rect.mean_radius, o, tex);
+  if (!coverage.empty()) cap_by_coverage(coverage, o, tex);  // the ramp's outside texels too
   return tex;
 }
 

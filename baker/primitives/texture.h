@@ -1,6 +1,8 @@
 // Texture resampling of a domain primitive (paper 3.2; thesis 3.3): the domain's points, projected
 // onto its support rectangle, resampled onto a texel grid. RGB = the points' colours, A = the
-// basis function Psi of the domain.
+// basis function Psi of the domain. A mesh input's quads draw the mesh itself instead
+// (MeshSurface, surface_paint.h): colour, normals and coverage from its triangles, Psi as the
+// seams' alpha.
 #pragma once
 
 #include <cstdint>
@@ -76,6 +78,24 @@ struct TextureOptions {
   // A gap the support encloses, no farther than edge_gap x the fallback's mean radius from its
   // edge, joins the support; a larger enclosed one is taken for a hole in the surface.
   double edge_gap = 2.0;
+  // A mesh input's quads (MeshSurface): subsamples per texel side of the drawn surface, whose share
+  // on the surface is the texel's coverage.
+  int coverage_samples = 4;
+  // ... and alpha = encoded min(Psi, coverage_gain x coverage): an alpha test shows a texel the
+  // surface covers in part or not at all, and a leaf or a beam narrower than a texel covers each
+  // of its texels in part (pipeline/bake.h use_surface_edges sets it).
+  double coverage_gain = 1;
+};
+
+// What a mesh input's quads show (issue 31): the input mesh itself, drawn onto each quad
+// (surface_paint.h), instead of colours and normals resampled from its sampled points.
+struct MeshSurface {
+  const TriangleMesh* mesh = nullptr;
+  std::vector<std::uint32_t> point_triangles;  // per point of the bake's set: the triangle it lies on
+  // Per mesh vertex, the normals the quads show, as the asset is drawn: its own, else smooth ones
+  // where a reader of the format would smooth (OFF, PLY, OBJ: TriangleMesh::smooth_normals);
+  // empty: each face's own (a glTF primitive without NORMAL is drawn flat, glTF 2.0 3.7.2.1).
+  std::vector<Vec3f> normals;
 };
 
 // An RGBA8 image, rows from t = -half_v (row 0) upward; texel (i, j) is centred at
@@ -98,8 +118,14 @@ struct Texture {
 // With `normals` (one per point, or empty), the same resampling of the point normals gives the
 // normal map (paper section 6's first future-work item): per-texel normals, renormalised, in the
 // rectangle's tangent frame, so engines light the quad per texel.
+// With `surface` (a mesh input), Psi decides only where the quad stands for the surface (the
+// seams with its neighbours, its outer reach): the triangles the domain's points lie on are drawn
+// onto the quad along its normal (paint_surface), and they give the colour and the normal map,
+// and the alpha where they cover less than Psi says: alpha = encoded min(Psi, coverage). So a
+// quad shows the asset's own texture, cut-outs and thin parts, not blobs of point splats.
 Texture resample_texture(const std::vector<Vec3f>& positions, const std::vector<Rgb8>& colors,
                          const std::vector<Vec3f>& normals, const std::vector<float>& radii, const SparseMatrix& psi,
-                         const Domains& domains, const SupportRect& rect, const TextureOptions& options = {});
+                         const Domains& domains, const SupportRect& rect, const TextureOptions& options = {},
+                         const MeshSurface* surface = nullptr);
 
 }  // namespace qf

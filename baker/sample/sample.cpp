@@ -92,7 +92,7 @@ MeshFacts mesh_facts(const TriangleMesh& mesh) {
 
 // The points of image rows [j0, j1) of the layers `L`, in pixel order, appended to `out`.
 void row_points(const TriangleMesh& mesh, const SampleGrid& grid, const AxisLayers& L, const MeshFacts& m, int j0, int j1,
-                PointSet& out) {
+                PointSet& out, std::vector<std::uint32_t>& triangles) {
   const int a = L.axis, u = (a + 1) % 3, v = (a + 2) % 3;
   const double s = grid.pixel;
   for (int j = j0; j < j1; ++j)
@@ -126,6 +126,7 @@ void row_points(const TriangleMesh& mesh, const SampleGrid& grid, const AxisLaye
           if (!material.surface) continue;  // an alpha cut-out: no surface here
         }
         out.positions.push_back(pos);
+        triangles.push_back(t);
         // 3. Normal, colour, radius.
         Vec3f normal{static_cast<float>(n.n[0]), static_cast<float>(n.n[1]), static_cast<float>(n.n[2])};
         if (m.smooth) {
@@ -150,32 +151,54 @@ void row_points(const TriangleMesh& mesh, const SampleGrid& grid, const AxisLaye
     }
 }
 
+// Moves `src` to the end of `dst`.
+template <class T>
+void move_to_end(std::vector<T>& dst, std::vector<T>& src) {
+  dst.insert(dst.end(), src.begin(), src.end());
+  std::vector<T>().swap(src);
+}
+
 // Moves `part`'s points to the end of `out`.
 void append_points(PointSet& out, PointSet& part) {
-  const auto move = [](auto& dst, auto& src) {
-    dst.insert(dst.end(), src.begin(), src.end());
-    std::decay_t<decltype(src)>().swap(src);
-  };
-  move(out.positions, part.positions), move(out.normals, part.normals), move(out.colors, part.colors), move(out.radii, part.radii);
+  move_to_end(out.positions, part.positions), move_to_end(out.normals, part.normals), move_to_end(out.colors, part.colors);
+  move_to_end(out.radii, part.radii);
+}
+
+// Keeps the points (and their triangles) flagged in `keep`, in order.
+void keep_points(PointSet& points, std::vector<std::uint32_t>& triangles, const std::vector<char>& keep) {
+  std::vector<std::uint32_t> order;
+  for (std::size_t i = 0; i < keep.size(); ++i)
+    if (keep[i]) order.push_back(static_cast<std::uint32_t>(i));
+  if (order.size() == keep.size()) return;
+  points = permuted(points, order);
+  std::vector<std::uint32_t> kept(order.size());
+  for (std::size_t k = 0; k < order.size(); ++k) kept[k] = triangles[order[k]];
+  triangles = std::move(kept);
 }
 
 }  // namespace
 
 PointSet points_from_layers(const TriangleMesh& mesh, const SampleGrid& grid, const std::array<AxisLayers, 3>& layers,
-                            SampleStats* stats) {
+                            SampleStats* stats, std::vector<std::uint32_t>* triangles) {
   const MeshFacts facts = mesh_facts(mesh);
   PointSet out;
+  std::vector<std::uint32_t> out_triangles;
   for (const AxisLayers& L : layers) {
     // Blocks of rows on both cores (a textured mesh spends most of its sampling here, in texture
     // lookups), joined in row order: the points do not depend on the thread count.
     constexpr int kRows = 8;
     const int blocks = (L.height + kRows - 1) / kRows;
     std::vector<PointSet> parts(static_cast<std::size_t>(std::max(blocks, 0)));
+    std::vector<std::vector<std::uint32_t>> part_triangles(parts.size());
 #pragma omp parallel for schedule(dynamic, 1)
     for (int b = 0; b < blocks; ++b)
-      row_points(mesh, grid, L, facts, b * kRows, std::min(L.height, (b + 1) * kRows), parts[static_cast<std::size_t>(b)]);
+      row_points(mesh, grid, L, facts, b * kRows, std::min(L.height, (b + 1) * kRows), parts[static_cast<std::size_t>(b)],
+                 part_triangles[static_cast<std::size_t>(b)]);
     const std::size_t before = out.size();
-    for (PointSet& part : parts) append_points(out, part);
+    for (std::size_t b = 0; b < parts.size(); ++b) {
+      append_points(out, parts[b]);
+      move_to_end(out_triangles, part_triangles[b]);
+    }
     if (stats) {
       stats->layers[static_cast<std::size_t>(L.axis)] = L.layers;
       stats->points[static_cast<std::size_t>(L.axis)] = out.size() - before;
@@ -186,10 +209,12 @@ PointSet points_from_layers(const TriangleMesh& mesh, const SampleGrid& grid, co
     stats->pixel = grid.pixel;
     stats->degenerate_triangles = static_cast<std::size_t>(std::count(facts.axis_of.begin(), facts.axis_of.end(), -1));
   }
+  if (triangles) *triangles = std::move(out_triangles);
   return out;
 }
 
-PointSet sample_mesh(const TriangleMesh& mesh, const SampleOptions& options, const std::string& source, SampleStats* stats) {
+PointSet sample_mesh(const TriangleMesh& mesh, const SampleOptions& options, const std::string& source, SampleStats* stats,
+                     std::vector<std::uint32_t>* triangles) {
   // 1. A mesh we can sample: triangles, indices in range, finite corners.
   if (mesh.triangles.empty()) throw InputError("mesh.no_triangles", source, "", "is a mesh without triangles; nothing to sample");
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t)
@@ -222,7 +247,13 @@ PointSet sample_mesh(const TriangleMesh& mesh, const SampleOptions& options, con
   } else {
     throw UsageError("unknown sampler backend '" + options.backend + "' (gl or cpu)");
   }
-  PointSet points = points_from_layers(mesh, grid, layers, &st);
+  std::vector<std::uint32_t> point_triangles;
+  PointSet points = points_from_layers(mesh, grid, layers, &st, &point_triangles);
+  // 3. Only what an outside view sees.
+  const std::size_t sampled = points.size();
+  keep_points(points, point_triangles, visible_points(mesh, points.positions, grid.pixel, options.visibility));
+  st.hidden = sampled - points.size();
+  if (triangles) *triangles = std::move(point_triangles);
   st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (points.size() == 0)
     throw InputError("mesh.no_points", source, "", "gave no points at LDI size " + std::to_string(options.ldi_size) +

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "core/types.h"
+#include "sample/visibility.h"
 
 namespace qf {
 
@@ -36,6 +37,10 @@ struct SampleOptions {
   // 0.015 s vs 0.12 s, scripts/bench.sh sample) and its points do not depend on the Mesa version,
   // which keeps bakes byte-identical across machines. GL gives the same points but 0.01%.
   std::string backend = "cpu";
+  // Points no outside view sees are dropped (visible_points): the inside of a closed housing and
+  // the parts within it show in no camera, and would colour the quads of the shell around them.
+  // visibility.views = 0 keeps every layer.
+  VisibilityOptions visibility;
 };
 
 // One axis' layered depth image, as triangle ids: for pixel p (row-major, row 0 at the grid's
@@ -74,6 +79,7 @@ struct SampleStats {
   std::array<std::size_t, 3> points{};  // per axis
   std::size_t fragments = 0;           // every layer pixel, kept or not
   std::size_t degenerate_triangles = 0;  // zero area: no normal, never sampled
+  std::size_t hidden = 0;              // points dropped as seen from no outside view
   std::string fallback;                // why GL was not used, when it was asked for
   double seconds = 0;
 };
@@ -91,14 +97,17 @@ std::array<AxisLayers, 3> peel_layers_gl(const TriangleMesh& mesh, const SampleG
 // base colour x texture x vertex colour) for meshes with materials, else the vertex colours
 // interpolated (none when the mesh has none); fragments where a MASK material is cut out give no
 // point, radius = half the diagonal of the pixel's footprint on the triangle's
-// plane, (s/2) sqrt(1 + 1/n_a^2). Points in axis, pixel, depth order.
+// plane, (s/2) sqrt(1 + 1/n_a^2). Points in axis, pixel, depth order. `triangles`, when given,
+// receives each point's triangle.
 PointSet points_from_layers(const TriangleMesh& mesh, const SampleGrid& grid, const std::array<AxisLayers, 3>& layers,
-                            SampleStats* stats = nullptr);
+                            SampleStats* stats = nullptr, std::vector<std::uint32_t>* triangles = nullptr);
 
 // Checks the mesh (throws InputError "mesh.no_triangles" / "mesh.bad_index" / "mesh.nonfinite"
-// naming `source`) and samples it with the chosen backend.
+// naming `source`), samples it with the chosen backend and keeps the points an outside view sees
+// (options.visibility). `triangles`, when given, receives each point's triangle: what a mesh
+// input's quads draw (primitives/texture.h MeshSurface).
 PointSet sample_mesh(const TriangleMesh& mesh, const SampleOptions& options, const std::string& source,
-                     SampleStats* stats = nullptr);
+                     SampleStats* stats = nullptr, std::vector<std::uint32_t>* triangles = nullptr);
 
 // Point impostors (paper section 5): a random permutation of the n sampled points, the same for
 // the same seed on every platform (splitmix64 + Fisher-Yates). Drawing any prefix of the permuted

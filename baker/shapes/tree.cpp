@@ -106,13 +106,8 @@ void add_leaf(TriangleMesh& mesh, Vec3f at, Vec3f n, Vec3f along, float length, 
   mesh.triangle_materials.insert(mesh.triangle_materials.end(), 2, 1u);
 }
 
-}  // namespace
-
-TriangleMesh generate_tree(const TreeOptions& options) {
-  if (options.leaves == 0 || options.leaves > 1000000) throw UsageError("a tree needs 1..1000000 leaves");
-  SplitMix64 random(options.seed);
-  TriangleMesh mesh;
-  // 1. Materials: bark (repeating) and leaves (cut out by alpha, seen from both sides).
+// Bark (repeating) and leaves (cut out by alpha, seen from both sides): materials 0 and 1.
+void add_plant_materials(TriangleMesh& mesh, SplitMix64& random) {
   mesh.textures = {bark_texture(random), leaf_texture()};
   SurfaceMaterial bark;
   bark.name = "bark";
@@ -124,6 +119,27 @@ TriangleMesh generate_tree(const TreeOptions& options) {
   leaf.alpha_mode = AlphaMode::kMask;
   leaf.double_sided = true;
   mesh.materials = {bark, leaf};
+}
+
+// A leaf at at + offset facing a random direction, its stalk towards `at`, min_size..min_size +
+// size_span long (the draws in this order: the normal, then the size).
+void add_random_leaf(TriangleMesh& mesh, SplitMix64& random, Vec3f at, Vec3f offset, double min_size, double size_span) {
+  const double nz = 2 * random.uniform() - 1, nphi = 2 * kPi * random.uniform();
+  const Vec3f n = vec(std::sqrt(1 - nz * nz) * std::cos(nphi), nz, std::sqrt(1 - nz * nz) * std::sin(nphi));
+  Vec3f along = offset - n * dot(offset, n);  // outward from `at`, in the leaf's plane
+  if (dot(along, along) < 1e-8f) frame(n, along, along);
+  const float size = static_cast<float>(min_size + size_span * random.uniform());
+  add_leaf(mesh, at + offset, n, normalized(along), size, 0.6f * size);
+}
+
+}  // namespace
+
+TriangleMesh generate_tree(const TreeOptions& options) {
+  if (options.leaves == 0 || options.leaves > 1000000) throw UsageError("a tree needs 1..1000000 leaves");
+  SplitMix64 random(options.seed);
+  TriangleMesh mesh;
+  // 1. Materials: bark and leaves.
+  add_plant_materials(mesh, random);
   // 2. The trunk, and branches leaving it upwards in a spiral.
   add_tube(mesh, {0, 0, 0}, {0, 1, 0}, 2.6, 0.16, 0.07);
   constexpr int kBranches = 7;
@@ -143,13 +159,38 @@ TriangleMesh generate_tree(const TreeOptions& options) {
     const Vec3f tip = tips[static_cast<std::size_t>(random.next() % tips.size())];
     const double z = 2 * random.uniform() - 1, phi = 2 * kPi * random.uniform(), r = 0.7 * std::cbrt(random.uniform());
     const Vec3f offset = vec(std::sqrt(1 - z * z) * std::cos(phi) * r, z * r * 0.8 + 0.15, std::sqrt(1 - z * z) * std::sin(phi) * r);
-    const double nz = 2 * random.uniform() - 1, nphi = 2 * kPi * random.uniform();
-    const Vec3f n = vec(std::sqrt(1 - nz * nz) * std::cos(nphi), nz, std::sqrt(1 - nz * nz) * std::sin(nphi));
-    const Vec3f at = tip + offset;
-    Vec3f along = offset - n * dot(offset, n);  // outward from the tip, in the leaf's plane
-    if (dot(along, along) < 1e-8f) frame(n, along, along);
-    const float size = static_cast<float>(0.16 + 0.08 * random.uniform());
-    add_leaf(mesh, at, n, normalized(along), size, 0.6f * size);
+    add_random_leaf(mesh, random, tip, offset, 0.16, 0.08);
+  }
+  return mesh;
+}
+
+TriangleMesh generate_bush(const BushOptions& options) {
+  if (options.leaves == 0 || options.leaves > 1000000) throw UsageError("a bush needs 1..1000000 leaves");
+  SplitMix64 random(options.seed);
+  TriangleMesh mesh;
+  add_plant_materials(mesh, random);
+  // 1. Stems fanning out from the ground, leaning 15-55 degrees from the vertical.
+  const int stems = 9 + static_cast<int>(random.next() % 6);
+  struct Stem {
+    Vec3f from, dir;
+    double length;
+  };
+  std::vector<Stem> all;
+  for (int i = 0; i < stems; ++i) {
+    const double angle = 2 * kPi * (i + 0.5 * random.uniform()) / stems, lean = (15 + 40 * random.uniform()) * kPi / 180;
+    const Vec3f dir = vec(std::sin(lean) * std::cos(angle), std::cos(lean), std::sin(lean) * std::sin(angle));
+    const Vec3f from = vec(0.08 * std::cos(angle), 0, 0.08 * std::sin(angle));
+    const double length = 0.8 + 0.5 * random.uniform();
+    add_tube(mesh, from, dir, length, 0.022, 0.008);
+    all.push_back({from, dir, length});
+  }
+  // 2. Leaves along each stem's upper 60%, within 0.22 of it.
+  for (std::size_t l = 0; l < options.leaves; ++l) {
+    const Stem& s = all[static_cast<std::size_t>(random.next() % all.size())];
+    const Vec3f at = s.from + s.dir * static_cast<float>(s.length * (0.4 + 0.6 * random.uniform()));
+    const double z = 2 * random.uniform() - 1, phi = 2 * kPi * random.uniform(), r = 0.22 * std::cbrt(random.uniform());
+    const Vec3f offset = vec(std::sqrt(1 - z * z) * std::cos(phi) * r, z * r, std::sqrt(1 - z * z) * std::sin(phi) * r);
+    add_random_leaf(mesh, random, at, offset, 0.07, 0.05);
   }
   return mesh;
 }

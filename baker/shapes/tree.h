@@ -19,4 +19,14 @@ struct TreeOptions {
 // radius ~1.3 around the branch tips, 4 units tall, standing on y = 0 (glTF's up).
 TriangleMesh generate_tree(const TreeOptions& options = {});
 
+struct BushOptions {
+  std::size_t leaves = 1800;
+  std::uint64_t seed = 1;
+};
+
+// A bush: 9-14 thin stems (the bark material 0) rising from the ground in a fan, and `leaves`
+// small leaf quads (material 1, as the tree's) along their upper parts, about 1.2 units tall and
+// 1.6 wide, standing on y = 0. Foliage without a trunk: its look is the leaves' coverage.
+TriangleMesh generate_bush(const BushOptions& options = {});
+
 }  // namespace qf

@@ -59,7 +59,7 @@ void transfer_surface(const TriangleMesh& mesh, const std::vector<std::vector<st
 
 }  // namespace
 
-SimplifiedMesh simplify_mesh(const TriangleMesh& mesh, std::size_t target_triangles) {
+SimplifiedMesh simplify_mesh(const TriangleMesh& mesh, std::size_t target_triangles, SimplifyMethod method) {
   if (mesh.triangles.empty()) throw std::invalid_argument("simplify_mesh: a mesh without triangles");
   // 1. Collapse on the shared vertices, texture seams and material borders ignored: keeping them
   //    closed held the spider's legs (their many seams) at their triangles while its abdomen was
@@ -70,8 +70,12 @@ SimplifiedMesh simplify_mesh(const TriangleMesh& mesh, std::size_t target_triang
   for (const Triangle& t : mesh.triangles) indices.insert(indices.end(), t.begin(), t.end());
   std::vector<unsigned> kept(indices.size());
   float relative_error = 0;
-  kept.resize(meshopt_simplify(kept.data(), indices.data(), indices.size(), &mesh.positions[0].x, mesh.positions.size(),
-                               sizeof(Vec3f), target_triangles * 3, 1.0f, 0, &relative_error));
+  if (method == SimplifyMethod::kSloppy)
+    kept.resize(meshopt_simplifySloppy(kept.data(), indices.data(), indices.size(), &mesh.positions[0].x, mesh.positions.size(),
+                                       sizeof(Vec3f), target_triangles * 3, 1.0f, &relative_error));
+  else
+    kept.resize(meshopt_simplify(kept.data(), indices.data(), indices.size(), &mesh.positions[0].x, mesh.positions.size(),
+                                 sizeof(Vec3f), target_triangles * 3, 1.0f, 0, &relative_error));
   // 2. Keep only the vertices still used, in first-use order (meshopt_optimizeVertexFetch's order).
   std::vector<unsigned> remap(mesh.positions.size());
   const std::size_t used = meshopt_optimizeVertexFetchRemap(remap.data(), kept.data(), kept.size(), mesh.positions.size());

@@ -19,7 +19,11 @@ struct SimplifiedMesh {
 // each kept triangle takes its material and corner UVs from the input triangles around it (seams
 // are collapsed across; a corner on one takes the side of the rest of its triangle); normals are
 // left to the writer. Deterministic. Throws std::invalid_argument on a mesh without triangles.
-SimplifiedMesh simplify_mesh(const TriangleMesh& mesh, std::size_t target_triangles);
+// kSloppy: meshoptimizer's simplifySloppy instead (vertices clustered on a grid, topology not
+// kept: thin parts and separate pieces merge), the peer of the fidelity league for assets where
+// edge collapse stalls (issue 31).
+enum class SimplifyMethod { kCollapse, kSloppy };
+SimplifiedMesh simplify_mesh(const TriangleMesh& mesh, std::size_t target_triangles, SimplifyMethod method = SimplifyMethod::kCollapse);
 
 // A texture at half its size (sides rounded up): each texel the mean of 2 x 2, colours weighted by
 // alpha and averaged in linear light.

@@ -137,9 +137,17 @@ expect 2 "unknown render method" "${file[merged]}" -o "$work/out.png" --method p
 expect 2 "size" "${file[merged]}" -o "$work/out.png" --size 0x10
 expect 2 "background" "${file[merged]}" -o "$work/out.png" --background 1,2
 expect 2 "REFERENCE must be" eval "${file[merged]}" "${file[points]}"
-# A point set against itself: the metric's own zero (PSNR 99 = identical, IoU 1, no holes).
-"$render" eval "${file[points]}" "${file[points]}" --views 3 --size 64 --no-engine -o "$work/self.json" 2>/dev/null &&
+# A point set against itself as drawn (--truth 1): the metric's own zero (PSNR 99 = identical, IoU
+# 1, no holes). Against the truth (the default: drawn 8x and filtered down), the set as drawn at
+# the size scores below that, and exactly as the report's as_drawn says.
+"$render" eval "${file[points]}" "${file[points]}" --views 3 --size 64 --no-engine --truth 1 -o "$work/self.json" 2>/dev/null &&
   grep -q '"psnr": 99' "$work/self.json" && grep -q '"iou": 1' "$work/self.json" && ok || bad "eval of a point set against itself is not identical"
+"$render" eval "${file[points]}" "${file[points]}" --views 3 --size 64 --method engine -o "$work/truth.json" 2>/dev/null &&
+  python3 -c '
+import json, sys
+m = json.load(open(sys.argv[1]))["mean"]
+sys.exit(0 if m["engine"] == m["as_drawn"] and m["engine"]["psnr"] < 99 and 0.5 < m["engine"]["soft_iou"] <= 1 else 1)' "$work/truth.json" &&
+  ok || bad "eval against the truth: the set as drawn scores otherwise than its as_drawn entry"
 expect 0 "" --version
 
 echo "render tests: $pass passed, $fail failed"

@@ -63,7 +63,7 @@ grep -q "overlap)" "$work/err" && ok || bad "plain.obj keeps the default method:
 read -r r gr b c < <(colours "$work/plain.png")
 [[ $c -eq 0 ]] && ok || bad "plain.obj is grey: $c coloured pixels"
 "$render" eval "$work/plain.obj" "$finest" --views 2 --size 64 -o "$work/plain.json" >/dev/null 2>&1 &&
-  [[ $(/usr/bin/python3 -c 'import json,sys; print(sorted(json.load(open(sys.argv[1]))["mean"]))' "$work/plain.json") == "['engine', 'overlap']" ]] &&
+  [[ $(/usr/bin/python3 -c 'import json,sys; print(sorted(json.load(open(sys.argv[1]))["mean"]))' "$work/plain.json") == "['as_drawn', 'engine', 'overlap']" ]] &&
   ok || bad "plain.obj: eval scores overlap and engine"
 
 echo "textured_ref: $pass passed, $fail failed"

@@ -2,7 +2,8 @@
 # The engine method is engine-true: baked files of every kind (an impostor level of the bundled
 # octahedron, a point set; one of a generated sphere mesh, whose alpha is encoded; both ramped at
 # their edges, pipeline/bake.h use_surface_edges; the simplified mesh LOD, a vertex-clustering LOD with thick lines and the point
-# impostor of a generated sphere mesh) rendered by three.js
+# impostor of a generated sphere mesh; an impostor level of a generated bush, foliage whose quads
+# are drawn from its alpha-masked leaves) rendered by three.js
 # r187 in headless Chromium (scripts/three-render) and by `qf-render eval`'s engine method from the
 # same 8 cameras with the same lights score the same against the reference: PSNR within 1 dB and
 # silhouette IoU within 0.005; and the two renders of each file match each other (PSNR >= 25 dB
@@ -22,11 +23,13 @@ fail() { echo "FAIL: $*"; exit 1; }
 "$bake" generate sphere --mesh --subdivisions 8 -o "$work/sphere.ply" -q || fail "generate sphere"
 "$bake" "$work/sphere.ply" -o "$work/sphere" --primitives 30 --ldi 96 -q || fail "bake sphere"
 "$bake" cluster "$work/sphere.ply" -o "$work/cluster" --cells 0.6 -q || fail "cluster sphere"
+"$bake" generate bush --leaves 600 --seed 2 -o "$work/bush.glb" -q || fail "generate bush"
+"$bake" "$work/bush.glb" -o "$work/bush" --primitives 100 --ldi 128 --mesh-lods none -q || fail "bake bush"
 level=$(ls "$work"/oct/octahedron_L*.glb | head -n 1)
 mesh_level=$(ls "$work"/sphere/sphere_L*.glb | head -n 1)
 cases=("$src/samples/octahedron.ply|$level" "$work/sphere.ply|$mesh_level" "$work/sphere.ply|$work/sphere/sphere_S1.glb"
        "$work/sphere.ply|$work/cluster/sphere_C0.glb"
-       "$work/sphere.ply|$work/sphere/sphere_points.glb")
+       "$work/sphere.ply|$work/sphere/sphere_points.glb" "$work/bush.glb|$(ls "$work"/bush/bush_L*.glb | head -n 1)")
 
 jobs="["
 for i in "${!cases[@]}"; do

@@ -289,5 +289,83 @@ TEST(Texture, MaxSideLimitsTheGrid) {
   EXPECT_GT(t.texel, 0.05f);
 }
 
+// A mesh input's quad shows the mesh itself (issue 31): a square [0, 1] x [0, 2] of two triangles
+// with a two-texel texture (red below y = 1, blue above) under the grid's points, which are green.
+// The texture's colours show, not the points'; alpha is the mesh's coverage where it covers less
+// than Psi (nothing right of x = 1); the normal map is the mesh's normals.
+TEST(Texture, MeshSurfaceShowsTheMeshItself) {
+  const Scene s = grid([](float, float) { return true; });
+  std::vector<Rgb8> green(s.positions.size(), Rgb8{0, 255, 0});
+  DomainOptions all;
+  all.tau = 0.0;
+  const Domains d = make_domains(s.psi, all);
+  const SupportRect r = support_rectangles(s.positions, s.normals, s.radii, s.psi, d)[0];
+  TriangleMesh mesh;
+  mesh.positions = {{0, 0, 0}, {1, 0, 0}, {1, 2, 0}, {0, 2, 0}};
+  mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+  mesh.corner_uvs = {{Vec2f{0, 1}, Vec2f{1, 1}, Vec2f{1, 0}}, {Vec2f{0, 1}, Vec2f{1, 0}, Vec2f{0, 0}}};
+  mesh.textures = {TextureImage{1, 2, {0, 0, 255, 255, 255, 0, 0, 255}}};  // row 0 (v = 0, top): blue
+  SurfaceMaterial m;
+  m.texture = 0;
+  m.wrap_s = m.wrap_t = TextureWrap::kClampToEdge;
+  mesh.materials = {m};
+  mesh.triangle_materials = {0, 0};
+  MeshSurface surface;
+  surface.mesh = &mesh;
+  surface.normals = {{0, 0.6f, 0.8f}, {0, 0.6f, 0.8f}, {0, 0.6f, 0.8f}, {0, 0.6f, 0.8f}};
+  for (const Vec3f& p : s.positions) surface.point_triangles.push_back(p.x >= p.y / 2 ? 0u : 1u);
+  const std::vector<Vec3f> flat(s.positions.size(), Vec3f{0, 0, 1});
+  const Texture t = resample_texture(s.positions, green, flat, s.radii, s.psi, d, r, {}, &surface);
+  const auto at = [&](float x, float y) { return texel_at(t, r, x, y); };
+  for (float x : {0.2f, 0.7f}) {
+    EXPECT_GT(at(x, 0.3f)[0], 250) << x;  // red: the texture, bilinear between its two texels near y = 1
+    EXPECT_LT(at(x, 0.3f)[1], 5) << x;
+    EXPECT_GT(at(x, 1.7f)[2], 250) << x;
+    Vec3f centre;
+    texel_at(t, r, x, 1.7f, &centre);
+    EXPECT_NEAR(at(x, 1.7f)[3], 255 * (1 - centre.x / 2), 1.0) << x;  // covered: Psi_0
+  }
+  EXPECT_EQ(at(1.3f, 1.0f)[3], 0);  // no mesh there
+  EXPECT_EQ(at(1.8f, 0.5f)[3], 0);
+  // The mesh's normal, (0, 0.6, 0.8) in the quad's frame, up to the frame's sign along its axes.
+  const Vec3f n = {0, 0.6f, 0.8f};
+  const Vec3f c = Vec3f{0.5f, 1.0f, 0} - r.center;
+  const int i = static_cast<int>(std::floor((dot(c, r.axis_u) + 0.5f * t.width * t.texel) / t.texel));
+  const int j = static_cast<int>(std::floor((dot(c, r.axis_v) + 0.5f * t.height * t.texel) / t.texel));
+  const std::size_t k = 4 * (static_cast<std::size_t>(j) * static_cast<std::size_t>(t.width) + static_cast<std::size_t>(i));
+  const double nu = t.normals[k] / 127.5 - 1, nv = t.normals[k + 1] / 127.5 - 1, nz = t.normals[k + 2] / 127.5 - 1;
+  EXPECT_NEAR(nu, dot(n, r.axis_u), 0.02);
+  EXPECT_NEAR(nv, dot(n, r.axis_v), 0.02);
+  EXPECT_NEAR(nz, dot(n, r.normal), 0.02);
+}
+
+// Coverage is the share of a texel the surface covers: a strip 0.3 texels wide across the grid
+// gives its texels partial alpha (coverage_gain x 0.3 encoded), the texels beside it none.
+TEST(Texture, MeshSurfaceCoverageIsFractional) {
+  const Scene s = grid([](float, float) { return true; });
+  DomainOptions all;
+  all.tau = 0.0;
+  const Domains d = make_domains(s.psi, all);
+  const SupportRect r = support_rectangles(s.positions, s.normals, s.radii, s.psi, d)[0];
+  // The strip covers x in [0.5 + 0.01, 0.5 + 0.025] of texels 0.05 wide: from the grid, texel
+  // centres at 0.05 k - 0.025 (one texel of room), so the texel [0.5, 0.55] holds it whole.
+  TriangleMesh mesh;
+  mesh.positions = {{0.51f, -0.1f, 0}, {0.525f, -0.1f, 0}, {0.525f, 2.1f, 0}, {0.51f, 2.1f, 0}};
+  mesh.triangles = {{0, 1, 2}, {0, 2, 3}};
+  MeshSurface surface;
+  surface.mesh = &mesh;
+  surface.point_triangles.assign(s.positions.size(), 0);
+  surface.point_triangles[0] = 1;
+  TextureOptions o;
+  o.coverage_samples = 20;  // 0.015 / 0.05 x 20 = 6 of 20 columns
+  o.coverage_gain = 2;
+  const Texture t = resample_texture(s.positions, s.colors, {}, s.radii, s.psi, d, r, o, &surface);
+  const auto a = [&](float x) { return texel_at(t, r, x, 1.0f)[3]; };
+  const double psi = 255 * (1 - 0.525 / 2);
+  EXPECT_NEAR(a(0.52f), std::min(psi, 255 * 2 * 0.3), 2);
+  EXPECT_EQ(a(0.47f), 0);
+  EXPECT_EQ(a(0.58f), 0);
+}
+
 }  // namespace
 }  // namespace qf

@@ -197,6 +197,58 @@ TEST(Sample, GlIsDeterministic) {
   EXPECT_TRUE(a.positions == b.positions);
 }
 
+// A cube inside a larger cube: no outside view sees the inner one, so its points are dropped
+// (issue 31: an assembly's inner parts colour nothing); with visibility off they stay. Every kept
+// point lies on the triangle it is said to come from.
+TEST(Sample, SurfacesNoOutsideViewSeesAreDropped) {
+  TriangleMesh m = generate_mesh("cube", 6);
+  const TriangleMesh inner = generate_mesh("cube", 6);
+  const std::uint32_t base = static_cast<std::uint32_t>(m.positions.size());
+  for (const Vec3f& p : inner.positions) m.positions.push_back(p * 0.5f);
+  for (const Triangle& t : inner.triangles) m.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  m.colors.clear(), m.normals.clear();
+  const auto inside = [](const PointSet& p) {
+    std::size_t n = 0;
+    for (const Vec3f& x : p.positions) n += std::max({std::fabs(x.x), std::fabs(x.y), std::fabs(x.z)}) < 0.75f;
+    return n;
+  };
+  SampleOptions all = options("cpu", 120);
+  all.visibility.views = 0;
+  SampleStats st_all, st;
+  const PointSet every = sample_mesh(m, all, "nested", &st_all);
+  std::vector<std::uint32_t> triangles;
+  const PointSet seen = sample_mesh(m, options("cpu", 120), "nested", &st, &triangles);
+  EXPECT_GT(inside(every), every.size() / 6);  // the inner cube, a quarter of the area
+  EXPECT_EQ(inside(seen), 0u);
+  EXPECT_EQ(st_all.hidden, 0u);
+  EXPECT_EQ(st.hidden, every.size() - seen.size());
+  EXPECT_NEAR(double(seen.size()) / double(every.size() - inside(every)), 1.0, 1e-9);  // the outer cube whole
+  ASSERT_EQ(triangles.size(), seen.size());
+  for (std::size_t i = 0; i < seen.size(); ++i) {
+    const Triangle& t = m.triangles[triangles[i]];
+    const Vec3f a = m.positions[t[0]], n = normalized(cross(m.positions[t[1]] - a, m.positions[t[2]] - a));
+    ASSERT_LT(std::fabs(dot(seen.positions[i] - a, n)), 1e-5f) << i;
+  }
+}
+
+// A MASK material (leaves, cut-out cards) occludes nothing: what lies behind its cut-outs is seen.
+TEST(Sample, MaskedSurfacesHideNothing) {
+  TriangleMesh m = generate_mesh("cube", 6);
+  const TriangleMesh inner = generate_mesh("cube", 6);
+  const std::uint32_t base = static_cast<std::uint32_t>(m.positions.size());
+  for (const Vec3f& p : inner.positions) m.positions.push_back(p * 0.5f);
+  for (const Triangle& t : inner.triangles) m.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
+  m.colors.clear(), m.normals.clear();
+  SurfaceMaterial card;
+  card.alpha_mode = AlphaMode::kMask;  // no texture: nothing is cut out, yet it may be
+  m.materials = {SurfaceMaterial{}, card};
+  m.triangle_materials.assign(m.triangles.size(), 0);
+  for (std::size_t t = 0; t < inner.triangles.size(); ++t) m.triangle_materials[t] = 1;  // the outer cube is the card
+  SampleStats st;
+  sample_mesh(m, options("cpu", 120), "cards", &st);
+  EXPECT_EQ(st.hidden, 0u);
+}
+
 TEST(Sample, BadMeshesGetClearErrors) {
   TriangleMesh m = generate_mesh("cube", 1);
   auto code = [](const TriangleMesh& mesh) {
