@@ -367,5 +367,33 @@ TEST(Texture, MeshSurfaceCoverageIsFractional) {
   EXPECT_EQ(a(0.58f), 0);
 }
 
+// A quad shows the surface nearest its front (the side its normal points to): of two squares
+// 0.01 apart, within the slab, the one in front gives the colour, whichever is listed first.
+TEST(Texture, MeshSurfaceShowsTheNearestFragment) {
+  const Scene s = grid([](float, float) { return true; });
+  DomainOptions all;
+  all.tau = 0.0;
+  const Domains d = make_domains(s.psi, all);
+  const SupportRect r = support_rectangles(s.positions, s.normals, s.radii, s.psi, d)[0];
+  ASSERT_GT(r.normal.z, 0.99f);
+  for (const float red_z : {0.01f, -0.01f}) {
+    TriangleMesh mesh;
+    mesh.positions = {{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}, {0, 0, red_z}, {2, 0, red_z}, {2, 2, red_z}, {0, 2, red_z}};
+    mesh.triangles = {{4, 5, 6}, {4, 6, 7}, {0, 1, 2}, {0, 2, 3}};
+    SurfaceMaterial red, blue;
+    red.base_color = {1, 0, 0, 1};
+    blue.base_color = {0, 0, 1, 1};
+    mesh.materials = {red, blue};
+    mesh.triangle_materials = {0, 0, 1, 1};
+    MeshSurface surface;
+    surface.mesh = &mesh;
+    for (std::size_t i = 0; i < s.positions.size(); ++i) surface.point_triangles.push_back(static_cast<std::uint32_t>(i % 4));
+    const Texture t = resample_texture(s.positions, s.colors, {}, s.radii, s.psi, d, r, {}, &surface);
+    const auto c = texel_at(t, r, 0.6f, 1.3f);
+    EXPECT_EQ(c[0], red_z > 0 ? 255 : 0) << red_z;
+    EXPECT_EQ(c[2], red_z > 0 ? 0 : 255) << red_z;
+  }
+}
+
 }  // namespace
 }  // namespace qf

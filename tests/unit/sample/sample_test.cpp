@@ -197,16 +197,22 @@ TEST(Sample, GlIsDeterministic) {
   EXPECT_TRUE(a.positions == b.positions);
 }
 
-// A cube inside a larger cube: no outside view sees the inner one, so its points are dropped
-// (issue 31: an assembly's inner parts colour nothing); with visibility off they stay. Every kept
-// point lies on the triangle it is said to come from.
-TEST(Sample, SurfacesNoOutsideViewSeesAreDropped) {
+// The cube [-1, 1]^3 with the cube [-0.5, 0.5]^3 inside it (its triangles after the outer's).
+TriangleMesh nested_cubes() {
   TriangleMesh m = generate_mesh("cube", 6);
   const TriangleMesh inner = generate_mesh("cube", 6);
   const std::uint32_t base = static_cast<std::uint32_t>(m.positions.size());
   for (const Vec3f& p : inner.positions) m.positions.push_back(p * 0.5f);
   for (const Triangle& t : inner.triangles) m.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
   m.colors.clear(), m.normals.clear();
+  return m;
+}
+
+// A cube inside a larger cube: no outside view sees the inner one, so its points are dropped
+// (issue 31: an assembly's inner parts colour nothing); with visibility off they stay. Every kept
+// point lies on the triangle it is said to come from.
+TEST(Sample, SurfacesNoOutsideViewSeesAreDropped) {
+  TriangleMesh m = nested_cubes();
   const auto inside = [](const PointSet& p) {
     std::size_t n = 0;
     for (const Vec3f& x : p.positions) n += std::max({std::fabs(x.x), std::fabs(x.y), std::fabs(x.z)}) < 0.75f;
@@ -233,17 +239,12 @@ TEST(Sample, SurfacesNoOutsideViewSeesAreDropped) {
 
 // A MASK material (leaves, cut-out cards) occludes nothing: what lies behind its cut-outs is seen.
 TEST(Sample, MaskedSurfacesHideNothing) {
-  TriangleMesh m = generate_mesh("cube", 6);
-  const TriangleMesh inner = generate_mesh("cube", 6);
-  const std::uint32_t base = static_cast<std::uint32_t>(m.positions.size());
-  for (const Vec3f& p : inner.positions) m.positions.push_back(p * 0.5f);
-  for (const Triangle& t : inner.triangles) m.triangles.push_back({t[0] + base, t[1] + base, t[2] + base});
-  m.colors.clear(), m.normals.clear();
+  TriangleMesh m = nested_cubes();
   SurfaceMaterial card;
   card.alpha_mode = AlphaMode::kMask;  // no texture: nothing is cut out, yet it may be
   m.materials = {SurfaceMaterial{}, card};
   m.triangle_materials.assign(m.triangles.size(), 0);
-  for (std::size_t t = 0; t < inner.triangles.size(); ++t) m.triangle_materials[t] = 1;  // the outer cube is the card
+  for (std::size_t t = 0; t < m.triangles.size() / 2; ++t) m.triangle_materials[t] = 1;  // the outer cube is the card
   SampleStats st;
   sample_mesh(m, options("cpu", 120), "cards", &st);
   EXPECT_EQ(st.hidden, 0u);
