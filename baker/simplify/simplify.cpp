@@ -70,6 +70,8 @@ SimplifiedMesh simplify_mesh(const TriangleMesh& mesh, std::size_t target_triang
   for (const Triangle& t : mesh.triangles) indices.insert(indices.end(), t.begin(), t.end());
   std::vector<unsigned> kept(indices.size());
   float relative_error = 0;
+  // A budget above the mesh's own count keeps the mesh (simplifySloppy asserts against it).
+  target_triangles = std::min(target_triangles, mesh.triangles.size());
   if (method == SimplifyMethod::kSloppy)
     kept.resize(meshopt_simplifySloppy(kept.data(), indices.data(), indices.size(), &mesh.positions[0].x, mesh.positions.size(),
                                        sizeof(Vec3f), target_triangles * 3, 1.0f, &relative_error));

@@ -75,6 +75,16 @@ TEST(Simplify, UntexturedMeshGetsNoSurfaceAttributes) {
   EXPECT_TRUE(s.mesh.corner_uvs.empty() && s.mesh.triangle_materials.empty() && s.mesh.materials.empty());
 }
 
+// simplifySloppy reaches a budget edge collapse cannot, and a budget above the mesh's own count
+// (2P triangles of a thin lattice's impostor level) keeps the mesh instead of failing.
+TEST(Simplify, SloppyMeetsTheBudgetAndLargeBudgetsKeepTheMesh) {
+  const TriangleMesh in = textured_grid(16, false);
+  for (SimplifyMethod method : {SimplifyMethod::kCollapse, SimplifyMethod::kSloppy}) {
+    EXPECT_LE(simplify_mesh(in, 40, method).mesh.triangles.size(), 40u);
+    EXPECT_EQ(simplify_mesh(in, 10 * in.triangles.size(), method).mesh.triangles.size(), in.triangles.size());
+  }
+}
+
 TEST(Simplify, HalvedTextureAveragesInLinearLightWeightedByAlpha) {
   // Red and blue opaque over two transparent texels: half coverage, the colours' linear mean.
   TextureImage t{2, 2, {255, 0, 0, 255, 0, 0, 255, 255, 0, 255, 0, 0, 0, 255, 0, 0}};
