@@ -50,6 +50,10 @@ nlohmann::json simplify_level_files(const TriangleMesh& mesh, const std::vector<
   nlohmann::json levels = nlohmann::json::array();
   for (std::size_t i = 0; i < budgets.size(); ++i) {
     SimplifiedMesh s = simplify_mesh(mesh, budgets[i], method);
+    // simplifySloppy may cluster a small budget's mesh away entirely (2CylinderEngine at 52).
+    if (s.mesh.triangles.empty())
+      throw UsageError("a budget of " + std::to_string(budgets[i]) + " triangles leaves nothing of this mesh (" +
+                       (method == SimplifyMethod::kSloppy ? "simplifySloppy" : "simplify") + " collapsed it whole); give a larger one");
     const std::string name = stem + "_S" + std::to_string(i) + ".glb";
     // A mesh with materials (textured glTF, OBJ + MTL) keeps them, its textures sized for the
     // level's screen: at most 2 x max_screen_pixels texels a side (the spider's 768-px texture in

@@ -79,7 +79,8 @@ std::vector<std::size_t> default_simplify_budgets(const TriangleMesh& mesh);
 // Edge-collapse LODs of `mesh` as files STEM_S<i>.glb (smooth normals, or none; a mesh with
 // materials keeps them and its textures, others get the LOD material), appended to `files`; returns their manifest entries (target and kept triangles, vertices, bytes, error and
 // the largest on-screen size of the object at which that error stays under half a pixel, as the
-// impostor levels give it). Shared by the bake and `qf-bake simplify`.
+// impostor levels give it). Shared by the bake and `qf-bake simplify`. UsageError for a budget
+// that leaves no triangle.
 nlohmann::json simplify_level_files(const TriangleMesh& mesh, const std::vector<std::size_t>& budgets, const std::string& stem,
                                     std::vector<OutputFile>& files, bool smooth = true,
                                     SimplifyMethod method = SimplifyMethod::kCollapse);
