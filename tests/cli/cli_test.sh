@@ -23,7 +23,7 @@ expect 0 "--version" -- "$bake" --version
 grep -q '^qf-bake [0-9]' "$work/out" && ok || bad "--version prints 'qf-bake X.Y.Z'"
 expect 0 "--help" -- "$bake" --help
 cp "$work/out" "$work/overview"
-for cmd in info convert generate analyze decompose bake cluster batch merge-reports; do
+for cmd in info convert generate billboard analyze decompose bake cluster simplify batch merge-reports; do
   grep -q "^  $cmd " "$work/overview" && ok || bad "--help lists $cmd"
   expect 0 "$cmd --help" -- "$bake" "$cmd" --help
   grep -q "usage: qf-bake $cmd" "$work/out" && ok || bad "$cmd --help shows usage"
@@ -257,6 +257,25 @@ PY
 # --mesh-lods clustering: seed 002's vertex-clustering LODs instead (cell widths d/128..d/8)
 expect 0 "bake a mesh with clustering LODs" -- "$bake" "$work/ball_mesh.ply" -o "$work/meshbake_c" --primitives 50 --ldi 64 --mesh-lods clustering -q
 expect 0 "a mesh too small to simplify" -- "$bake" "$work/cube_mesh.ply" -o "$work/meshbake_s" --primitives 20 --ldi 64 -q
+# simplify: a budget above the mesh's triangles keeps it whole; simplifySloppy's 1 triangle of a
+# cube leaves nothing, a usage error naming the budget, with nothing written.
+expect 0 "simplify above the mesh's budget" -- "$bake" simplify "$work/cube_mesh.ply" -o "$work/simp_big" --triangles 100000 -q
+expect 0 "simplify --method sloppy" -- "$bake" simplify "$work/cube_mesh.ply" -o "$work/simp_sloppy" --triangles 24 --method sloppy -q
+expect 2 "sloppy budget that leaves nothing" -- "$bake" simplify "$work/cube_mesh.ply" -o "$work/simp_none" --triangles 1 --method sloppy -q
+grep -q "budget of 1 triangles" "$work/err" && [[ ! -e "$work/simp_none" ]] && ok || bad "an empty LOD: $(cat "$work/err")"
+# The generated impostor cases are seeded (same seed, same bytes; another seed, another asset), and
+# the crossed billboard peer keeps within a byte budget; a point set has no triangles to draw.
+for shape in bush lattice; do
+  expect 0 "generate $shape" -- "$bake" generate "$shape" --seed 5 -o "$work/$shape.glb" -q
+  "$bake" generate "$shape" --seed 5 -o "$work/${shape}2.glb" -q && cmp -s "$work/$shape.glb" "$work/${shape}2.glb" && ok ||
+    bad "generate $shape is not deterministic"
+  "$bake" generate "$shape" --seed 6 -o "$work/${shape}3.glb" -q && ! cmp -s "$work/$shape.glb" "$work/${shape}3.glb" && ok ||
+    bad "generate $shape: the seed changes nothing"
+done
+expect 0 "billboard" -- "$bake" billboard "$work/lattice.glb" -o "$work/bb.glb" --bytes 20000 -q
+[[ -s "$work/bb.glb" && $(stat -c %s "$work/bb.glb") -le 20000 ]] && ok || bad "billboard over its byte budget: $(stat -c %s "$work/bb.glb")"
+expect 1 "billboard of a point set" -- "$bake" billboard "$work/oct.ply" -o "$work/bb_points.glb" -q
+grep -q "billboard.needs_mesh" "$work/err" && [[ ! -e "$work/bb_points.glb" ]] && ok || bad "billboard of a point set: $(cat "$work/err")"
 /usr/bin/python3 -c 'import json,sys; m=json.load(open(sys.argv[1])); assert "mesh_lods" not in m' "$work/meshbake_s/manifest.json" 2>"$work/err" && ok ||
   bad "48 triangles get no simplify LODs: $(tail -1 "$work/err")"
 /usr/bin/python3 - "$work/meshbake_c" <<'PY' 2>"$work/err" && ok || bad "clustering mesh LODs: $(tail -1 "$work/err")"
