@@ -283,7 +283,7 @@ BakeResult bake(const PointSet& input, const BakeOptions& o, const std::string& 
   // 1. Fail early, with the figures, where the bake would not fit in memory (not an OOM kill).
   check_bake_memory(input.size(), o.analysis, source_name);
   // 2. Complete the point set; a mesh surface's triangles follow its points into Morton order.
-  const std::vector<std::uint32_t> order = morton_order(input.positions);
+  std::vector<std::uint32_t> order = morton_order(input.positions);
   const PointSet points = completed_points(input, order, r);
   MeshSurface ordered_surface;
   if (surface && surface->mesh) {
@@ -293,6 +293,7 @@ BakeResult bake(const PointSet& input, const BakeOptions& o, const std::string& 
     ordered_surface.point_triangles.resize(order.size());
     for (std::size_t i = 0; i < order.size(); ++i) ordered_surface.point_triangles[i] = surface->point_triangles[order[i]];
   }
+  std::vector<std::uint32_t>().swap(order);  // not held through the bake (4 bytes a point)
   const MeshSurface* drawn = ordered_surface.mesh ? &ordered_surface : nullptr;
   r.diagonal = points.bounds().diagonal();
   watch.lap("prepare");
