@@ -92,13 +92,8 @@ void look(const TriangleMesh& mesh, const std::vector<Vec3f>& normals, std::uint
     const Rgb8 c = surface_color(mesh, t, w).color;
     rgb[0] = srgb8_to_linear(c.r), rgb[1] = srgb8_to_linear(c.g), rgb[2] = srgb8_to_linear(c.b);
   } else if (mesh.colors.size() == mesh.positions.size()) {
-    // Vertex colours interpolated as stored, as the sampled points take them (sample.h).
-    double c[3] = {0, 0, 0};
-    for (int k = 0; k < 3; ++k) {
-      const Rgb8 v = mesh.colors[tri[static_cast<std::size_t>(k)]];
-      c[0] += w[k] * v.r, c[1] += w[k] * v.g, c[2] += w[k] * v.b;
-    }
-    for (int k = 0; k < 3; ++k) rgb[k] = srgb8_to_linear(static_cast<std::uint8_t>(std::lround(std::clamp(c[k], 0.0, 255.0))));
+    const Rgb8 c = interpolated_vertex_color(mesh, t, w);  // as the sampled points take it (sample.h)
+    rgb[0] = srgb8_to_linear(c.r), rgb[1] = srgb8_to_linear(c.g), rgb[2] = srgb8_to_linear(c.b);
   } else {
     rgb[0] = srgb8_to_linear(g.base_color.r), rgb[1] = srgb8_to_linear(g.base_color.g), rgb[2] = srgb8_to_linear(g.base_color.b);
   }

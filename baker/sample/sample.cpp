@@ -138,13 +138,7 @@ void row_points(const TriangleMesh& mesh, const SampleGrid& grid, const AxisLaye
         if (m.shaded) {
           out.colors.push_back(material.color);
         } else if (m.coloured) {
-          double c[3] = {0, 0, 0};
-          for (int k = 0; k < 3; ++k) {
-            const Rgb8 col = mesh.colors[tri[static_cast<std::size_t>(k)]];
-            c[0] += w[k] * col.r, c[1] += w[k] * col.g, c[2] += w[k] * col.b;
-          }
-          out.colors.push_back({static_cast<std::uint8_t>(std::lround(c[0])), static_cast<std::uint8_t>(std::lround(c[1])),
-                                static_cast<std::uint8_t>(std::lround(c[2]))});
+          out.colors.push_back(interpolated_vertex_color(mesh, t, w));
         }
         out.radii.push_back(static_cast<float>(0.5 * s * std::sqrt(1 + 1 / (n.n[a] * n.n[a]))));
       }

@@ -76,6 +76,17 @@ std::array<float, 4> sample_texture(const TextureImage& image, Vec2f uv, Texture
   return bilinear<true>(image, uv, wrap_s, wrap_t);
 }
 
+Rgb8 interpolated_vertex_color(const TriangleMesh& mesh, std::size_t t, const double w[3]) {
+  const Triangle& tri = mesh.triangles[t];
+  double c[3] = {0, 0, 0};
+  for (int k = 0; k < 3; ++k) {
+    const Rgb8 col = mesh.colors[tri[static_cast<std::size_t>(k)]];
+    c[0] += w[k] * col.r, c[1] += w[k] * col.g, c[2] += w[k] * col.b;
+  }
+  return {static_cast<std::uint8_t>(std::lround(c[0])), static_cast<std::uint8_t>(std::lround(c[1])),
+          static_cast<std::uint8_t>(std::lround(c[2]))};
+}
+
 SurfaceColor surface_color(const TriangleMesh& mesh, std::size_t t, const double w[3]) {
   const Triangle& tri = mesh.triangles[t];
   // 1. The material's factor and texture.

@@ -17,6 +17,10 @@ struct SurfaceColor {
 // At barycentric weights w of triangle t. Meshes without materials and vertex colours give white.
 SurfaceColor surface_color(const TriangleMesh& mesh, std::size_t t, const double w[3]);
 
+// The vertex colours of triangle t at barycentric weights w, interpolated in sRGB bytes as stored:
+// the colour of a mesh without materials (PLY, OFF), as its sampled points and its quads take it.
+Rgb8 interpolated_vertex_color(const TriangleMesh& mesh, std::size_t t, const double w[3]);
+
 // The texel colour of `image` at texture coordinate uv with the given wraps, bilinear between the
 // four nearest texel centres in linear light: linear RGB and alpha, each 0..1.
 std::array<float, 4> sample_texture(const TextureImage& image, Vec2f uv, TextureWrap wrap_s, TextureWrap wrap_t);
