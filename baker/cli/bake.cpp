@@ -15,7 +15,7 @@
 #include "core/error.h"
 #include "core/file_io.h"
 #include "pipeline/asset.h"
-#include "tools/chain.h"
+#include "tools/measure.h"
 
 namespace qf::cli {
 
@@ -48,15 +48,18 @@ CommandSpec bake_spec() {
                      "(STEM_S<i>.glb at the input's triangles / 4, 16, 64, 256, 1024), clustering = seed 002's\n"
                      "vertex clustering with thick edges (STEM_C<i>.glb, cells = diagonal / 128 .. 8)"},
                     {"no-mesh-lods", 0, "", "", "the same as --mesh-lods none"},
-                    {"chain", 0, "", "", "also measure the recommended chain (manifest recommended_chain): every mesh LOD,\n"
-                                         "impostor level and the point impostor drawn by the engine method against the input\n"
-                                         "at 256, 128, 64, 32 and 16 px on screen; per band, never more bytes than nearer, the\n"
-                                         "smallest file that reaches --chain-psnr and IoU 0.9 (else the best PSNR less 1 dB per\n"
-                                         "doubling of bytes), with its switch distance (--lod-screen-height, 60 degree field of\n"
-                                         "view); with --lod-file, STEM_lods.glb holds the chain's files. It costs about three\n"
-                                         "bakes (bunny00: 6.3 s), more for large point impostors"},
-                    {"chain-views", 0, "N", "6", "--chain: directions drawn per size (implies --chain)"},
-                    {"chain-psnr", 0, "DB", "30", "--chain: the quality bar, dB (engine method against the input; implies --chain)"},
+                    {"no-measure", 0, "", "", "do not measure the outputs on screen: each level keeps its geometric max_screen_pixels\n"
+                                              "(error under half a pixel) and there is no chain (needs no GL driver)"},
+                    {"measure-views", 0, "N", "4", "directions each output is drawn from when measured, at 128, 64, 32 and 16 px on\n"
+                                                   "screen (and 256 with --chain), by the engine method against the truth (the input drawn\n"
+                                                   "at 4x the size, box-filtered): a level's max_screen_pixels is the largest of those sizes at which its\n"
+                                                   "look holds (PSNR within 1 dB and IoU within 0.05 of its best; manifest measuring)"},
+                    {"chain", 0, "", "", "also the recommended chain (manifest recommended_chain): the mesh LODs and the point\n"
+                                         "impostor are measured too; per band, never more bytes than nearer, the smallest file\n"
+                                         "that reaches --chain-psnr and IoU 0.9 (else the best PSNR less 1 dB per doubling of\n"
+                                         "bytes), with its switch distance (--lod-screen-height, 60 degree field of view); with\n"
+                                         "--lod-file, STEM_lods.glb holds the chain's files"},
+                    {"chain-psnr", 0, "DB", "30", "--chain: the quality bar, dB (engine method against the truth; implies --chain)"},
                     drop_nonfinite_option(), quiet_option()},
                    1, 1};
   append_point_input_options(spec.options);
@@ -96,14 +99,19 @@ AssetOptions read_asset_options(const OptionValues& args) {
   a.mesh_lods = lods == "simplify" ? AssetOptions::MeshLods::kSimplify
                 : lods == "clustering" ? AssetOptions::MeshLods::kClustering
                                        : AssetOptions::MeshLods::kNone;
-  render::ChainOptions chain;
-  chain.views = static_cast<int>(args.get_int("chain-views", chain.views, 1, 1000));
-  chain.min_psnr = args.get_double("chain-psnr", chain.min_psnr, 0.0, 99.0);
-  chain.screen_height = a.lod_screen_height;
-  chain.read = a.read;
-  if (args.flag("chain") || args.has("chain-views") || args.has("chain-psnr"))
-    a.measure_chain = [chain](const std::string& input, const nlohmann::json& manifest, const std::vector<OutputFile>& files) {
-      return render::recommend_chain(input, manifest, files, chain);
+  render::MeasureOptions measure;
+  measure.views = static_cast<int>(args.get_int("measure-views", measure.views, 1, 1000));
+  measure.read = a.read;
+  a.chain = args.flag("chain") || args.has("chain-psnr");
+  // The chain adds a near band and the input as drawn (the floor an impostor must beat).
+  if (a.chain) measure.sizes.insert(measure.sizes.begin(), 256), measure.as_drawn = true;
+  a.chain_rule.min_psnr = args.get_double("chain-psnr", a.chain_rule.min_psnr, 0.0, 99.0);
+  a.chain_rule.screen_height = a.lod_screen_height;
+  if (args.flag("no-measure") && (a.chain || args.has("measure-views")))
+    throw UsageError("--no-measure leaves nothing for --chain, --chain-psnr or --measure-views to do");
+  if (!args.flag("no-measure"))
+    a.measure = [measure](const std::string& input, const std::vector<Candidate>& candidates) {
+      return render::measure_files(input, candidates, measure);
     };
   return a;
 }

@@ -225,7 +225,8 @@ nlohmann::json asset_report(AssetBake& a, const AssetOptions& o, const std::stri
             {"mesh_lods", o.mesh_lods == AssetOptions::MeshLods::kSimplify     ? "simplify"
                           : o.mesh_lods == AssetOptions::MeshLods::kClustering ? "clustering"
                                                                                : "none"},
-            {"chain", static_cast<bool>(o.measure_chain)}}},
+            {"measure", static_cast<bool>(o.measure)},
+            {"chain", static_cast<bool>(o.measure) && o.chain}}},
           {"levels", levels},
           {"stages", stages},
           {"sampling", sampling},
@@ -265,6 +266,91 @@ void lod_file_output(AssetBake& a, const AssetOptions& o, const std::string& ste
   a.manifest["lod_file"] = {{"file", name}, {"screen_height", o.lod_screen_height}, {"parts", names}};
 }
 
+// 5a. The files to measure: the impostor levels; with the chain also the mesh LODs and the point
+// impostor (its candidates).
+std::vector<Candidate> measured_candidates(const AssetBake& a, bool chain) {
+  std::vector<Candidate> out;
+  auto add = [&](const nlohmann::json& entry, const char* kind) {
+    const std::string name = entry.at("file").get<std::string>();
+    for (const OutputFile& f : a.files)
+      if (f.name == name) out.push_back({name, kind, &f.bytes});
+  };
+  if (chain && a.manifest.contains("mesh_lods"))
+    for (const nlohmann::json& l : a.manifest["mesh_lods"]["levels"]) add(l, "mesh_lod");
+  for (const nlohmann::json& l : a.manifest.at("levels")) add(l, "impostor_level");
+  if (chain && a.manifest.contains("point_impostor")) add(a.manifest["point_impostor"], "point_impostor");
+  return out;
+}
+
+const FileScores* scores_of(const Measurements& m, const std::string& file) {
+  for (const FileScores& f : m.files)
+    if (f.file == file) return &f;
+  return nullptr;
+}
+
+// 5b. Each impostor level's honest max_screen_pixels (finest first; the geometric one kept beside
+// it), its window and figures, in the manifest and in the bake's levels (which the combined LOD
+// file switches by).
+void apply_screen_sizes(AssetBake& a, const Measurements& m, const HoldBar& bar) {
+  nlohmann::json& levels = a.manifest["levels"];
+  std::vector<std::size_t> order(levels.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return levels[x]["level"] < levels[y]["level"]; });
+  std::vector<double> geometric;
+  std::vector<ScreenWindow> windows;
+  for (std::size_t i : order) {
+    const FileScores* f = scores_of(m, levels[i]["file"].get<std::string>());
+    geometric.push_back(levels[i]["max_screen_pixels"].get<double>());
+    windows.push_back(holding_window(m.sizes, f->at_size, bar));
+  }
+  const std::vector<double> honest = honest_screen_pixels(geometric, windows);
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    nlohmann::json& l = levels[order[k]];
+    nlohmann::json measured = nlohmann::json::array();
+    const FileScores* f = scores_of(m, l["file"].get<std::string>());
+    for (std::size_t s = 0; s < m.sizes.size(); ++s) {
+      nlohmann::json e = scores_entry(f->at_size[s]);
+      e["pixels"] = m.sizes[s];
+      measured.push_back(e);
+    }
+    l["geometric_max_screen_pixels"] = l["max_screen_pixels"];
+    l["max_screen_pixels"] = static_cast<long long>(honest[k]);
+    l["holds_from_pixels"] = windows[k].holds_at_smallest ? 0 : windows[k].min_pixels;
+    l["measured"] = measured;
+    for (BakedLevel& b : a.result.levels)
+      if (static_cast<long long>(b.level) == l["level"].get<long long>()) b.max_screen_pixels = honest[k];
+  }
+}
+
+nlohmann::json measuring_entry(const Measurements& m, const HoldBar& bar) {
+  nlohmann::json as_drawn = nlohmann::json::array();
+  for (std::size_t s = 0; s < m.as_drawn.size(); ++s) {
+    nlohmann::json e = scores_entry(m.as_drawn[s]);
+    e["pixels"] = m.sizes[s];
+    as_drawn.push_back(e);
+  }
+  return {{"method", "engine"},
+          {"sizes", m.sizes},
+          {"views", m.views},
+          {"truth", m.truth},
+          {"hold_rule", "a level holds at a size when its PSNR is at most psnr_drop below its best over the sizes and its IoU at most "
+                        "iou_drop below its best; max_screen_pixels is the largest size of the run that holds around its best (its "
+                        "geometric value where that is larger and it holds at the largest size), below every finer level's"},
+          {"psnr_drop", canonical_double(static_cast<float>(bar.psnr_drop))},
+          {"iou_drop", canonical_double(static_cast<float>(bar.iou_drop))},
+          {"as_drawn", as_drawn.empty() ? nlohmann::json(nullptr) : as_drawn}};
+}
+
+void measure_outputs(AssetBake& a, const AssetOptions& o, const std::string& path) {
+  const Measurements m = o.measure(path, measured_candidates(a, o.chain));
+  apply_screen_sizes(a, m, o.hold);
+  a.manifest["measuring"] = measuring_entry(m, o.hold);
+  if (o.chain) {
+    const nlohmann::json chain = recommend_chain(m, a.manifest.at("bounding_box_diagonal").get<double>(), o.chain_rule);
+    if (!chain.is_null()) a.manifest["recommended_chain"] = chain;
+  }
+}
+
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -297,12 +383,11 @@ AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::
     a.manifest["mesh_lods"] = std::move(mesh_lods);
     a.result.times.push_back({"mesh lods", lods_seconds, 0, 0});
   }
-  // 5. The recommended chain, measured on the files just made.
-  if (o.measure_chain) {
-    const auto chain_start = std::chrono::steady_clock::now();
-    const nlohmann::json chain = o.measure_chain(path, a.manifest, a.files);
-    if (!chain.is_null()) a.manifest["recommended_chain"] = chain;
-    a.result.times.push_back({"chain", seconds_since(chain_start), 0, 0});
+  // 5. Every output measured on screen: honest screen sizes, the recommended chain.
+  if (o.measure) {
+    const auto measure_start = std::chrono::steady_clock::now();
+    measure_outputs(a, o, path);
+    a.result.times.push_back({"measure", seconds_since(measure_start), 0, 0});
   }
   // 6. All of them in one file.
   if (o.lod_file) {

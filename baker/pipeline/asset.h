@@ -4,7 +4,7 @@
 //   mesh:       sampled into points first (depth peeling), then the same, plus the sampled points
 //               as a point impostor (STEM_points.glb) and mesh LODs (STEM_S<i>.glb, or the
 //               vertex-clustering STEM_C<i>.glb)
-//   both:       the manifest's recommended chain, when measure_chain is set
+//   both:       every output measured on screen (honest screen sizes), and the recommended chain
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -17,6 +17,9 @@
 #include "clustering/clustering.h"
 #include "io/model_io.h"
 #include "pipeline/bake.h"
+#include "pipeline/chain.h"
+#include "pipeline/measurements.h"
+#include "pipeline/screen_sizes.h"
 #include "sample/sample.h"
 #include "simplify/simplify.h"
 
@@ -43,10 +46,16 @@ struct AssetOptions {
   // pixels high.
   bool lod_file = false;
   double lod_screen_height = 1080;
-  // The manifest's "recommended_chain" from the input's path, the manifest so far and the files:
-  // the candidates measured by drawing them (tools/chain.h). qf-bake sets it, as it links the
-  // renderer and the baker does not; empty: no chain.
-  std::function<nlohmann::json(const std::string&, const nlohmann::json&, const std::vector<OutputFile>&)> measure_chain;
+  // Measures the outputs by drawing them as an engine does (tools/measure.h; qf-bake sets it, as
+  // it links the renderer and the baker does not). With it each impostor level's
+  // max_screen_pixels is where its measured look holds (`hold`, pipeline/screen_sizes.h) and the
+  // manifest keeps every measured figure; empty: the geometric sizes, and no chain.
+  MeasureFiles measure;
+  HoldBar hold;
+  // With `measure`, also the recommended chain (manifest recommended_chain, pipeline/chain.h):
+  // the mesh LODs and the point impostor are measured too.
+  bool chain = false;
+  ChainRule chain_rule;
 };
 
 struct AssetBake {

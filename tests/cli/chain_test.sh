@@ -57,7 +57,7 @@ PY
 }
 
 # 1. A mesh: mesh LODs, impostor levels and the point impostor are all candidates.
-"$bake" "$work/sphere.ply" -o "$work/mesh" --ldi 256 --chain --chain-views 3 -q || fail "mesh bake with --chain"
+"$bake" "$work/sphere.ply" -o "$work/mesh" --ldi 256 --chain --measure-views 3 -q || fail "mesh bake with --chain"
 kinds=$(python3 -c "import json,sys; print(sorted({e['kind'] for e in json.load(open(sys.argv[1]))['recommended_chain']['measured']}))" "$work/mesh/manifest.json")
 [[ "$kinds" == "['impostor_level', 'mesh_lod', 'point_impostor']" ]] || fail "mesh candidates: $kinds"
 out=$(check "$work/mesh/manifest.json") || fail "mesh chain: $out"
@@ -66,7 +66,7 @@ echo "mesh chain: $out"
 # With --lod-file, STEM_lods.glb holds the chain's files as its LODs: each drawn alone (--lod i)
 # gives the same picture as the file itself.
 # (The sphere's chain is an impostor level near, then its finest mesh LOD.)
-"$bake" "$work/sphere.ply" -o "$work/lod" --ldi 256 --chain --chain-views 3 --lod-file -q || fail "--chain --lod-file"
+"$bake" "$work/sphere.ply" -o "$work/lod" --ldi 256 --chain --measure-views 3 --lod-file -q || fail "--chain --lod-file"
 mapfile -t parts < <(python3 -c "import json,sys; [print(p) for p in json.load(open(sys.argv[1]))['lod_file']['parts']]" "$work/lod/manifest.json")
 chain=$(python3 -c "import json,sys; print(' '.join(e['file'] for e in json.load(open(sys.argv[1]))['recommended_chain']['chain']))" "$work/lod/manifest.json")
 [[ "${parts[*]}" == "$chain" ]] || fail "lod_file parts ${parts[*]}, the chain is $chain"
@@ -92,27 +92,27 @@ echo "lod file: ${parts[*]}"
 # 2. A point set: the impostor levels alone. The bar decides: at 99 dB (an identical picture) nothing
 # reaches it and each band takes its best trade; at 15 dB the smallest level that reaches it (and
 # IoU 0.9) serves the far bands.
-"$bake" "$work/torus.ply" -o "$work/points" --chain --chain-views 3 -q || fail "point-set bake with --chain"
+"$bake" "$work/torus.ply" -o "$work/points" --chain --measure-views 3 -q || fail "point-set bake with --chain"
 out=$(check "$work/points/manifest.json") || fail "point-set chain: $out"
 echo "point-set chain: $out"
-"$bake" "$work/torus.ply" -o "$work/strict" --chain --chain-views 3 --chain-psnr 99 -q || fail "--chain-psnr 99"
+"$bake" "$work/torus.ply" -o "$work/strict" --chain --measure-views 3 --chain-psnr 99 -q || fail "--chain-psnr 99"
 out=$(check "$work/strict/manifest.json") || fail "strict chain: $out"
 echo "at 99 dB: $out"
-"$bake" "$work/torus.ply" -o "$work/lax" --chain --chain-views 3 --chain-psnr 15 -q || fail "--chain-psnr 15"
+"$bake" "$work/torus.ply" -o "$work/lax" --chain --measure-views 3 --chain-psnr 15 -q || fail "--chain-psnr 15"
 out=$(check "$work/lax/manifest.json") || fail "lax chain: $out"
 echo "at 15 dB: $out"
 python3 -c "import json,sys; a, b = (json.load(open(f))['recommended_chain']['chain'] for f in sys.argv[1:]); sys.exit(a == b)" \
   "$work/strict/manifest.json" "$work/lax/manifest.json" || fail "the quality bar changed nothing"
 
 # 3. Same input and settings, same bytes; without --chain no chain.
-"$bake" "$work/torus.ply" -o "$work/points2" --chain --chain-views 3 -q || fail "rebake"
+"$bake" "$work/torus.ply" -o "$work/points2" --chain --measure-views 3 -q || fail "rebake"
 cmp "$work/points/manifest.json" "$work/points2/manifest.json" || fail "a rebake's chain differs"
 "$bake" "$work/torus.ply" -o "$work/plain" -q || fail "bake without --chain"
 grep -q recommended_chain "$work/plain/manifest.json" && fail "a chain without --chain"
 
 # 4. In a batch, the setting "chain" measures it too, with the same result.
 cat > "$work/batch.json" <<JSON
-{"defaults": {"chain": true, "chain-views": 3}, "assets": ["$work/torus.ply"]}
+{"defaults": {"chain": true, "measure-views": 3}, "assets": ["$work/torus.ply"]}
 JSON
 "$bake" batch "$work/batch.json" -o "$work/batch" -q || fail "batch with chain"
 python3 -c "import json,sys; a, b = (json.load(open(f))['recommended_chain'] for f in sys.argv[1:]); sys.exit(a != b)" \

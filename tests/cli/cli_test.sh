@@ -216,9 +216,10 @@ def load(d):
 diag = m1["bounding_box_diagonal"]
 assert r1["settings"]["texel_density"] == 1 and rx["settings"]["texel_density"] == 0 and r4["settings"]["texel_density"] == 4
 for l in m1["levels"]:
-    # (the manifest's max_screen_pixels is rounded down)
-    assert diag / (l["max_screen_pixels"] + 1) <= l["texel"] <= diag / l["max_screen_pixels"], (l["texel"], diag, l["max_screen_pixels"])
-    assert l["texels"] <= (4 * l["max_screen_pixels"]) ** 2, (l["texels"], l["max_screen_pixels"])
+    # Textures are sized before the level is measured: for its geometric size (rounded down).
+    px = l["geometric_max_screen_pixels"]
+    assert diag / (px + 1) <= l["texel"] <= diag / px, (l["texel"], diag, px)
+    assert l["texels"] <= (4 * px) ** 2, (l["texels"], px)
     assert l["bytes"] == os.path.getsize(os.path.join(sys.argv[1], l["file"]))
     assert len(l["atlas_sides"]) == l["atlas_images"] and all(w & (w - 1) == 0 and h & (h - 1) == 0 for w, h in l["atlas_sides"])
 assert all(l["texel"] == 0 for l in mx["levels"])

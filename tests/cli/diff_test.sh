@@ -71,8 +71,8 @@ cp "$work/k1/ball_C0.draco.glb" "$work/k3.draco.glb"
 
 # --- the recommended chain: a manifest's chain before and after, in text and JSON ---
 "$bake" generate torus -n 6000 -o "$work/ring.ply" -q
-"$bake" "$work/ring.ply" -o "$work/c1" --chain --chain-views 2 --chain-psnr 99 -q
-"$bake" "$work/ring.ply" -o "$work/c2" --chain --chain-views 2 --chain-psnr 0 -q
+"$bake" "$work/ring.ply" -o "$work/c1" --chain --measure-views 2 --chain-psnr 99 -q
+"$bake" "$work/ring.ply" -o "$work/c2" --chain --measure-views 2 --chain-psnr 0 -q
 "$diff" "$work/c1" "$work/c2" --no-render --json >"$work/j"; rc=$?
 chain="[x for x in r['files'] if x['name'] == 'manifest.json'][0]['recommended_chain']"
 [[ $rc -eq 0 && $(field "$work/j" "$chain['old'] != $chain['new'] and $chain['old'].startswith('ring_L')") == True ]] && ok ||

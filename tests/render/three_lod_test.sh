@@ -20,7 +20,7 @@ PY
 "$bake" generate torus -o "$work/torus.ply" -q || fail "generate"
 # Plain: the impostor levels. --chain: the recommended chain's files at its max_pixels.
 for how in plain chain; do
-  opts=(); [[ $how == chain ]] && opts=(--chain --chain-views 2)
+  opts=(); [[ $how == chain ]] && opts=(--chain --measure-views 2)
   "$bake" "$work/torus.ply" -o "$work/$how" "${opts[@]}" -q || fail "bake ($how)"
   read -r distances expected < <(python3 - "$work/$how/manifest.json" <<'PY'
 import json, math, sys

@@ -1,0 +1,96 @@
+// The recommended chain: the cheapest good file per screen-size band, from the measurements.
+#include "pipeline/chain.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/types.h"
+
+namespace qf {
+namespace {
+
+double rounded(double v, double step) { return canonical_double(static_cast<float>(std::round(v / step) * step)); }
+
+// 1. A band's choice among the files of at most `cap` bytes (the nearer band's choice: farther away
+// never costs more): the fewest bytes that reach the quality bar there (PSNR and IoU, as the
+// manifest rounds them, so that it can be checked from the manifest); where none does, the best
+// trade, PSNR less 1 dB per doubling of bytes (the highest PSNR alone took the spider's 933 KB
+// impostor level over its 39 KB mesh LOD for 2.2 dB; drawn at 96 px the two look alike). The
+// earlier candidate on a tie.
+double trade(const FileScores& c, std::size_t band) {
+  return rounded(c.at_size[band].psnr, 0.01) - std::log2(static_cast<double>(std::max<std::size_t>(1, c.bytes)));
+}
+
+std::size_t choose(const std::vector<FileScores>& files, std::size_t band, std::size_t cap, const ChainRule& o) {
+  std::size_t pick = files.size(), best = files.size();
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    if (files[i].bytes > cap) continue;
+    const double psnr = rounded(files[i].at_size[band].psnr, 0.01), iou = rounded(files[i].at_size[band].iou, 0.001);
+    if (best == files.size() || trade(files[i], band) > trade(files[best], band)) best = i;
+    if (psnr >= o.min_psnr && iou >= o.min_iou && (pick == files.size() || files[i].bytes < files[pick].bytes)) pick = i;
+  }
+  return pick < files.size() ? pick : best;
+}
+
+// 2. The chain, nearest first: one entry per run of bands with the same file, shown from the
+// object's on-screen size max_pixels (null: any larger) down to min_pixels (0: any smaller), that
+// is out to switch_distance (null: the last entry).
+nlohmann::json chain_entries(const Measurements& m, double diagonal, const ChainRule& o) {
+  nlohmann::json chain = nlohmann::json::array();
+  for (std::size_t band = 0; band < m.sizes.size(); ++band) {
+    const std::size_t cap = chain.empty() ? std::numeric_limits<std::size_t>::max() : chain.back()["bytes"].get<std::size_t>();
+    const FileScores& c = m.files[choose(m.files, band, cap, o)];
+    const int min_pixels = band + 1 < m.sizes.size() ? m.sizes[band + 1] : 0;
+    const nlohmann::json far = min_pixels > 0 ? nlohmann::json(rounded(distance_for_pixels(diagonal, min_pixels, o.screen_height, o.fov_degrees), 1e-4))
+                                              : nlohmann::json(nullptr);
+    if (!chain.empty() && chain.back()["file"] == c.file) {
+      chain.back()["min_pixels"] = min_pixels;
+      chain.back()["switch_distance"] = far;
+      continue;
+    }
+    chain.push_back({{"file", c.file},
+                     {"kind", c.kind},
+                     {"bytes", c.bytes},
+                     {"max_pixels", band == 0 ? nlohmann::json(nullptr) : nlohmann::json(m.sizes[band])},
+                     {"min_pixels", min_pixels},
+                     {"switch_distance", far},
+                     {"measured_at_pixels", m.sizes[band]},
+                     {"error", scores_entry(c.at_size[band])}});
+  }
+  return chain;
+}
+
+}  // namespace
+
+nlohmann::json scores_entry(const Scores& s) {
+  return {{"psnr", rounded(s.psnr, 0.01)}, {"iou", rounded(s.iou, 0.001)}, {"soft_iou", rounded(s.soft_iou, 0.001)}};
+}
+
+double distance_for_pixels(double diagonal, double pixels, double screen_height, double fov_degrees) {
+  return diagonal * screen_height / (2 * std::tan(0.5 * fov_degrees * 3.14159265358979323846 / 180) * pixels);
+}
+
+nlohmann::json recommend_chain(const Measurements& m, double diagonal, const ChainRule& o) {
+  if (m.files.empty() || m.sizes.empty()) return nullptr;
+  nlohmann::json measured = nlohmann::json::array();
+  for (const FileScores& c : m.files) {
+    nlohmann::json at = nlohmann::json::array();
+    for (const Scores& s : c.at_size) at.push_back(scores_entry(s));
+    measured.push_back({{"file", c.file}, {"kind", c.kind}, {"bytes", c.bytes}, {"at_pixels", at}});
+  }
+  return {{"rule", "per band, nearest first, among files no larger than the nearer band's: the smallest with PSNR >= min_psnr and IoU >= "
+                   "min_iou (else the highest PSNR - log2(bytes)), drawn by the engine method at the band's largest size from `views` "
+                   "directions against the truth (the input drawn at `truth` x the size, box-filtered)"},
+          {"sizes", m.sizes},
+          {"views", m.views},
+          {"truth", m.truth},
+          {"min_psnr", rounded(o.min_psnr, 0.01)},
+          {"min_iou", rounded(o.min_iou, 0.001)},
+          {"screen_height", o.screen_height},
+          {"fov_degrees", rounded(o.fov_degrees, 0.01)},
+          {"chain", chain_entries(m, diagonal, o)},
+          {"measured", measured}};
+}
+
+}  // namespace qf

@@ -1,0 +1,45 @@
+// The measuring library: a bake's files drawn as an engine draws them (the engine method) at a
+// ladder of on-screen sizes, scored against the truth, what the input's pixels should show there
+// (the input drawn at `truth` x the size and box-filtered down, as `qf-render eval --truth`), with
+// the input itself drawn at the size beside them (the asset as an engine shows it). The bake
+// measures every output with it (qf-bake hands it over as pipeline/measurements.h MeasureFiles:
+// the baker does not link the renderer); its figures for a file at a size are `qf-render eval
+// BAKED --size S --views N -m engine`'s. They come from the GL driver's pixels (llvmpipe here):
+// the same bytes on every run on one driver, not across drivers.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "io/model_io.h"
+#include "pipeline/measurements.h"
+
+namespace qf::render {
+
+struct MeasureOptions {
+  // On-screen sizes, largest first (see Measurements::sizes): where impostor levels switch. The
+  // recommended chain adds 256 px, a near band.
+  std::vector<int> sizes{128, 64, 32, 16};
+  // Directions spread over the bounding sphere (sphere_direction), 4 for the bake's time, and the
+  // truth's supersampling of the largest size (truth_side).
+  int views = 4;
+  int truth = 8;
+  bool as_drawn = false;  // also the input itself drawn at each size (Measurements::as_drawn)
+  ReadOptions read;       // how the input is read again (as the bake read it)
+};
+
+// The largest side the truth is drawn at (8 x 512 px would be 4096; 4 x is as good a box filter).
+constexpr int kMaxTruthSide = 4096;
+
+// The side the truth is drawn at: `truth` x the largest size, capped by kMaxTruthSide; every
+// size's truth is it box-filtered down (so `qf-render eval --size S --truth SIDE/S` scores the
+// same). UsageError when a size does not divide it.
+int truth_side(const std::vector<int>& sizes, int truth);
+
+// Draws the input at `input_path` (the truth once per view, as drawn once per size and view) and every
+// candidate (loaded once, drawn from the same views) and returns the mean scores per size. Makes
+// its own headless GL context: throws UsageError when there is none, and the readers' and
+// loader's InputErrors.
+Measurements measure_files(const std::string& input_path, const std::vector<Candidate>& candidates, const MeasureOptions& options = {});
+
+}  // namespace qf::render
