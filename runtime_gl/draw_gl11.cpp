@@ -305,6 +305,11 @@ void Renderer::set_engine_scene(const EngineScene& scene) {
   impl_->has_engine_scene = true;
 }
 
+void Renderer::set_engine_only(const EngineScene& scene) {
+  impl_->free_textures();
+  set_engine_scene(scene);
+}
+
 void Renderer::Impl::draw_thick_lines(const Camera& c, DrawStats& stats) {
   const ClusterScene& sc = *cluster;
   const double z0 = c.focal_pixels();

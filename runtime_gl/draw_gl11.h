@@ -70,6 +70,9 @@ class Renderer {
   // What Method::kEngine draws (draw_engine.h), kept beside whichever scene above is set: the
   // same file as an engine sees it.
   void set_engine_scene(const EngineScene& scene);
+  // Only what Method::kEngine draws: any scene above is dropped (its textures freed), so that a
+  // caller drawing by the engine method alone (the bake's measuring) uploads nothing else.
+  void set_engine_only(const EngineScene& scene);
 
   // Draws one frame (cleared first). Returns what was drawn.
   DrawStats draw(const Camera& camera, const DrawSettings& settings);

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "core/file_io.h"
 #include "gl/egl.h"
 #include "runtime_gl/camera.h"
 #include "tools/any_scene.h"
@@ -37,7 +38,7 @@ struct SizeViews {
 std::vector<SizeViews> truth_views(const AnyScene& input, const Sphere& sphere, const MeasureOptions& o) {
   const int side = truth_side(o.sizes, o.truth);
   Renderer renderer(side, side);
-  input.attach(renderer);
+  renderer.set_engine_only(input.engine);
   std::vector<SizeViews> out;
   for (int size : o.sizes) out.push_back({size, {}, {}});
   for (int v = 0; v < o.views; ++v) {
@@ -68,9 +69,11 @@ std::vector<Scores> scores_at_sizes(Renderer& renderer, const std::vector<SizeVi
 
 }  // namespace
 
+int truth_factor(int size, int truth) { return std::max(1, std::min(truth, kMaxTruthSide / std::max(1, size))); }
+
 int truth_side(const std::vector<int>& sizes, int truth) {
   const int largest = *std::max_element(sizes.begin(), sizes.end());
-  const int side = largest * std::max(1, std::min(truth, kMaxTruthSide / largest));
+  const int side = largest * truth_factor(largest, truth);
   for (int s : sizes)
     if (s < 1 || side % s != 0) throw UsageError("measuring: size " + std::to_string(s) + " does not divide the truth's side " + std::to_string(side));
   return side;
@@ -85,19 +88,22 @@ Measurements measure_files(const std::string& input_path, const std::vector<Cand
   } catch (const std::runtime_error& e) {
     throw UsageError(std::string("measuring the outputs draws them, which needs an EGL/OpenGL driver (or --no-measure): ") + e.what());
   }
-  const AnyScene input = load_input(input_path, o.read);
+  // A glTF input is drawn as its file says (the loader, as qf-render eval draws it); others as the
+  // readers read them.
+  const std::string ext = file_extension(input_path);
+  const AnyScene input = ext == "glb" || ext == "gltf" ? load_scene(input_path) : load_input(input_path, o.read);
   const Sphere sphere = bounding_sphere(input.bounds());
   const std::vector<SizeViews> sizes = truth_views(input, sphere, o);
   // 3. The input as drawn at each size (when asked: it costs as much as a few candidates), then
-  // every candidate, loaded and uploaded once.
+  // every candidate, loaded and uploaded once (only what the engine method draws).
   Renderer renderer(1, 1);
   if (o.as_drawn) {
-    input.attach(renderer);
+    renderer.set_engine_only(input.engine);
     m.as_drawn = scores_at_sizes(renderer, sizes);
   }
   for (const Candidate& c : candidates) {
     const AnyScene scene = load_scene(*c.bytes, c.file);
-    scene.attach(renderer);
+    renderer.set_engine_only(scene.engine);
     m.files.push_back({c.file, c.kind, c.bytes->size(), scores_at_sizes(renderer, sizes)});
   }
   return m;

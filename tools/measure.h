@@ -31,6 +31,10 @@ struct MeasureOptions {
 // The largest side the truth is drawn at (8 x 512 px would be 4096; 4 x is as good a box filter).
 constexpr int kMaxTruthSide = 4096;
 
+// The truth's supersampling at `size` pixels, as qf-render eval draws it: `truth`, capped by
+// kMaxTruthSide (at least 1).
+int truth_factor(int size, int truth);
+
 // The side the truth is drawn at: `truth` x the largest size, capped by kMaxTruthSide; every
 // size's truth is it box-filtered down (so `qf-render eval --size S --truth SIDE/S` scores the
 // same). UsageError when a size does not divide it.

@@ -20,6 +20,7 @@
 #include "runtime_gl/draw_gl11.h"
 #include "runtime_gl/egl_context.h"
 #include "tools/image_ops.h"
+#include "tools/measure.h"
 #include "runtime_gl/loader.h"
 
 namespace qf::render {
@@ -417,10 +418,8 @@ int run_eval(const ParsedArgs& a) {
   if (reference.asset) settings.method = Method::kEngine;
   const Sphere sphere = bounding_sphere(reference.bounds());
   choose_lod(baked, a, orbit_camera(sphere, sphere_direction(0, views), 0, w, h));
-  // The truth's side is capped (kMaxTruthSide): 8 x 512 px would be 4096 px a side, and 4 x is as
-  // good a box filter at that size.
-  constexpr int kMaxTruthSide = 4096;
-  const int truth = std::max(1, std::min(static_cast<int>(a.get_int("truth", 8, 1, 16)), kMaxTruthSide / std::max(w, h)));
+  // The truth's side is capped (kMaxTruthSide), as the bake's measuring caps it.
+  const int truth = truth_factor(std::max(w, h), static_cast<int>(a.get_int("truth", 8, 1, 256)));
   HeadlessContext context;
   Renderer ref_renderer(w, h), imp_renderer(w, h);
   std::unique_ptr<Renderer> truth_renderer = truth > 1 ? std::make_unique<Renderer>(w * truth, h * truth) : nullptr;

@@ -334,7 +334,7 @@ nlohmann::json measuring_entry(const Measurements& m, const HoldBar& bar) {
           {"views", m.views},
           {"truth", m.truth},
           {"hold_rule", "a level holds at a size when its PSNR is at most psnr_drop below its best over the sizes and its IoU at most "
-                        "iou_drop below its best; max_screen_pixels is the largest size of the run that holds around its best (its "
+                        "iou_drop below its IoU there; max_screen_pixels is the largest size of the run that holds around its best (its "
                         "geometric value where that is larger and it holds at the largest size), below every finer level's"},
           {"psnr_drop", canonical_double(static_cast<float>(bar.psnr_drop))},
           {"iou_drop", canonical_double(static_cast<float>(bar.iou_drop))},
@@ -342,7 +342,16 @@ nlohmann::json measuring_entry(const Measurements& m, const HoldBar& bar) {
 }
 
 void measure_outputs(AssetBake& a, const AssetOptions& o, const std::string& path) {
-  const Measurements m = o.measure(path, measured_candidates(a, o.chain));
+  Measurements m;
+  try {
+    m = o.measure(path, measured_candidates(a, o.chain));
+  } catch (const UsageError& e) {
+    // No GL driver: the levels are still good files with their geometric sizes (as the sampler
+    // falls back to the CPU); only an asked-for chain cannot do without the drawing.
+    if (o.chain) throw;
+    a.result.warnings.push_back(std::string("the outputs were not measured, so the levels keep their geometric max_screen_pixels: ") + e.what());
+    return;
+  }
   apply_screen_sizes(a, m, o.hold);
   a.manifest["measuring"] = measuring_entry(m, o.hold);
   if (o.chain) {

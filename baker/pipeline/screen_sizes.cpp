@@ -8,15 +8,13 @@ namespace qf {
 
 ScreenWindow holding_window(const std::vector<int>& sizes, const std::vector<Scores>& at_size, const HoldBar& bar) {
   assert(!sizes.empty() && sizes.size() == at_size.size() && "a score per size");
-  // 1. The best look over the ladder (the larger size on a tie: it is the one drawn nearer).
+  // 1. The best look over the ladder: the highest PSNR (the larger size on a tie: it is the one
+  // drawn nearer), with its IoU.
   std::size_t best = 0;
-  double best_iou = 0;
-  for (std::size_t i = 0; i < at_size.size(); ++i) {
+  for (std::size_t i = 0; i < at_size.size(); ++i)
     if (at_size[i].psnr > at_size[best].psnr) best = i;
-    best_iou = std::max(best_iou, at_size[i].iou);
-  }
   auto holds = [&](std::size_t i) {
-    return at_size[i].psnr >= at_size[best].psnr - bar.psnr_drop && at_size[i].iou >= best_iou - bar.iou_drop;
+    return at_size[i].psnr >= at_size[best].psnr - bar.psnr_drop && at_size[i].iou >= at_size[best].iou - bar.iou_drop;
   };
   // 2. The run of sizes around it that hold: towards larger sizes (smaller index), then smaller.
   std::size_t first = best, last = best;

@@ -11,7 +11,7 @@
 namespace qf {
 
 // A level holds at a size when its PSNR there is at most `psnr_drop` below its best over the
-// ladder and its IoU at most `iou_drop` below its best: the look it reaches, kept. 1 dB and 0.05
+// ladder and its IoU at most `iou_drop` below its IoU at that best: the look it reaches, kept. 1 dB and 0.05
 // take the knee of the measured curves (bunny00, the generated tree, a bush, 6 views: a level's
 // PSNR rises while its geometry is finer than a pixel and its texels are not eaten by mipmaps,
 // then falls by 1-3 dB per doubling of size).
