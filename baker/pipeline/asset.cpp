@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <ostream>
@@ -341,6 +342,23 @@ nlohmann::json measuring_entry(const Measurements& m, const HoldBar& bar) {
           {"as_drawn", as_drawn.empty() ? nlohmann::json(nullptr) : as_drawn}};
 }
 
+// 5c. Up to which on-screen size a file is made for (0: any): a level's or mesh LOD's
+// max_screen_pixels; the point impostor's size at its switch distance, nearer than which its
+// points part (it fades to the mesh there).
+double file_max_pixels(const nlohmann::json& manifest, const std::string& file, double diagonal) {
+  for (const char* list : {"levels", "mesh_lods"}) {
+    const nlohmann::json& entries = std::string(list) == "levels" ? manifest["levels"] : manifest.value("mesh_lods", nlohmann::json::object()).value("levels", nlohmann::json::array());
+    for (const nlohmann::json& e : entries)
+      if (e.at("file") == file) return e.at("max_screen_pixels").get<double>();
+  }
+  if (manifest.contains("point_impostor") && manifest["point_impostor"].at("file") == file) {
+    const nlohmann::json& p = manifest["point_impostor"];
+    return diagonal * p.at("switch_screen_height").get<double>() /
+           (2 * std::tan(0.5 * p.at("switch_fov_degrees").get<double>() * 3.14159265358979323846 / 180) * p.at("switch_distance").get<double>());
+  }
+  return 0;
+}
+
 void measure_outputs(AssetBake& a, const AssetOptions& o, const std::string& path) {
   Measurements m;
   try {
@@ -355,7 +373,10 @@ void measure_outputs(AssetBake& a, const AssetOptions& o, const std::string& pat
   apply_screen_sizes(a, m, o.hold);
   a.manifest["measuring"] = measuring_entry(m, o.hold);
   if (o.chain) {
-    const nlohmann::json chain = recommend_chain(m, a.manifest.at("bounding_box_diagonal").get<double>(), o.chain_rule);
+    const double diagonal = a.manifest.at("bounding_box_diagonal").get<double>();
+    std::vector<double> valid_up_to;
+    for (const FileScores& f : m.files) valid_up_to.push_back(file_max_pixels(a.manifest, f.file, diagonal));
+    const nlohmann::json chain = recommend_chain(m, diagonal, o.chain_rule, valid_up_to);
     if (!chain.is_null()) a.manifest["recommended_chain"] = chain;
   }
 }

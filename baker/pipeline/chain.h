@@ -20,12 +20,20 @@ struct ChainRule {
   double fov_degrees = 60;     // vertical field of view of the switch distances
 };
 
+// A file is a candidate for a band only where it is valid: at most `kShownAbove` x its own
+// max_screen_pixels (a level far above the size it was made for shows its flaws: CGAL's building
+// scan's 28-quad level, made for 26 px, was recommended from 0 to 256 px and beyond).
+constexpr double kShownAbove = 2;
+
 // The manifest's "recommended_chain" from `m` (band k shows the object between sizes[k+1] and
 // sizes[k] pixels and is measured at sizes[k], its largest; the first band also takes every size
 // above it, the last every size below): the rule, the candidates' figures and the chain
 // (consecutive bands with the same file joined; an entry's error is that at its nearest band's
-// size), nearest first. Null when nothing was measured.
-nlohmann::json recommend_chain(const Measurements& m, double diagonal, const ChainRule& rule = {});
+// size), nearest first. `max_pixels` gives each file's max_screen_pixels (one per m.files; 0 or
+// missing: valid at any size); a band takes only files valid at its size (the nearer band's cap
+// on bytes kept where it leaves one), and an entry says whether it met the bar (`bar_met`). Null
+// when nothing was measured.
+nlohmann::json recommend_chain(const Measurements& m, double diagonal, const ChainRule& rule = {}, const std::vector<double>& max_pixels = {});
 
 // The distance at which an object of bounding-box diagonal `diagonal` spans `pixels` on a screen of
 // `screen_height` pixels with vertical field of view `fov_degrees` (as the point impostor's switch

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# The recommended chain (qf-bake bake --chain, tools/chain.h): every candidate of a bake measured
-# against the input, per band the smallest file that reaches the quality bar (else the best trade of
-# PSNR against bytes),
+# The recommended chain (qf-bake bake --chain, pipeline/chain.h): every candidate of a bake measured
+# against the input, per band the smallest file valid there (at most 2 x its max_screen_pixels)
+# that reaches the quality bar (else the best trade of PSNR against bytes),
 # switch distances for a 1080-px screen at 60 degrees, the same bytes on a rebake; a batch asset's
 # "chain" setting means the same; with --lod-file the combined file holds the chain's files.
 # usage: chain_test.sh QF_BAKE QF_RENDER
@@ -28,12 +28,16 @@ if sorted(measured) != sorted(want): sys.exit(f"measured {sorted(measured)}, the
 sizes = c["sizes"]
 for e in measured.values():
     if e["bytes"] != files[e["file"]] or len(e["at_pixels"]) != len(sizes): sys.exit(f"bad measurement {e}")
-def pick(k, cap):  # among files of at most cap bytes (the nearer band's choice)
-    within = [e for e in c["measured"] if e["bytes"] <= cap]
-    ok = [e for e in within if e["at_pixels"][k]["psnr"] >= c["min_psnr"] and e["at_pixels"][k]["iou"] >= c["min_iou"]]
-    if ok: return min(ok, key=lambda e: e["bytes"])
-    trade = [e["at_pixels"][k]["psnr"] - math.log2(e["bytes"]) for e in within]
-    return within[trade.index(max(trade))]
+def valid(e, k):  # shown at most shown_above x its own max_screen_pixels
+    return e["max_screen_pixels"] is None or sizes[k] <= c["shown_above"] * e["max_screen_pixels"]
+def ok(e, k): return e["at_pixels"][k]["psnr"] >= c["min_psnr"] and e["at_pixels"][k]["iou"] >= c["min_iou"]
+def pick(k, cap):  # among valid files of at most cap bytes (the nearer band's choice), else valid ones, else all
+    for within in ([e for e in c["measured"] if valid(e, k) and e["bytes"] <= cap], [e for e in c["measured"] if valid(e, k)], c["measured"]):
+        if not within: continue
+        good = [e for e in within if ok(e, k)]
+        if good: return min(good, key=lambda e: e["bytes"])
+        trade = [e["at_pixels"][k]["psnr"] - math.log2(e["bytes"]) for e in within]
+        return within[trade.index(max(trade))]
 rule, cap = [], float("inf")
 for k in range(len(sizes)):
     e = pick(k, cap)
@@ -45,6 +49,8 @@ for e in c["chain"]:
         lower = sizes[k + 1] if k + 1 < len(sizes) else 0
         if (e["max_pixels"] is None or s <= e["max_pixels"]) and lower >= e["min_pixels"]: bands.append(e["file"])
 if bands != rule: sys.exit(f"bands {bands}, the rule says {rule}")
+for e in c["chain"]:  # each entry says whether it met the bar at its nearest band
+    if e["bar_met"] != ok(measured[e["file"]], sizes.index(e["measured_at_pixels"])): sys.exit(f"bar_met wrong in {e}")
 if c["chain"][0]["max_pixels"] is not None or c["chain"][-1]["min_pixels"] != 0 or c["chain"][-1]["switch_distance"] is not None:
     sys.exit("the chain does not run from any size down to 0")
 z0 = 1080 / (2 * math.tan(math.radians(30)))
