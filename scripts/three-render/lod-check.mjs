@@ -2,15 +2,9 @@
 // prints, as JSON, the level THREE.LOD shows (0 = finest) with the camera at each distance from the
 // object's centre (fov 60, a 512 x 512 viewport), after drawing a frame there.
 // usage: node lod-check.mjs BAKE_DIR DISTANCE...
-import path from 'node:path';
+import { chromium, threePage } from './browser.mjs';
+import { lodCheckMain } from '../web-render/jobs.mjs';
 
-import { withThreePage } from './browser.mjs';
-
-const [dir, ...distances] = process.argv.slice(2);
-if (!dir || distances.length === 0) {
-  console.error('usage: node lod-check.mjs BAKE_DIR DISTANCE...');
-  process.exit(2);
-}
 const pageScript = `
 import * as THREE from 'three';
 import { loadImpostorLOD } from 'qf/impostor-lod.mjs';
@@ -33,6 +27,4 @@ window.qfLevels = async (distances) => {
   return shown;
 };
 `;
-const shown = await withThreePage(pageScript, (p) => path.join(dir, p), (page) =>
-  page.evaluate((d) => window.qfLevels(d), distances.map(Number)));
-console.log(JSON.stringify(shown));
+await lodCheckMain(chromium, threePage(pageScript));

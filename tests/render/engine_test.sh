@@ -1,0 +1,94 @@
+#!/usr/bin/env bash
+# The engine method is engine-true: baked files of every kind rendered by a web engine in headless
+# Chromium (ENGINE three: three.js r187, scripts/three-render; babylon: Babylon.js 9.31,
+# scripts/babylon-render; both through scripts/web-render) and by `qf-render eval`'s engine method
+# from the same 8 cameras with the same lights score the same against the reference: PSNR within
+# 1 dB and silhouette IoU within 0.005; the two renders of each file match each other (PSNR >= 25 dB
+# between them, IoU >= 0.99; 1-pixel points rasterise a little differently); and the engine's
+# loader says nothing (no warning, no error) about any file.
+# The files: an impostor level of the bundled octahedron, a point set; one of a generated sphere
+# mesh, whose alpha is encoded; both ramped at their edges (pipeline/bake.h use_surface_edges); the
+# simplified mesh LOD, a vertex-clustering LOD with thick lines, the same compressed with Draco and
+# the point impostor of the sphere; an impostor level of a generated bush, foliage whose quads are
+# drawn from its alpha-masked leaves; a torus's combined STEM_lods.glb (MSFT_lod) of its levels and
+# that of its recommended chain. Neither engine switches MSFT_lod levels by screen coverage: each
+# shows one level of a combined file, and the test holds it to that level's own file and checks
+# that only the finest level's node (impostor_LOD0, chain_LOD0) was drawn.
+# usage: engine_test.sh ENGINE QF_BAKE QF_RENDER SOURCE_DIR
+set -u
+engine=$1 bake=$2 render=$3 src=$4
+dir="$src/scripts/$engine-render"
+case $engine in
+  three) package=three name="three.js" ;;
+  babylon) package=@babylonjs/loaders name="Babylon.js" ;;
+  *) echo "FAIL: unknown engine $engine"; exit 1 ;;
+esac
+[[ -f "$dir/node_modules/$package/package.json" && -f "$dir/node_modules/playwright-core/package.json" ]] ||
+  { echo "FAIL: $name / playwright-core not installed: run scripts/install-deps.sh"; exit 1; }
+[[ -x "${QF_CHROMIUM:-/usr/bin/chromium}" ]] || { echo "FAIL: no Chromium at ${QF_CHROMIUM:-/usr/bin/chromium}: run scripts/install-deps.sh"; exit 1; }
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+fail() { echo "FAIL: $*"; exit 1; }
+
+"$bake" "$src/samples/octahedron.ply" -o "$work/oct" --primitives 100 -q || fail "bake octahedron"
+"$bake" generate sphere --mesh --subdivisions 8 -o "$work/sphere.ply" -q || fail "generate sphere"
+"$bake" "$work/sphere.ply" -o "$work/sphere" --primitives 30 --ldi 96 -q || fail "bake sphere"
+"$bake" cluster "$work/sphere.ply" -o "$work/cluster" --cells 0.6 --draco -q || fail "cluster sphere"
+"$bake" generate bush --leaves 600 --seed 2 -o "$work/bush.glb" -q || fail "generate bush"
+"$bake" "$work/bush.glb" -o "$work/bush" --primitives 100 --ldi 128 --mesh-lods none -q || fail "bake bush"
+"$bake" generate torus -o "$work/torus.ply" -q || fail "generate torus"
+"$bake" "$work/torus.ply" -o "$work/torus" --lod-file -q || fail "bake torus"
+"$bake" "$work/torus.ply" -o "$work/chain" --lod-file --chain --chain-views 2 -q || fail "bake torus chain"
+finest=$(python3 -c 'import json, sys; print(max(json.load(open(sys.argv[1]))["levels"], key=lambda l: l["primitives"])["file"])' "$work/torus/manifest.json")
+chain0=$(python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["recommended_chain"]["chain"][0]["file"])' "$work/chain/manifest.json")
+# REFERENCE|FILE the engine loads|the file the engine method draws for it (default: the same)|the
+# node the engine must draw (default: any)
+cases=("$src/samples/octahedron.ply|$(ls "$work"/oct/octahedron_L*.glb | head -n 1)"
+       "$work/sphere.ply|$(ls "$work"/sphere/sphere_L*.glb | head -n 1)"
+       "$work/sphere.ply|$work/sphere/sphere_S1.glb"
+       "$work/sphere.ply|$work/cluster/sphere_C0.glb"
+       "$work/sphere.ply|$work/cluster/sphere_C0.draco.glb|$work/cluster/sphere_C0.glb"
+       "$work/sphere.ply|$work/sphere/sphere_points.glb"
+       "$work/bush.glb|$(ls "$work"/bush/bush_L*.glb | head -n 1)"
+       "$work/torus.ply|$work/torus/torus_lods.glb|$work/torus/$finest|impostor_LOD0"
+       "$work/torus.ply|$work/chain/torus_lods.glb|$work/chain/$chain0|chain_LOD0")
+
+# The cameras frame the reference: one eval per reference writes them.
+declare -A cams
+jobs="["
+for i in "${!cases[@]}"; do
+  IFS='|' read -r ref baked shown node <<<"${cases[$i]}"
+  if [[ -z "${cams[$ref]:-}" ]]; then
+    cams[$ref]="$work/cams_$i.json"
+    "$render" eval "$ref" "${shown:-$baked}" --views 8 --size 128 --no-engine --truth 1 --cameras "${cams[$ref]}" -o "$work/unused.json" 2>/dev/null ||
+      fail "eval --cameras $ref"
+  fi
+  jobs+="$([[ $i -gt 0 ]] && echo ,){\"file\":\"$baked\",\"cameras\":\"${cams[$ref]}\",\"out\":\"$work/out_$i\"}"
+done
+echo "$jobs]" >"$work/jobs.json"
+node "$dir/render.mjs" --jobs "$work/jobs.json" || fail "$name renders"
+
+status=0
+for i in "${!cases[@]}"; do
+  IFS='|' read -r ref baked shown node <<<"${cases[$i]}"
+  "$render" eval "$ref" "${shown:-$baked}" --views 8 --size 128 --truth 1 --external "$work/out_$i" -o "$work/eval_$i.json" 2>/dev/null ||
+    fail "eval --external $baked"
+  python3 - "$work/eval_$i.json" "$work/out_$i/load.json" "$name" "$(basename "$(dirname "$baked")")/$(basename "$baked")" "${shown:+$(basename "$shown")}" "$node" <<'PY' || status=1
+import json, sys
+r = json.load(open(sys.argv[1]))["mean"]
+load = json.load(open(sys.argv[2]))
+name, file, shown, node = sys.argv[3:7]
+e, x, a = r["engine"], r["external"], r["engine_vs_external"]
+dp, di = abs(e["psnr"] - x["psnr"]), abs(e["iou"] - x["iou"])
+problems = [] if dp <= 1.0 and di <= 0.005 and a["psnr"] >= 25 and a["iou"] >= 0.99 else ["renders differ"]
+if load["warnings"]: problems.append(f"loader says: {load['warnings']}")
+if not load["drawn"]: problems.append("nothing drawn")
+if node and any(not d.startswith(node) for d in load["drawn"]): problems.append(f"drew {load['drawn']}, not only {node}")
+print(f"{'FAIL' if problems else 'ok  '} {file}{f' (shows {shown})' if shown else ''}: qf-render engine PSNR {e['psnr']:.3f} dB IoU {e['iou']:.4f}; "
+      f"{name} {x['psnr']:.3f} dB IoU {x['iou']:.4f} (|d| {dp:.3f} dB, {di:.4f}); "
+      f"qf-render vs {name} {a['psnr']:.1f} dB IoU {a['iou']:.4f}" + "".join(f"; {p}" for p in problems))
+sys.exit(1 if problems else 0)
+PY
+done
+[[ $status == 0 ]] && echo "engine method agrees with $name on ${#cases[@]} files"
+exit $status
