@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """The fidelity league (scripts/bench.sh fidelity, issues 15 and 31): impostor levels against their
 peers, everything scored by `qf-render eval` against the truth (the input drawn at 8x and box-filtered;
-the engine method: as three.js r187 draws glTF, held to three.js by tests/render/three_test.sh).
+the engine method: as three.js r187 draws glTF, held to three.js by tests/render/engine_test.sh).
 
 Two groups of models, told apart by how they are named:
 - the CGAL models (named relative to MODELS_DIR): per budget, the impostor level (engine and the

@@ -1,5 +1,5 @@
 // Switching a bake's per-level files with THREE.LOD at the manifest's distances (the README shows
-// this file; tests/render/three_lod_test.sh runs it in headless Chromium).
+// this file; tests/render/lod_test.sh runs it in headless Chromium).
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 

@@ -11,7 +11,10 @@ import { renderMain } from '../web-render/jobs.mjs';
 const pageScript = `
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
+import { DRACOLoader } from 'three/addons/loaders/DRACOLoader.js';
 import { captureViews, collectWarnings } from 'web/capture.mjs';
+// Draco-compressed files (cluster --draco): the decoder three.js ships, fetched from /three/.
+const draco = new DRACOLoader().setDecoderPath('/three/examples/jsm/libs/draco/gltf/');
 window.qfRender = async (url, cams) => {
   const first = cams.views[0];
   const canvas = document.createElement('canvas');
@@ -19,7 +22,7 @@ window.qfRender = async (url, cams) => {
   const renderer = new THREE.WebGLRenderer({ canvas, antialias: false, alpha: false, preserveDrawingBuffer: true });
   renderer.setPixelRatio(1);
   renderer.setSize(first.width, first.height, false);
-  const { result: gltf, warnings } = await collectWarnings(() => new GLTFLoader().loadAsync(url));
+  const { result: gltf, warnings } = await collectWarnings(() => new GLTFLoader().setDRACOLoader(draco).loadAsync(url));
   const scene = new THREE.Scene();
   scene.add(gltf.scene);
   const sun = new THREE.DirectionalLight(0xffffff, cams.lights.directional);

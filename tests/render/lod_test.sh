@@ -1,18 +1,24 @@
 #!/usr/bin/env bash
-# The README's THREE.LOD example (scripts/three-render/impostor-lod.mjs, shown there verbatim)
-# switches a bake's per-level files in three.js at the manifest's distances: run in headless
+# The README's LOD examples switch a bake's per-level files at the manifest's distances: ENGINE
+# three: THREE.LOD (scripts/three-render/impostor-lod.mjs); babylon: Babylon.js's Mesh.addLODLevel
+# (scripts/babylon-render/impostor-lod.mjs); each shown in the README verbatim. Run in headless
 # Chromium on a baked torus, with the camera just inside and just outside every switch distance
-# (D z0 / max_screen_pixels, z0 = 512 / (2 tan 30 deg)), it shows the level the manifest says;
-# with the recommended chain (--chain), its files at its max_pixels.
-# usage: three_lod_test.sh QF_BAKE SOURCE_DIR
+# (D z0 / max_screen_pixels, z0 = 512 / (2 tan 30 deg)), the engine draws the level the manifest
+# says; with the recommended chain (--chain), its files at its max_pixels.
+# usage: lod_test.sh ENGINE QF_BAKE SOURCE_DIR
 set -u
-bake=$1 src=$2
-three="$src/scripts/three-render"
+engine=$1 bake=$2 src=$3
+dir="$src/scripts/$engine-render"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 fail() { echo "FAIL: $*"; exit 1; }
-[[ -f "$three/node_modules/three/package.json" ]] || fail "three.js not installed: run scripts/install-deps.sh"
-python3 - "$src/README.md" "$three/impostor-lod.mjs" <<'PY' || fail "the README does not show scripts/three-render/impostor-lod.mjs verbatim"
+case $engine in
+  three) package=three api=THREE.LOD ;;
+  babylon) package=@babylonjs/loaders api=Mesh.addLODLevel ;;
+  *) fail "unknown engine $engine" ;;
+esac
+[[ -f "$dir/node_modules/$package/package.json" ]] || fail "$package not installed: run scripts/install-deps.sh"
+python3 - "$src/README.md" "$dir/impostor-lod.mjs" <<'PY' || fail "the README does not show scripts/$engine-render/impostor-lod.mjs verbatim"
 import sys  # shown in a list item of the README: indented by two spaces
 code = "\n".join("  " + l if l else "" for l in open(sys.argv[2]).read().strip().split("\n"))
 sys.exit(0 if code in open(sys.argv[1]).read() else 1)
@@ -40,7 +46,7 @@ for i, s in enumerate(starts):
 print(",".join(f"{d:.6g}" for d in ds), ",".join(map(str, want)))
 PY
   )
-  shown=$(node "$three/lod-check.mjs" "$work/$how" ${distances//,/ }) || fail "lod-check ($how): $shown"
-  [[ "$shown" == "[$expected]" ]] || fail "$how: at distances $distances THREE.LOD shows levels $shown, the manifest says [$expected]"
-  echo "$how: THREE.LOD shows the manifest's level at every distance: $distances -> $shown"
+  shown=$(node "$dir/lod-check.mjs" "$work/$how" ${distances//,/ }) || fail "lod-check ($how): $shown"
+  [[ "$shown" == "[$expected]" ]] || fail "$how: at distances $distances $api shows levels $shown, the manifest says [$expected]"
+  echo "$how: $api shows the manifest's level at every distance: $distances -> $shown"
 done

@@ -1,0 +1,33 @@
+// Switching a bake's per-level files with Babylon.js's Mesh.addLODLevel at the manifest's distances
+// (the README shows this file; tests/render/lod_test.sh runs it in headless Chromium).
+import { LoadAssetContainerAsync } from '@babylonjs/core/Loading/sceneLoader.js';
+import '@babylonjs/loaders/glTF';
+
+// baseUrl: the folder holding manifest.json and the .glb files; scene: a Scene with
+// useRightHandedSystem = true (glTF's frame); camera: its camera (fov vertical, Babylon's default);
+// screenHeight: the viewport's height in pixels. Returns the finest level's mesh, the others its LODs.
+export async function loadImpostorLOD(baseUrl, scene, camera, screenHeight) {
+  const manifest = await (await fetch(baseUrl + 'manifest.json')).json();
+  // Pixels per world unit at distance 1: an object of diagonal D at distance d spans D * z0 / d px.
+  const z0 = screenHeight / (2 * Math.tan(camera.fov / 2));
+  // The recommended chain when the bake measured one (qf-bake --chain: nearest first, each file
+  // shown while the object spans at most max_pixels, null = any size); else the impostor levels,
+  // finest first, each accurate (error under half a pixel) up to its max_screen_pixels.
+  const steps = manifest.recommended_chain
+    ? manifest.recommended_chain.chain.map((e) => ({ file: e.file, pixels: e.max_pixels }))
+    : [...manifest.levels].sort((a, b) => b.primitives - a.primitives)
+        .map((l, i) => ({ file: l.file, pixels: i === 0 ? null : l.max_screen_pixels }));
+  let finest = null;
+  for (const step of steps) {
+    const container = await LoadAssetContainerAsync(baseUrl + step.file, scene);
+    container.addAllToScene();
+    // Babylon switches single meshes (measuring from the finest one's bounding-sphere centre);
+    // every level file of a bake is one, a textured mesh LOD may be several (merge them first).
+    const meshes = container.meshes.filter((m) => m.getTotalVertices() > 0);
+    if (meshes.length !== 1) throw new Error(`${step.file}: ${meshes.length} meshes, addLODLevel takes one`);
+    // Shown from the distance at which the object spans step.pixels on; the first from 0.
+    if (finest === null) finest = meshes[0];
+    else finest.addLODLevel(manifest.bounding_box_diagonal * z0 / step.pixels, meshes[0]);
+  }
+  return finest;
+}
