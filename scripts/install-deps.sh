@@ -24,7 +24,7 @@ packages=(
   python3-jsonschema                              # validates our JSON outputs against schemas/ in tests
   clang libclang-rt-14-dev                        # libFuzzer + sanitizer runtimes: scripts/fuzz.sh, tests/fuzz
   assimp-testmodels                               # glTF 2.0 and OBJ test models, valid and malformed: the assets test
-  chromium                                        # three.js renders (scripts/three-render): engine-truth test, fidelity league
+  chromium                                        # three.js and Babylon.js renders (scripts/three-render, babylon-render): engine-truth tests, fidelity league
   slurm-wlm munge python3-yaml                    # the slurm test: a one-node cluster runs scripts/slurm/; the README's Kubernetes YAML
 )
 
@@ -46,10 +46,11 @@ if [[ ${#missing[@]} -gt 0 ]]; then
   $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-# npm packages, pinned by their package-lock.json: the glTF validator, and three.js + playwright-core
-# (which drives Debian's chromium; it downloads no browser of its own).
+# npm packages, pinned by their package-lock.json: the glTF validator, and three.js and Babylon.js,
+# each with playwright-core (which drives Debian's chromium; it downloads no browser of its own).
 scripts_dir="$(cd "$(dirname "$0")" && pwd)"
-for pkg in validate-gltf/node_modules/gltf-validator three-render/node_modules/three three-render/node_modules/playwright-core; do
+for pkg in validate-gltf/node_modules/gltf-validator three-render/node_modules/three three-render/node_modules/playwright-core \
+           babylon-render/node_modules/@babylonjs/core babylon-render/node_modules/@babylonjs/loaders babylon-render/node_modules/playwright-core; do
   dir="$scripts_dir/${pkg%%/node_modules/*}"
   if [[ ! -f "$scripts_dir/$pkg/package.json" ]]; then
     echo "install-deps: installing ${dir##*/} (npm ci)"

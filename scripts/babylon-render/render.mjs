@@ -35,11 +35,11 @@ function matrixGap(m, want) {
   return gap / size;
 }
 
+// One engine for every job: it keeps the shaders it compiled (SwiftShader takes ~1 s a PBR variant).
+let engine = null;
 window.qfRender = async (url, cams) => {
   const first = cams.views[0];
-  const canvas = document.createElement('canvas');
-  canvas.width = first.width; canvas.height = first.height;
-  const engine = createEngine(canvas);
+  if (!engine) engine = createEngine(document.createElement('canvas'));
   engine.setSize(first.width, first.height);
   const scene = createScene(engine);
   const { warnings } = await collectWarnings(async () => {
@@ -85,7 +85,7 @@ window.qfRender = async (url, cams) => {
     // What the engine drew: the active meshes that have geometry (not the loader's __root__).
   const active = scene.getActiveMeshes();
   const drawn = active.data.slice(0, active.length).filter((m) => m.getTotalVertices() > 0).map((m) => m.name);
-  engine.dispose();
+  scene.dispose();
   return { images, warnings, drawn };
 };
 `;

@@ -60,7 +60,7 @@ for i in "${!cases[@]}"; do
   IFS='|' read -r ref baked shown node <<<"${cases[$i]}"
   if [[ -z "${cams[$ref]:-}" ]]; then
     cams[$ref]="$work/cams_$i.json"
-    "$render" eval "$ref" "${shown:-$baked}" --views 8 --size 128 --no-engine --truth 1 --cameras "${cams[$ref]}" -o "$work/unused.json" 2>/dev/null ||
+    "$render" eval "$ref" "${shown:-$baked}" --views 8 --size 128 -m engine --no-engine --truth 1 --cameras "${cams[$ref]}" -o "$work/unused.json" 2>/dev/null ||
       fail "eval --cameras $ref"
   fi
   jobs+="$([[ $i -gt 0 ]] && echo ,){\"file\":\"$baked\",\"cameras\":\"${cams[$ref]}\",\"out\":\"$work/out_$i\"}"
@@ -71,7 +71,7 @@ node "$dir/render.mjs" --jobs "$work/jobs.json" || fail "$name renders"
 status=0
 for i in "${!cases[@]}"; do
   IFS='|' read -r ref baked shown node <<<"${cases[$i]}"
-  "$render" eval "$ref" "${shown:-$baked}" --views 8 --size 128 --truth 1 --external "$work/out_$i" -o "$work/eval_$i.json" 2>/dev/null ||
+  "$render" eval "$ref" "${shown:-$baked}" --views 8 --size 128 -m engine --truth 1 --external "$work/out_$i" -o "$work/eval_$i.json" 2>/dev/null ||
     fail "eval --external $baked"
   python3 - "$work/eval_$i.json" "$work/out_$i/load.json" "$name" "$(basename "$(dirname "$baked")")/$(basename "$baked")" "${shown:+$(basename "$shown")}" "$node" <<'PY' || status=1
 import json, sys
