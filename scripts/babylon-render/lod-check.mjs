@@ -2,7 +2,7 @@
 // and prints, as JSON, the level Babylon draws (0 = finest) with the camera at each distance from
 // the object's centre (fov 60, a 512 x 512 viewport): the mesh its LOD selection picked while
 // rendering a frame there (onLODLevelSelection).
-// usage: node lod-check.mjs BAKE_DIR DISTANCE...
+// usage: node lod-check.mjs BAKE_DIR DISTANCE,DISTANCE... [BAKE_DIR DISTANCE,...]... (one line of JSON each)
 import { chromium, babylonPage } from './browser.mjs';
 import { lodCheckMain } from '../web-render/jobs.mjs';
 
@@ -12,7 +12,7 @@ import { HemisphericLight } from '@babylonjs/core/Lights/hemisphericLight.js';
 import { Vector3 } from '@babylonjs/core/Maths/math.vector.js';
 import { createEngine, createScene } from 'qf/scene.mjs';
 import { loadImpostorLOD } from 'qf/impostor-lod.mjs';
-window.qfLevels = async (distances) => {
+window.qfLevels = async (baseUrl, distances) => {
   const canvas = document.createElement('canvas');
   canvas.width = 512; canvas.height = 512;
   const engine = createEngine(canvas);
@@ -22,7 +22,7 @@ window.qfLevels = async (distances) => {
   camera.minZ = 0.01;
   camera.maxZ = 1e6;
   new HemisphericLight('light', new Vector3(0, 1, 0), scene);
-  const finest = await loadImpostorLOD('/files/', scene, camera, 512);
+  const finest = await loadImpostorLOD(baseUrl, scene, camera, 512);
   await scene.whenReadyAsync();
   // Levels in the order loadImpostorLOD added them: getLODLevels lists the farthest first.
   const levels = [finest, ...finest.getLODLevels().map((l) => l.mesh).reverse()];
