@@ -9,7 +9,7 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
-export const origin = 'http://qf-render.invalid';
+const origin = 'http://qf-render.invalid';
 
 const types = { '.js': 'text/javascript', '.mjs': 'text/javascript', '.json': 'application/json', '.glb': 'model/gltf-binary',
                 '.wasm': 'application/wasm' };
