@@ -9,7 +9,7 @@ import { DracoDecoder } from '@babylonjs/core/Meshes/Compression/dracoDecoder.js
 import '@babylonjs/loaders/glTF';
 
 // The Draco decoder ships in @babylonjs/core/assets; by default Babylon fetches it from its CDN.
-// Decoded on the page's thread (no workers): one small file at a time needs none.
+// Decoded on the page's thread (numWorkers 0): no worker start-up for a few small files.
 DracoDecoder.DefaultConfiguration = {
   wasmUrl: new URL('/babylon/core/assets/Draco/draco_wasm_wrapper_gltf.js', location.href).href,
   wasmBinaryUrl: new URL('/babylon/core/assets/Draco/draco_decoder_gltf.wasm', location.href).href,
@@ -18,21 +18,24 @@ DracoDecoder.DefaultConfiguration = {
 };
 
 // Babylon filters textures 4x anisotropically by default; the engine method (like three.js) does
-// not, and at grazing angles the wider footprint moves where the alpha test cuts.
+// not, and at grazing angles the wider footprint moves where the alpha test cuts (the octahedron
+// level's IoU 0.0033 off the engine method's, the bush level's renders at IoU 0.981 of each other).
 BaseTexture.DEFAULT_ANISOTROPIC_FILTERING_LEVEL = 1;
 
 // No loading screen over the canvas (it is an HTML overlay, and a module of its own to import).
 SceneLoaderFlags.ShowLoadingScreen = false;
 
 export function createEngine(canvas) {
-  // useExactSrgbConversions: sRGB textures and output by the sRGB curve, not Babylon's default
-  // gamma 2.2 approximation (which darkens mid-tones by up to ~0.02 against the engine method).
+  // useExactSrgbConversions: sRGB textures and output by the sRGB curve, as the engine method does,
+  // not Babylon's default power-2.2 approximation (which left the bush level 6 levels of 255 bluer
+  // and the sphere level 0.6 dB off the engine method's PSNR, against 0.26 dB exact).
   return new Engine(canvas, false, { preserveDrawingBuffer: true, alpha: false, stencil: false, useExactSrgbConversions: true });
 }
 
 export function createScene(engine) {
   const scene = new Scene(engine);
-  // glTF is right-handed; without this the loader mirrors the model under a __root__ node.
+  // glTF and the engine method's cameras are right-handed; in Babylon's default left-handed scene
+  // the loader would convert the model under its __root__ node, and the cameras would not match.
   scene.useRightHandedSystem = true;
   const ip = scene.imageProcessingConfiguration;
   ip.toneMappingEnabled = false;  // Babylon's defaults, set so that a change of default shows here
