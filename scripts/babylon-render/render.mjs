@@ -85,8 +85,10 @@ window.qfRender = async (url, cams) => {
     // What the engine drew: the active meshes that have geometry (not the loader's __root__).
   const active = scene.getActiveMeshes();
   const drawn = active.data.slice(0, active.length).filter((m) => m.getTotalVertices() > 0).map((m) => m.name);
+  // What the scene holds at all: a combined file's other levels, were they kept to switch to.
+  const loaded = scene.meshes.filter((m) => m.getTotalVertices() > 0).map((m) => m.name);
   scene.dispose();
-  return { images, warnings, drawn };
+  return { images, warnings, drawn, loaded };
 };
 `;
 

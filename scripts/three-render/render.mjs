@@ -46,8 +46,11 @@ window.qfRender = async (url, cams) => {
   const images = captureViews(renderer.getContext(), cams, setView, draw);
   const drawn = [];
   gltf.scene.traverseVisible((o) => { if (o.isMesh || o.isPoints || o.isLine) drawn.push(o.name); });
+  // What the scene holds at all: a combined file's other levels, were they kept to switch to.
+  const loaded = [];
+  gltf.scene.traverse((o) => { if (o.isMesh || o.isPoints || o.isLine) loaded.push(o.name); });
   renderer.dispose();
-  return { images, warnings, drawn };
+  return { images, warnings, drawn, loaded };
 };
 `;
 

@@ -1,13 +1,13 @@
 // The command line both engines' render.mjs share: render .glb files from the cameras
 // `qf-render eval --cameras` writes, over black and over white, as OUT/view_I_black.png and
 // OUT/view_I_white.png (the renders `qf-render eval --external OUT` scores), plus OUT/load.json:
-// the loader's warnings and the names of the meshes the engine drew.
+// the loader's warnings, the names of the meshes the engine drew and of all it loaded.
 //
 // usage: node render.mjs FILE.glb CAMERAS.json OUTDIR
 //        node render.mjs --jobs JOBS.json     (a JSON array of {"file", "cameras", "out"}: one browser for all)
 // env:   QF_CHROMIUM  the Chromium executable (default /usr/bin/chromium)
 //
-// The engine's page must define window.qfRender(url, cams) -> {images, warnings, drawn}
+// The engine's page must define window.qfRender(url, cams) -> {images, warnings, drawn, loaded}
 // (images from capture.mjs captureViews).
 import fs from 'node:fs';
 import path from 'node:path';
@@ -58,7 +58,7 @@ export async function renderMain(label, chromium, page) {
         const cams = JSON.parse(fs.readFileSync(job.cameras, 'utf8'));
         try {
           // The file's path rides in the query so that each job's URL differs (no cached file).
-          const { images, warnings, drawn } = await tab.evaluate(([u, c]) => window.qfRender(u, c),
+          const { images, warnings, drawn, loaded } = await tab.evaluate(([u, c]) => window.qfRender(u, c),
             [`/files/model.glb?${encodeURIComponent(job.file)}`, cams]);
           fs.mkdirSync(job.out, { recursive: true });
           images.forEach((pair, i) => {
@@ -66,7 +66,7 @@ export async function renderMain(label, chromium, page) {
             fs.writeFileSync(path.join(job.out, `view_${i}_black.png`), encodePng(v.width, v.height, Buffer.from(pair[0], 'base64')));
             fs.writeFileSync(path.join(job.out, `view_${i}_white.png`), encodePng(v.width, v.height, Buffer.from(pair[1], 'base64')));
           });
-          fs.writeFileSync(path.join(job.out, 'load.json'), JSON.stringify({ warnings, drawn }, null, 1) + '\n');
+          fs.writeFileSync(path.join(job.out, 'load.json'), JSON.stringify({ warnings, drawn, loaded }, null, 1) + '\n');
           console.log(`${label}: ${job.file}: ${images.length} views -> ${job.out}` + (warnings.length ? ` (${warnings.length} warnings)` : ''));
         } catch (e) {
           ++failed;
