@@ -4,10 +4,12 @@
 // outputs: scripts/web-render/jobs.mjs). No antialiasing.
 // Matching the engine method (engine_scene.h EngineLights, three.js r187's units):
 // - the directional headlight keeps its intensity (pi x 0.7): Babylon's PBR lights multiply the
-//   BRDF (Lambert albedo / pi, GGX) by intensity x N.L, as three.js does;
+//   BRDF (albedo / pi: its default diffuse, Oren-Nayar at diffuse roughness 0, is Lambert's; GGX)
+//   by intensity x N.L, as three.js does;
 // - the ambient light (pi x 0.3) is a HemisphericLight with the same sky and ground colour (so the
 //   normal does not matter) at intensity 0.3: Babylon adds a hemispheric light's colour to the
-//   diffuse sum without the BRDF's 1 / pi, so the same irradiance is the intensity / pi;
+//   diffuse sum without the BRDF's 1 / pi, so three.js's ambient intensity is divided by pi;
+// - no tone mapping, exposure or contrast, exact sRGB, no anisotropic filtering: scene.mjs;
 // - the camera is Babylon's own TargetCamera from the eye, target, up, vertical fov and near/far;
 //   its view and projection matrices are checked against the engine method's.
 //
@@ -35,7 +37,8 @@ function matrixGap(m, want) {
   return gap / size;
 }
 
-// One engine for every job: it keeps the shaders it compiled (SwiftShader takes ~1 s a PBR variant).
+// One engine for every job: it keeps the shaders it compiled for the files before (SwiftShader
+// compiles Babylon's PBR shaders slowly).
 let engine = null;
 window.qfRender = async (url, cams) => {
   const first = cams.views[0];
