@@ -12,7 +12,7 @@ export async function loadImpostorLOD(baseUrl, scene, camera, screenHeight) {
   const z0 = screenHeight / (2 * Math.tan(camera.fov / 2));
   // The recommended chain when the bake measured one (qf-bake --chain: nearest first, each file
   // shown while the object spans at most max_pixels, null = any size); else the impostor levels,
-  // finest first, each accurate (error under half a pixel) up to its max_screen_pixels.
+  // finest first, each shown up to its max_screen_pixels (where its measured look holds).
   const steps = manifest.recommended_chain
     ? manifest.recommended_chain.chain.map((e) => ({ file: e.file, pixels: e.max_pixels }))
     : [...manifest.levels].sort((a, b) => b.primitives - a.primitives)
