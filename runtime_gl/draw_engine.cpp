@@ -42,10 +42,12 @@ void main() {
 
 const char* kFragmentShader = R"(#version 130
 const float PI = 3.141592653589793;
-uniform sampler2D u_base_map, u_normal_map, u_dfg;
+uniform sampler2D u_base_map, u_normal_map, u_dfg, u_mr_map, u_ao_map, u_emissive_map;
 uniform vec4 u_base_color;
-uniform float u_metallic, u_roughness, u_normal_scale, u_cutoff, u_dir_irradiance, u_ambient_irradiance;
+uniform vec3 u_emissive;
+uniform float u_metallic, u_roughness, u_normal_scale, u_cutoff, u_dir_irradiance, u_ambient_irradiance, u_ao_strength;
 uniform bool u_lit, u_has_base_map, u_has_normal_map, u_has_normals, u_has_tangents, u_double_sided, u_mask, u_blend;
+uniform bool u_has_mr_map, u_has_ao_map, u_has_emissive_map;
 in vec3 v_view_pos;
 in vec3 v_nrm, v_tan, v_bit;
 in vec2 v_uv;
@@ -109,11 +111,18 @@ void main() {
     m.xy *= vec2(u_normal_scale, u_has_tangents ? u_normal_scale : -u_normal_scale);
     normal = normalize(tbn * m);
   }
-  // 2. Material: roughness widened where the geometric normal varies within a pixel.
+  // 2. Material: factors x the metallic-roughness texture (B metallic, G roughness); roughness
+  //    widened where the geometric normal varies within a pixel.
+  float metallic = u_metallic, rough = u_roughness;
+  if (u_has_mr_map) {
+    vec4 mr = texture(u_mr_map, v_uv);
+    rough *= mr.g;
+    metallic *= mr.b;
+  }
   vec3 dxy = max(abs(dFdx(geometric)), abs(dFdy(geometric)));
-  float roughness = min(max(u_roughness, 0.045) + max(max(dxy.x, dxy.y), dxy.z), 1.0);
-  vec3 diffuse = albedo.rgb * (1.0 - u_metallic);
-  vec3 f0 = vec3(0.04), f0_blended = mix(f0, albedo.rgb, u_metallic);
+  float roughness = min(max(rough, 0.045) + max(max(dxy.x, dxy.y), dxy.z), 1.0);
+  vec3 diffuse = albedo.rgb * (1.0 - metallic);
+  vec3 f0 = vec3(0.04), f0_blended = mix(f0, albedo.rgb, metallic);
   vec3 view = normalize(v_view_pos);
   float nv = clamp(dot(normal, view), 0.0, 1.0);
   vec2 dfg = texture(u_dfg, vec2(roughness, nv)).rg;
@@ -131,7 +140,13 @@ void main() {
   float ess = dfg.x + dfg.y;
   vec3 favg = f0 + (1.0 - f0) / 21.0;
   vec3 multi = single * favg / (1.0 - (1.0 - ess) * favg) * (1.0 - ess);
-  color += vec3(u_ambient_irradiance) * diffuse / PI * (1.0 - single - multi);
+  // Occlusion darkens the ambient light only (glTF 2.0 3.9.4; three.js's aoMap on indirect diffuse).
+  float occlusion = u_has_ao_map ? (texture(u_ao_map, v_uv).r - 1.0) * u_ao_strength + 1.0 : 1.0;
+  color += vec3(u_ambient_irradiance) * diffuse / PI * (1.0 - single - multi) * occlusion;
+  // 5. Emission: factor x the sRGB emissive texture, added to what is reflected.
+  vec3 emissive = u_emissive;
+  if (u_has_emissive_map) emissive *= texture(u_emissive_map, v_uv).rgb;
+  color += emissive;
   gl_FragColor = vec4(to_srgb(color), alpha);
 }
 )";
@@ -283,6 +298,32 @@ void EngineDrawer::Impl::draw_primitive(const EnginePrimitive& p, const EngineMa
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, mat.normal_wrap_s);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, mat.normal_wrap_t);
   }
+  // The other channels' textures: units 3 (metallic-roughness), 4 (occlusion), 5 (emission).
+  const bool mr_map = lit && mat.metal_rough_texture >= 0 && !p.uvs.empty();
+  const bool ao_map = lit && mat.occlusion_texture >= 0 && !p.uvs.empty();
+  const bool emissive_map = lit && mat.emissive_texture >= 0 && !p.uvs.empty();
+  glUniform1i(loc("u_has_mr_map"), mr_map);
+  glUniform1i(loc("u_has_ao_map"), ao_map);
+  glUniform1i(loc("u_has_emissive_map"), emissive_map);
+  glUniform1f(loc("u_ao_strength"), mat.occlusion_strength);
+  glUniform3fv(loc("u_emissive"), 1, mat.emissive.data());
+  struct Map {
+    bool on;
+    GLenum unit;
+    const std::vector<GLuint>* images;
+    int image, wrap_s, wrap_t;
+  };
+  const Map maps[3] = {{mr_map, GL_TEXTURE3, &linear, mat.metal_rough_texture, mat.metal_rough_wrap_s, mat.metal_rough_wrap_t},
+                       {ao_map, GL_TEXTURE4, &linear, mat.occlusion_texture, mat.occlusion_wrap_s, mat.occlusion_wrap_t},
+                       {emissive_map, GL_TEXTURE5, &srgb, mat.emissive_texture, mat.emissive_wrap_s, mat.emissive_wrap_t}};
+  for (const Map& map : maps) {
+    glActiveTexture(map.unit);
+    glBindTexture(GL_TEXTURE_2D, map.on ? (*map.images)[static_cast<std::size_t>(map.image)] : 0);
+    if (map.on) {
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, map.wrap_s);
+      glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, map.wrap_t);
+    }
+  }
   glActiveTexture(GL_TEXTURE0);
   if (mat.double_sided || !lit) glDisable(GL_CULL_FACE);
   else glEnable(GL_CULL_FACE);
@@ -327,6 +368,9 @@ std::size_t EngineDrawer::draw(const Camera& camera, const EngineLights& lights,
   glUniform1i(m.loc("u_base_map"), 0);
   glUniform1i(m.loc("u_normal_map"), 1);
   glUniform1i(m.loc("u_dfg"), 2);
+  glUniform1i(m.loc("u_mr_map"), 3);
+  glUniform1i(m.loc("u_ao_map"), 4);
+  glUniform1i(m.loc("u_emissive_map"), 5);
   glActiveTexture(GL_TEXTURE2);
   glBindTexture(GL_TEXTURE_2D, m.dfg);
   glActiveTexture(GL_TEXTURE0);

@@ -1,6 +1,7 @@
 // The engine method: an EngineScene drawn as a standard glTF PBR engine draws it (three.js r187's
 // MeshStandardMaterial is the model followed, formula by formula): base colour factor x sRGB base
-// colour texture x COLOR_0, alpha MASK / BLEND, the normal map in the file's tangent frame (or
+// colour texture x COLOR_0, metallic and roughness factors x the metallic-roughness texture (B, G),
+// occlusion (R) of the ambient light, emission (factor x sRGB texture), alpha MASK / BLEND, the normal map in the file's tangent frame (or
 // the UV-derivative frame without TANGENT), flat normals without NORMAL, back faces culled unless
 // the material is double-sided (then lit with the flipped normal), GGX specular with Smith
 // visibility and multiple-scattering compensation, Lambert diffuse reduced by Fresnel, lighting in

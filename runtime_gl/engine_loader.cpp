@@ -122,6 +122,24 @@ EngineMaterial engine_material(const tinygltf::Model& m, int index, int& uv_set)
   out.roughness = static_cast<float>(pbr.roughnessFactor);
   out.normal_texture = image_of(mat.normalTexture.index);
   out.normal_scale = static_cast<float>(mat.normalTexture.scale);
+  // Metallic-roughness, occlusion and emission (glTF 2.0 3.9.2-3.9.5); their textures sample the
+  // base colour's uvs (the files qf-render draws use one set).
+  out.metal_rough_texture = image_of(pbr.metallicRoughnessTexture.index);
+  wraps_of(pbr.metallicRoughnessTexture.index, out.metal_rough_wrap_s, out.metal_rough_wrap_t);
+  out.occlusion_texture = image_of(mat.occlusionTexture.index);
+  wraps_of(mat.occlusionTexture.index, out.occlusion_wrap_s, out.occlusion_wrap_t);
+  out.occlusion_strength = static_cast<float>(mat.occlusionTexture.strength);
+  for (std::size_t c = 0; c < 3 && c < mat.emissiveFactor.size(); ++c) out.emissive[c] = static_cast<float>(mat.emissiveFactor[c]);
+  out.emissive_texture = image_of(mat.emissiveTexture.index);
+  wraps_of(mat.emissiveTexture.index, out.emissive_wrap_s, out.emissive_wrap_t);
+  if (out.base_texture < 0)
+    for (int t : {pbr.metallicRoughnessTexture.index, mat.emissiveTexture.index, mat.occlusionTexture.index})
+      if (image_of(t) >= 0) {
+        uv_set = t == pbr.metallicRoughnessTexture.index ? pbr.metallicRoughnessTexture.texCoord
+                 : t == mat.emissiveTexture.index       ? mat.emissiveTexture.texCoord
+                                                        : mat.occlusionTexture.texCoord;
+        break;
+      }
   out.alpha = mat.alphaMode == "MASK" ? EngineMaterial::Alpha::kMask : mat.alphaMode == "BLEND" ? EngineMaterial::Alpha::kBlend : EngineMaterial::Alpha::kOpaque;
   out.alpha_cutoff = static_cast<float>(mat.alphaCutoff);
   out.double_sided = mat.doubleSided;
@@ -241,7 +259,8 @@ EngineScene engine_scene(const tinygltf::Model& m, const std::string& path, cons
   for (int r : roots) visit(visit, r, identity, 0);
   for (const EnginePrimitive& p : s.primitives) {
     for (std::size_t v = 0; v + 2 < p.positions.size(); v += 3) s.bounds.add({p.positions[v], p.positions[v + 1], p.positions[v + 2]});
-    for (int t : {p.material.base_texture, p.material.normal_texture})
+    for (int t : {p.material.base_texture, p.material.normal_texture, p.material.metal_rough_texture, p.material.occlusion_texture,
+                  p.material.emissive_texture})
       if (t >= static_cast<int>(s.images.size())) fail(path, "image", "a material names a missing image");
   }
   return s;

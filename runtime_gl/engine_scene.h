@@ -23,6 +23,14 @@ struct EngineMaterial {
   // KHR_texture_transform, applied to the primitive's uvs when loading: u' = a u + b v + c, v' = d u + e v + f.
   std::array<float, 6> uv_transform{1, 0, 0, 0, 1, 0};
   float metallic = 1, roughness = 1;
+  // The other channels' textures (linear, but emissive: sRGB), sampling the same uvs: B metallic
+  // and G roughness (x the factors), R occlusion (of the ambient light: 1 + strength (R - 1)).
+  int metal_rough_texture = -1, occlusion_texture = -1;
+  int metal_rough_wrap_s = 10497, metal_rough_wrap_t = 10497, occlusion_wrap_s = 10497, occlusion_wrap_t = 10497;
+  float occlusion_strength = 1;
+  std::array<float, 3> emissive{0, 0, 0};  // linear RGB factor
+  int emissive_texture = -1;               // sRGB, x the factor
+  int emissive_wrap_s = 10497, emissive_wrap_t = 10497;
   int normal_texture = -1;                      // tangent-space normal map (linear), -1 none
   int normal_wrap_s = 10497, normal_wrap_t = 10497;
   float normal_scale = 1;

@@ -46,10 +46,21 @@ int wrap_code(TextureWrap w) {
   return w == TextureWrap::kClampToEdge ? 33071 : w == TextureWrap::kMirroredRepeat ? 33648 : 10497;
 }
 
-// A surface material as an engine material: the reference's rough dielectric (double-sided: an
-// input's winding is not trusted) with the file's colour, texture, wraps and alpha.
+// A surface material as an engine material: double-sided (an input's winding is not trusted) with
+// the file's colour, texture, wraps, alpha, and its metallic, roughness, occlusion and emission
+// (SurfaceMaterial's defaults are the reference's rough dielectric).
 EngineMaterial engine_material(const SurfaceMaterial& m) {
   EngineMaterial e = reference_material();
+  e.metallic = m.metallic;
+  e.roughness = m.roughness;
+  e.metal_rough_texture = m.metallic_roughness.image;
+  e.metal_rough_wrap_s = wrap_code(m.metallic_roughness.wrap_s), e.metal_rough_wrap_t = wrap_code(m.metallic_roughness.wrap_t);
+  e.occlusion_texture = m.occlusion.image;
+  e.occlusion_wrap_s = wrap_code(m.occlusion.wrap_s), e.occlusion_wrap_t = wrap_code(m.occlusion.wrap_t);
+  e.occlusion_strength = m.occlusion_strength;
+  e.emissive = m.emissive;
+  e.emissive_texture = m.emissive_texture.image;
+  e.emissive_wrap_s = wrap_code(m.emissive_texture.wrap_s), e.emissive_wrap_t = wrap_code(m.emissive_texture.wrap_t);
   e.base_color = m.base_color;
   e.base_texture = m.texture;
   e.base_wrap_s = wrap_code(m.wrap_s);
@@ -61,8 +72,10 @@ EngineMaterial engine_material(const SurfaceMaterial& m) {
   return e;
 }
 
-// Triangle t's three corners appended to p as unshared vertices.
-void push_corners(EnginePrimitive& p, const TriangleMesh& mesh, const MeshScene& scene, std::size_t t) {
+// Triangle t's three corners appended to p as unshared vertices; `uncoloured`: the mesh has no
+// colour of its own (only other material channels), so its vertices take the scene's constant
+// colour, as its quads do (surface_paint.h).
+void push_corners(EnginePrimitive& p, const TriangleMesh& mesh, const MeshScene& scene, std::size_t t, bool uncoloured) {
   const Triangle& tri = mesh.triangles[t];
   for (int k = 0; k < 3; ++k) {
     const std::uint32_t v = tri[static_cast<std::size_t>(k)];
@@ -73,7 +86,7 @@ void push_corners(EnginePrimitive& p, const TriangleMesh& mesh, const MeshScene&
       const Vec2f uv = mesh.corner_uvs[t][static_cast<std::size_t>(k)];
       p.uvs.insert(p.uvs.end(), {uv.x, uv.y});
     }
-    if (!mesh.colors.empty()) push_linear(p.colors, mesh.colors[v]);
+    if (!mesh.colors.empty() || uncoloured) push_linear(p.colors, scene.colors[v]);
   }
 }
 
@@ -139,7 +152,7 @@ EngineScene engine_scene(const MeshScene& mesh) {
 }
 
 bool has_material_look(const TriangleMesh& mesh) {
-  return !mesh.triangle_materials.empty() && mesh.has_surface_color();
+  return !mesh.triangle_materials.empty() && (mesh.has_surface_color() || mesh.has_material_channels());
 }
 
 EngineScene engine_scene(const TriangleMesh& mesh, const MeshScene& scene) {
@@ -149,7 +162,8 @@ EngineScene engine_scene(const TriangleMesh& mesh, const MeshScene& scene) {
   // 1. Triangles bucketed by material, each bucket in file order (deterministic draw lists).
   std::vector<EnginePrimitive> by_material(mesh.materials.size());
   for (std::size_t m = 0; m < mesh.materials.size(); ++m) by_material[m].material = engine_material(mesh.materials[m]);
-  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) push_corners(by_material[mesh.triangle_materials[t]], mesh, scene, t);
+  const bool uncoloured = !mesh.has_surface_color();
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) push_corners(by_material[mesh.triangle_materials[t]], mesh, scene, t, uncoloured);
   // 2. Materials no triangle uses draw nothing.
   for (EnginePrimitive& p : by_material)
     if (!p.indices.empty()) s.primitives.push_back(std::move(p));

@@ -24,14 +24,15 @@ MeshScene mesh_scene(const TriangleMesh& mesh, const std::string& source = "");
 // rough dielectric, double-sided material (an input mesh carries no material of its own).
 EngineScene engine_scene(const MeshScene& mesh);
 // True when `mesh` has a look of its own that only materials carry (glTF, OBJ + MTL with a texture
-// or a base colour): the same test as the sampler's (sample.cpp), so the reference shows what the
-// bake's points were coloured with, and a mesh without one keeps the constant base colour.
+// or a base colour; or metallic, roughness, occlusion or emission other than a rough dielectric's):
+// the sampler's test of colour (sample.cpp), so the reference shows what the bake's points were
+// coloured with, and a mesh without one keeps the constant base colour.
 bool has_material_look(const TriangleMesh& mesh);
 // A mesh as an engine draws it had it been exported as glTF with its materials: one primitive per
 // material used (in material order), vertices unshared (three per triangle: the corner UVs split
 // what positions share) with `scene`'s normals, the corner UVs and the vertex colours as COLOR_0
 // (linear; absent when the mesh has none, so the material's colour shows), the textures as images,
-// each material's base colour factor, wraps and alpha mode. Meshes without a material look
+// each material's base colour factor, wraps, alpha mode and its other channels. Meshes without a material look
 // (has_material_look false) give engine_scene(scene), unchanged. `scene` = mesh_scene(mesh).
 EngineScene engine_scene(const TriangleMesh& mesh, const MeshScene& scene);
 // A reference point set: each splat a disc (a quad with a disc alpha texture, MASK 0.5), facing

@@ -148,4 +148,12 @@ bool TriangleMesh::has_surface_color() const {
   return false;
 }
 
+bool TriangleMesh::has_material_channels() const {
+  for (const SurfaceMaterial& m : materials)
+    if (m.metallic != 0 || m.roughness != 1 || m.emissive != std::array<float, 3>{0, 0, 0} || m.metallic_roughness.image >= 0 ||
+        m.emissive_texture.image >= 0 || m.occlusion.image >= 0)
+      return true;
+  return false;
+}
+
 }  // namespace qf

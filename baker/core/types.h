@@ -109,6 +109,13 @@ enum class TextureWrap : std::uint8_t { kRepeat, kClampToEdge, kMirroredRepeat }
 // What a material's alpha means (glTF alphaMode): MASK texels under the cutoff are not surface.
 enum class AlphaMode : std::uint8_t { kOpaque, kMask, kBlend };
 
+// A texture a material channel samples: an index into TriangleMesh::textures (-1: none) and its
+// sampler's wraps.
+struct TextureRef {
+  int image = -1;
+  TextureWrap wrap_s = TextureWrap::kRepeat, wrap_t = TextureWrap::kRepeat;
+};
+
 // A surface's base colour as glTF defines it: base_color (linear RGBA) x the texture's sRGB texels
 // x the vertex colour. Texture coordinates come with the triangles (TriangleMesh::corner_uvs), with
 // any texture transform already applied.
@@ -120,6 +127,16 @@ struct SurfaceMaterial {
   AlphaMode alpha_mode = AlphaMode::kOpaque;
   float alpha_cutoff = 0.5f;
   bool double_sided = false;  // what engines cull (sampling sees both sides either way)
+  // The other channels of glTF's metallic-roughness model (glTF 2.0 3.9.2, 3.9.3). Defaults are a
+  // rough dielectric without emission: what formats without these channels (OFF, PLY, OBJ+MTL) are
+  // drawn as; a glTF file's materials carry their own factors (glTF's default: metallic 1).
+  // Textures sample the same texture coordinates as the base colour (corner_uvs).
+  float metallic = 0, roughness = 1;        // factors, 0..1
+  TextureRef metallic_roughness;            // linear texels: G roughness, B metallic (x the factors)
+  std::array<float, 3> emissive{0, 0, 0};  // linear RGB factor
+  TextureRef emissive_texture;              // sRGB texels (x the factor)
+  TextureRef occlusion;                     // linear texels, R: occlusion = 1 + strength (R - 1)
+  float occlusion_strength = 1;
 };
 
 // An indexed triangle mesh; per-vertex normals/colours are empty or one per position. Materials are
@@ -140,6 +157,9 @@ struct TriangleMesh {
   // True when the surface has a colour of its own: vertex colours, or a material with a texture or
   // a base colour other than white.
   bool has_surface_color() const;
+  // True when a material has a metallic, roughness, occlusion or emissive channel other than the
+  // defaults' rough dielectric without emission (a factor or a texture).
+  bool has_material_channels() const;
 
   // Smooth vertex normals: area-weighted face normals summed over the vertices at one position
   // (copies of a vertex split at a texture seam get the same normal); (0, 0, 1) where they cancel.

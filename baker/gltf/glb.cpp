@@ -159,10 +159,22 @@ int add_level_materials(tinygltf::Model& m, const Atlas& atlas, const GltfOption
     mat.name = prefix + "atlas_" + std::to_string(i);
     mat.pbrMetallicRoughness.baseColorTexture.index =
         add_png_texture(m, atlas.images[i], atlas.widths[i], atlas.heights[i], mat.name + "_color");
-    mat.pbrMetallicRoughness.metallicFactor = 0.0;
-    mat.pbrMetallicRoughness.roughnessFactor = 1.0;
+    // The material channels (atlas.h LevelChannels): factors where constant (a rough dielectric
+    // without emission where the input has none), textures in the atlas layout where they vary.
+    const LevelChannels& ch = atlas.channels;
+    mat.pbrMetallicRoughness.metallicFactor = canonical_double(ch.metallic);
+    mat.pbrMetallicRoughness.roughnessFactor = canonical_double(ch.roughness);
     if (i < atlas.normal_images.size())
       mat.normalTexture.index = add_png_texture(m, atlas.normal_images[i], atlas.widths[i], atlas.heights[i], mat.name + "_normal", true);
+    if (i < atlas.orm_images.size()) {
+      // One image: glTF's metallicRoughnessTexture reads G and B, occlusionTexture R.
+      const int orm = add_png_texture(m, atlas.orm_images[i], atlas.widths[i], atlas.heights[i], mat.name + "_orm", true);
+      mat.pbrMetallicRoughness.metallicRoughnessTexture.index = orm;
+      if (ch.occlusion_texture) mat.occlusionTexture.index = orm;
+    }
+    mat.emissiveFactor = {canonical_double(ch.emissive[0]), canonical_double(ch.emissive[1]), canonical_double(ch.emissive[2])};
+    if (i < atlas.emissive_images.size())
+      mat.emissiveTexture.index = add_png_texture(m, atlas.emissive_images[i], atlas.widths[i], atlas.heights[i], mat.name + "_emissive", true);
     mat.alphaMode = options.alpha_mode;
     if (options.alpha_mode == "MASK") mat.alphaCutoff = options.alpha_cutoff;
     // Double-sided: seen from behind (an open surface's inside, a thin part's far side) a quad
@@ -503,26 +515,36 @@ std::vector<std::uint8_t> encode_mesh_glb(const TriangleMesh& mesh, bool smooth_
 
 namespace {
 
+// A mesh texture with a sampler of its own (its wraps); returns the texture's index, -1 for none.
+int add_mesh_texture(tinygltf::Model& m, const TriangleMesh& mesh, const TextureRef& r, const std::string& name) {
+  if (r.image < 0) return -1;
+  const TextureImage& t = mesh.textures[static_cast<std::size_t>(r.image)];
+  const int texture = add_png_texture(m, t.rgba, t.width, t.height, name);
+  const auto code = [](TextureWrap w) {
+    return w == TextureWrap::kClampToEdge ? TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE
+           : w == TextureWrap::kMirroredRepeat ? TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT : TINYGLTF_TEXTURE_WRAP_REPEAT;
+  };
+  m.samplers.push_back(new_model({}).samplers[0]);
+  m.samplers.back().wrapS = code(r.wrap_s), m.samplers.back().wrapT = code(r.wrap_t);
+  m.textures[static_cast<std::size_t>(texture)].sampler = static_cast<int>(m.samplers.size() - 1);
+  return texture;
+}
+
 int add_surface_material(tinygltf::Model& m, const TriangleMesh& mesh, const SurfaceMaterial& s) {
   tinygltf::Material mat;
   mat.name = s.name;
   mat.pbrMetallicRoughness.baseColorFactor.assign(s.base_color.begin(), s.base_color.end());
-  mat.pbrMetallicRoughness.metallicFactor = 0;
+  mat.pbrMetallicRoughness.metallicFactor = canonical_double(s.metallic);
+  mat.pbrMetallicRoughness.roughnessFactor = canonical_double(s.roughness);
+  mat.emissiveFactor = {canonical_double(s.emissive[0]), canonical_double(s.emissive[1]), canonical_double(s.emissive[2])};
   mat.alphaMode = s.alpha_mode == AlphaMode::kMask ? "MASK" : s.alpha_mode == AlphaMode::kBlend ? "BLEND" : "OPAQUE";
   if (s.alpha_mode == AlphaMode::kMask) mat.alphaCutoff = s.alpha_cutoff;
   mat.doubleSided = s.double_sided;
-  if (s.texture >= 0) {
-    const TextureImage& t = mesh.textures[static_cast<std::size_t>(s.texture)];
-    const int texture = add_png_texture(m, t.rgba, t.width, t.height, s.name);  // + its own sampler:
-    const auto code = [](TextureWrap w) {
-      return w == TextureWrap::kClampToEdge ? TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE
-             : w == TextureWrap::kMirroredRepeat ? TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT : TINYGLTF_TEXTURE_WRAP_REPEAT;
-    };
-    m.samplers.push_back(new_model({}).samplers[0]);
-    m.samplers.back().wrapS = code(s.wrap_s), m.samplers.back().wrapT = code(s.wrap_t);
-    m.textures[static_cast<std::size_t>(texture)].sampler = static_cast<int>(m.samplers.size() - 1);
-    mat.pbrMetallicRoughness.baseColorTexture.index = texture;
-  }
+  mat.pbrMetallicRoughness.baseColorTexture.index = add_mesh_texture(m, mesh, {s.texture, s.wrap_s, s.wrap_t}, s.name);
+  mat.pbrMetallicRoughness.metallicRoughnessTexture.index = add_mesh_texture(m, mesh, s.metallic_roughness, s.name + "_mr");
+  mat.emissiveTexture.index = add_mesh_texture(m, mesh, s.emissive_texture, s.name + "_emissive");
+  mat.occlusionTexture.index = add_mesh_texture(m, mesh, s.occlusion, s.name + "_occlusion");
+  if (mat.occlusionTexture.index >= 0) mat.occlusionTexture.strength = s.occlusion_strength;
   m.materials.push_back(mat);
   return static_cast<int>(m.materials.size() - 1);
 }

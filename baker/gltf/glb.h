@@ -91,7 +91,8 @@ std::vector<std::uint8_t> encode_cluster_glb(const LodMesh& lod, const GltfOptio
 std::vector<std::uint8_t> encode_mesh_glb(const TriangleMesh& mesh, bool smooth_normals, const GltfOptions& options = {});
 
 // A mesh with its materials as a game asset (qf-bake generate tree): one primitive per material,
-// with its base colour factor, texture (PNG), sampler wraps, alpha mode and sidedness; corners
+// with its base colour factor, texture (PNG), sampler wraps, alpha mode, sidedness and its
+// metallic, roughness, emissive and occlusion factors and textures (sharing the base colour's uvs); corners
 // that share a position and texture coordinate share a vertex. Same mesh, same bytes.
 std::vector<std::uint8_t> encode_textured_mesh_glb(const TriangleMesh& mesh, const GltfOptions& options = {});
 

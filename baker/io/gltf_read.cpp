@@ -1,5 +1,5 @@
 // glTF 2.0 input (.gltf with external or data-URI buffers and images, .glb): the default scene as
-// one world-space triangle mesh with its base-colour materials (model_io.h, decode_gltf). The one
+// one world-space triangle mesh with its metallic-roughness materials (model_io.h, decode_gltf). The one
 // baker file that parses glTF; tinygltf reads the JSON and the buffers, this file checks every
 // accessor against its buffer before reading it, so a malformed file is an InputError naming its
 // JSON path and never a read out of bounds.
@@ -123,6 +123,9 @@ struct UvTransform {
   Vec2f apply(Vec2f uv) const {
     return {static_cast<float>(a * uv.x + b * uv.y + ox), static_cast<float>(c * uv.x + d * uv.y + oy)};
   }
+  bool operator==(const UvTransform& o) const {
+    return a == o.a && b == o.b && c == o.c && d == o.d && ox == o.ox && oy == o.oy && tex_coord == o.tex_coord;
+  }
 };
 
 double number_at(const tinygltf::Value& v, int i, double fallback) {
@@ -130,7 +133,9 @@ double number_at(const tinygltf::Value& v, int i, double fallback) {
   return v.Get(i).GetNumberAsDouble();
 }
 
-UvTransform uv_transform(const tinygltf::TextureInfo& info) {
+// (TextureInfo, NormalTextureInfo, OcclusionTextureInfo: the same fields.)
+template <class Info>
+UvTransform uv_transform(const Info& info) {
   UvTransform t;
   t.tex_coord = info.texCoord;
   const auto it = info.extensions.find("KHR_texture_transform");
@@ -145,10 +150,14 @@ UvTransform uv_transform(const tinygltf::TextureInfo& info) {
   return t;
 }
 
-// The file's materials as the mesh keeps them; textures are taken on first use.
+// The file's materials as the mesh keeps them; textures are taken on first use. The mesh keeps one
+// set of texture coordinates per triangle: a material's textures share the base colour's set and
+// transform (or, without a base colour texture, the first channel texture's); a channel texture
+// that names other ones is left out, with a warning, and its channel keeps its factor.
 class MaterialTable {
  public:
-  MaterialTable(const tinygltf::Model& m, const std::string& path, TriangleMesh& mesh) : m_(m), path_(path), mesh_(mesh) {}
+  MaterialTable(const tinygltf::Model& m, const std::string& path, TriangleMesh& mesh, ReadReport* report)
+      : m_(m), path_(path), mesh_(mesh), report_(report) {}
 
   // The mesh's material index for glTF material `index` (-1: the glTF default material).
   std::uint32_t material(int index) {
@@ -165,21 +174,20 @@ class MaterialTable {
       out.alpha_mode = g.alphaMode == "MASK" ? AlphaMode::kMask : g.alphaMode == "BLEND" ? AlphaMode::kBlend : AlphaMode::kOpaque;
       out.alpha_cutoff = static_cast<float>(g.alphaCutoff);
       out.double_sided = g.doubleSided;
-      const tinygltf::TextureInfo& info = g.pbrMetallicRoughness.baseColorTexture;
-      if (info.index >= 0) {
-        const std::string where = "materials[" + std::to_string(index) + "].pbrMetallicRoughness.baseColorTexture";
-        if (static_cast<std::size_t>(info.index) >= m_.textures.size())
-          fail(path_, "texture", where, "texture " + std::to_string(info.index) + " does not exist");
-        const tinygltf::Texture& tex = m_.textures[static_cast<std::size_t>(info.index)];
-        if (tex.source < 0 || static_cast<std::size_t>(tex.source) >= m_.images.size())
-          fail(path_, "image", "textures[" + std::to_string(info.index) + "].source", "names no image of the file");
-        if (tex.sampler >= 0 && static_cast<std::size_t>(tex.sampler) < m_.samplers.size()) {
-          out.wrap_s = wrap_of(m_.samplers[static_cast<std::size_t>(tex.sampler)].wrapS);
-          out.wrap_t = wrap_of(m_.samplers[static_cast<std::size_t>(tex.sampler)].wrapT);
-        }
-        out.texture = image(tex.source);
-        transforms_[index] = uv_transform(info);
-      }
+      const std::string at = "materials[" + std::to_string(index) + "]";
+      const TextureRef base = texture(index, g.pbrMetallicRoughness.baseColorTexture.index, uv_transform(g.pbrMetallicRoughness.baseColorTexture),
+                                      at + ".pbrMetallicRoughness.baseColorTexture");
+      out.texture = base.image, out.wrap_s = base.wrap_s, out.wrap_t = base.wrap_t;
+      // The other channels (glTF 2.0 3.9.2-3.9.5); factors keep glTF's defaults where absent.
+      out.metallic = static_cast<float>(g.pbrMetallicRoughness.metallicFactor);
+      out.roughness = static_cast<float>(g.pbrMetallicRoughness.roughnessFactor);
+      out.metallic_roughness = texture(index, g.pbrMetallicRoughness.metallicRoughnessTexture.index,
+                                       uv_transform(g.pbrMetallicRoughness.metallicRoughnessTexture),
+                                       at + ".pbrMetallicRoughness.metallicRoughnessTexture");
+      for (std::size_t c = 0; c < 3 && c < g.emissiveFactor.size(); ++c) out.emissive[c] = static_cast<float>(g.emissiveFactor[c]);
+      out.emissive_texture = texture(index, g.emissiveTexture.index, uv_transform(g.emissiveTexture), at + ".emissiveTexture");
+      out.occlusion = texture(index, g.occlusionTexture.index, uv_transform(g.occlusionTexture), at + ".occlusionTexture");
+      out.occlusion_strength = static_cast<float>(g.occlusionTexture.strength);
     }
     const auto id = static_cast<std::uint32_t>(mesh_.materials.size());
     mesh_.materials.push_back(out);
@@ -187,13 +195,42 @@ class MaterialTable {
     return id;
   }
 
-  // The texture-coordinate set and transform material `index` samples its base colour with.
+  // The texture-coordinate set and transform material `index` samples its textures with.
   const UvTransform* transform(int index) const {
     const auto it = transforms_.find(index);
     return it == transforms_.end() ? nullptr : &it->second;
   }
 
  private:
+  // The texture `texture` of material `material` (-1: none), its image taken and its texture
+  // coordinates checked against the material's set (see the class comment).
+  TextureRef texture(int material, int texture, const UvTransform& uv, const std::string& where) {
+    TextureRef out;
+    if (texture < 0) return out;
+    if (static_cast<std::size_t>(texture) >= m_.textures.size())
+      fail(path_, "texture", where, "texture " + std::to_string(texture) + " does not exist");
+    const tinygltf::Texture& tex = m_.textures[static_cast<std::size_t>(texture)];
+    if (tex.source < 0 || static_cast<std::size_t>(tex.source) >= m_.images.size())
+      fail(path_, "image", "textures[" + std::to_string(texture) + "].source", "names no image of the file");
+    const auto known = transforms_.find(material);
+    if (known != transforms_.end() && !(known->second == uv)) {
+      warn(where + " uses other texture coordinates than the material's base colour: baked with its factor alone");
+      return out;
+    }
+    transforms_[material] = uv;
+    if (tex.sampler >= 0 && static_cast<std::size_t>(tex.sampler) < m_.samplers.size()) {
+      out.wrap_s = wrap_of(m_.samplers[static_cast<std::size_t>(tex.sampler)].wrapS);
+      out.wrap_t = wrap_of(m_.samplers[static_cast<std::size_t>(tex.sampler)].wrapT);
+    }
+    out.image = image(tex.source);
+    return out;
+  }
+
+  void warn(const std::string& text) {
+    if (report_ && std::find(report_->warnings.begin(), report_->warnings.end(), text) == report_->warnings.end())
+      report_->warnings.push_back(text);
+  }
+
   int image(int source) {
     const auto found = images_.find(source);
     if (found != images_.end()) return found->second;
@@ -214,6 +251,7 @@ class MaterialTable {
   const tinygltf::Model& m_;
   const std::string& path_;
   TriangleMesh& mesh_;
+  ReadReport* report_;
   std::map<int, std::uint32_t> ids_;
   std::map<int, int> images_;
   std::map<int, UvTransform> transforms_;
@@ -263,7 +301,7 @@ struct SceneReader {
   std::size_t skipped = 0;
 
   SceneReader(const tinygltf::Model& model, const std::string& p, const ReadOptions& o, ReadReport* r)
-      : m(model), path(p), options(o), report(r), materials(model, p, mesh) {}
+      : m(model), path(p), options(o), report(r), materials(model, p, mesh, r) {}
 
   void warn(const std::string& text) {
     if (report && std::find(report->warnings.begin(), report->warnings.end(), text) == report->warnings.end())

@@ -65,14 +65,17 @@ void read_mtl(const std::string& obj_path, const std::string& mtl_path, Triangle
         mesh.materials.back().name = name;
       }
       current = &mesh.materials[library.by_name[name]];
-    } else if (current && key == "Kd" && words.size() >= 3) {
+    } else if (current && (key == "Kd" || key == "Ke") && words.size() >= 3) {
+      // Kd: the diffuse colour (glTF's base colour); Ke: the emitted colour (glTF's emissive factor).
+      float* out = key == "Kd" ? current->base_color.data() : current->emissive.data();
       for (int c = 0; c < 3; ++c) {
         double v = 0;
         if (!parse_double(words[static_cast<std::size_t>(c)], v) || !std::isfinite(v))
-          throw InputError("mtl.bad_number", path.string(), "line " + std::to_string(line), "expected 'Kd r g b' with numbers");
+          throw InputError("mtl.bad_number", path.string(), "line " + std::to_string(line),
+                           "expected '" + std::string(key) + " r g b' with numbers");
         // MTL colours are sRGB, like the textures they multiply.
         v = std::clamp(v, 0.0, 1.0);
-        current->base_color[static_cast<std::size_t>(c)] = static_cast<float>(v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4));
+        out[c] = static_cast<float>(v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4));
       }
     } else if (current && key == "map_Kd" && !words.empty()) {
       // Options (-s, -o, -bm ...) come first; the image is the last word.

@@ -6,8 +6,37 @@
 #include <numeric>
 #include <stdexcept>
 
+#include "core/color.h"
+
 namespace qf {
 namespace {
+
+// The range of channel c (Texture::channel_min order) over every tile's covered texels; min > max
+// where no tile has any.
+std::array<float, 2> channel_range(const std::vector<Texture>& textures, std::size_t c) {
+  std::array<float, 2> r{INFINITY, -INFINITY};
+  for (const Texture& t : textures) r[0] = std::min(r[0], t.channel_min[c]), r[1] = std::max(r[1], t.channel_max[c]);
+  return r;
+}
+
+// Whether occlusion (0), roughness (1) or metallic (2) spans more than one step of its linear byte.
+bool varies_orm(const std::vector<Texture>& textures, std::size_t c) {
+  const std::array<float, 2> r = channel_range(textures, c);
+  return r[0] <= r[1] && (r[1] - r[0]) * 255.0 > 1.0;
+}
+
+// Whether emissive channel c (0..2) spans more than one step of its sRGB byte.
+bool varies_emissive(const std::vector<Texture>& textures, std::size_t c) {
+  const std::array<float, 2> r = channel_range(textures, 3 + c);
+  return r[0] <= r[1] && linear_to_srgb8(r[1]) - linear_to_srgb8(r[0]) > 1;
+}
+
+// The middle of a constant channel's range (its value: averages of one value are that value), or
+// `fallback` where no texel is covered.
+float constant_value(const std::vector<Texture>& textures, std::size_t c, float fallback) {
+  const std::array<float, 2> r = channel_range(textures, c);
+  return r[0] <= r[1] ? std::clamp(0.5f * (r[0] + r[1]), 0.0f, 1.0f) : fallback;
+}
 
 int round_up(int v, int m) { return (v + m - 1) / m * m; }
 
@@ -47,6 +76,37 @@ std::vector<int> place_on_shelves(const std::vector<int>& pw, const std::vector<
     heights[image] = std::max(heights[image], y + shelf);
   }
   return heights;
+}
+
+// Channel c's texels of `images` (RGBA) set to 255: a constant channel is carried by its factor.
+void saturate_channel(std::vector<std::vector<std::uint8_t>>& images, std::size_t c) {
+  for (std::vector<std::uint8_t>& img : images)
+    for (std::size_t k = c; k < img.size(); k += 4) img[k] = 255;
+}
+
+// Step 5: the ORM and emissive images of the channels that vary, in the colour images' layout.
+void fill_channel_images(const std::vector<Texture>& textures, const std::vector<int>& pw, const std::vector<int>& ph, const AtlasOptions& o,
+                         Atlas& a) {
+  const LevelChannels& ch = a.channels;
+  for (int which = 0; which < 2; ++which) {
+    if (!(which == 0 ? ch.orm_texture : ch.emissive_texture)) continue;
+    std::vector<std::vector<std::uint8_t>>& images = which == 0 ? a.orm_images : a.emissive_images;
+    for (std::size_t i = 0; i < a.images.size(); ++i) images.emplace_back(a.images[i].size(), 255);
+    for (std::size_t k = 0; k < textures.size(); ++k) {
+      const AtlasTile& t = a.tiles[k];
+      blit(which == 0 ? textures[k].orm : textures[k].emissive, textures[k], t.x - o.gutter, t.y - o.gutter, pw[k], ph[k], o.gutter,
+           a.widths[t.atlas], images[t.atlas]);
+    }
+    // Constant channels: 255, their factor carries the value.
+    if (which == 0) {
+      if (!ch.occlusion_texture) saturate_channel(images, 0);
+      for (std::size_t c = 1; c < 3; ++c)
+        if (!varies_orm(textures, c)) saturate_channel(images, c);
+    } else {
+      for (std::size_t c = 0; c < 3; ++c)
+        if (!varies_emissive(textures, c)) saturate_channel(images, c);
+    }
+  }
 }
 
 // Step 4: the images (and normal maps, when every texture has one), power-of-two high, the
@@ -104,7 +164,28 @@ Atlas pack_atlas(const std::vector<Texture>& textures, const AtlasOptions& o) {
   // 3. Shelves, 4. images and texture coordinates.
   const std::vector<int> heights = place_on_shelves(pw, ph, order, width, o, a.tiles, textures);
   fill_images(textures, pw, ph, width, heights, o, a);
+  // 5. The material channels: factors, and images of those that vary.
+  a.channels = level_channels(textures);
+  fill_channel_images(textures, pw, ph, o, a);
   return a;
+}
+
+LevelChannels level_channels(const std::vector<Texture>& textures) {
+  LevelChannels out;
+  if (textures.empty() || !std::all_of(textures.begin(), textures.end(), [](const Texture& t) { return !t.orm.empty(); }))
+    return out;
+  // Occlusion: a texture unless it is 1 (to its byte) wherever the surface is.
+  const std::array<float, 2> occlusion = channel_range(textures, 0);
+  out.occlusion_texture = occlusion[0] <= occlusion[1] && occlusion[0] * 255.0 < 254.0;
+  out.orm_texture = out.occlusion_texture || varies_orm(textures, 1) || varies_orm(textures, 2);
+  out.roughness = varies_orm(textures, 1) ? 1.0f : constant_value(textures, 1, 1.0f);
+  out.metallic = varies_orm(textures, 2) ? 1.0f : constant_value(textures, 2, 0.0f);
+  for (std::size_t c = 0; c < 3; ++c) {
+    const bool varies = varies_emissive(textures, c);
+    out.emissive_texture |= varies;
+    out.emissive[c] = varies ? 1.0f : constant_value(textures, 3 + c, 0.0f);
+  }
+  return out;
 }
 
 }  // namespace qf

@@ -123,12 +123,13 @@ std::vector<PaintedTexel> paint_surface(const TriangleMesh& mesh, const std::vec
   s.height_of.assign(static_cast<std::size_t>(s.width) * static_cast<std::size_t>(s.height), 0.0f);
   s.triangle.assign(s.height_of.size(), kNone);
   draw(mesh, triangles, g, s);
+  const bool channels = mesh.has_material_channels();
   // 2. Each texel from its subsamples.
   const double share = 1.0 / (s.per_side * s.per_side);
   for (int j = 0; j < g.height; ++j)
     for (int i = 0; i < g.width; ++i) {
       PaintedTexel& texel = out[static_cast<std::size_t>(j) * static_cast<std::size_t>(g.width) + static_cast<std::size_t>(i)];
-      double rgb[3] = {0, 0, 0};
+      double rgb[3] = {0, 0, 0}, orm[3] = {0, 0, 0}, emissive[3] = {0, 0, 0};
       Vec3f nsum{};
       int covered = 0;
       for (int b = 0; b < s.per_side; ++b)
@@ -144,12 +145,22 @@ std::vector<PaintedTexel> paint_surface(const TriangleMesh& mesh, const std::vec
           Vec3f n;
           look(mesh, normals, triangles[k], w, g, c, n);
           for (int ch = 0; ch < 3; ++ch) rgb[ch] += c[ch];
+          if (channels) {
+            const SurfaceChannels m = surface_channels(mesh, triangles[k], w);
+            orm[0] += m.occlusion, orm[1] += m.roughness, orm[2] += m.metallic;
+            for (int ch = 0; ch < 3; ++ch) emissive[ch] += m.emissive[static_cast<std::size_t>(ch)];
+          }
           nsum = nsum + n;
           ++covered;
         }
       if (covered == 0) continue;
       texel.coverage = static_cast<float>(covered * share);
       for (int ch = 0; ch < 3; ++ch) texel.color[static_cast<std::size_t>(ch)] = static_cast<float>(rgb[ch] / covered);
+      if (channels)
+        for (std::size_t ch = 0; ch < 3; ++ch) {
+          texel.orm[ch] = static_cast<float>(orm[ch] / covered);
+          texel.emissive[ch] = static_cast<float>(emissive[ch] / covered);
+        }
       const Vec3f n = normalized(nsum, g.normal);
       texel.normal = {dot(n, g.axis_u), dot(n, g.axis_v), dot(n, g.normal)};
     }

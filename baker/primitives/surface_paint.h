@@ -29,13 +29,18 @@ struct PaintedTexel {
   float coverage = 0;                  // share of the texel's subsamples on the surface, 0..1
   std::array<float, 3> color{};        // linear RGB, mean over the covered subsamples
   std::array<float, 3> normal{0, 0, 1};  // mean unit normal there, in (axis_u, axis_v, normal)
+  // The material channels (sample/surface_color.h surface_channels), means over the covered
+  // subsamples, linear; left at the defaults when the mesh has none (has_material_channels).
+  std::array<float, 3> orm{1, 1, 0};     // occlusion, roughness, metallic
+  std::array<float, 3> emissive{0, 0, 0};  // RGB
 };
 
 // Per texel, row-major: what the mesh shows seen from the quad's front. Each subsample takes the
 // fragment of `triangles` nearest the viewer on the normal's side (ties to the lower triangle),
 // within the slab, that is not cut out by a MASK material; its colour as an engine shows it
 // (sample/surface_color.h: base colour x texture x vertex colour; a mesh without materials its
-// vertex colours, else base_color) and its normal (`normals`, one per vertex, interpolated; the
+// vertex colours, else base_color), its material channels (occlusion, roughness, metallic,
+// emission, as an engine shows them: surface_channels) and its normal (`normals`, one per vertex, interpolated; the
 // face's where empty), turned to the quad's front (a double-sided face is lit so from behind).
 std::vector<PaintedTexel> paint_surface(const TriangleMesh& mesh, const std::vector<Vec3f>& normals,
                                         const std::vector<std::uint32_t>& triangles, const PaintGrid& grid);

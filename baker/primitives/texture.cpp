@@ -192,7 +192,7 @@ void interpolate_triangles(const std::vector<Sample>& samples, const Grid& g, Ac
 
 std::uint8_t to8(double v) { return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 255.0))); }
 
-// Texels with alpha 0 take the colour (and normal) of the nearest texel with alpha > 0 (breadth
+// Texels with alpha 0 take the colour (and normal and material channels) of the nearest texel with alpha > 0 (breadth
 // first over the grid, 4-neighbourhood, sources in index order), so filtering never pulls in black
 // (thesis 3.3.4).
 void extend_colors(Texture& tex) {
@@ -214,8 +214,9 @@ void extend_colors(Texture& tex) {
       if (has[q]) continue;
       has[q] = 1;
       for (int c = 0; c < 3; ++c) tex.rgba[4 * q + static_cast<std::size_t>(c)] = tex.rgba[4 * k + static_cast<std::size_t>(c)];
-      if (!tex.normals.empty())
-        for (int c = 0; c < 3; ++c) tex.normals[4 * q + static_cast<std::size_t>(c)] = tex.normals[4 * k + static_cast<std::size_t>(c)];
+      for (std::vector<std::uint8_t>* image : {&tex.normals, &tex.orm, &tex.emissive})
+        if (!image->empty())
+          for (int c = 0; c < 3; ++c) (*image)[4 * q + static_cast<std::size_t>(c)] = (*image)[4 * k + static_cast<std::size_t>(c)];
       queue.push_back(q);
     }
   }
@@ -374,7 +375,20 @@ std::vector<std::uint32_t> domain_triangles(const MeshSurface& surface, const Do
   return out;
 }
 
-// Colour and normals of the texels the mesh covers, from the mesh drawn onto the quad; returns
+// Texel k's material channels from what the mesh shows there, and their ranges.
+void paint_channels(const PaintedTexel& p, std::size_t k, Texture& tex) {
+  for (std::size_t c = 0; c < 3; ++c) {
+    tex.orm[4 * k + c] = to8(255.0 * p.orm[c]);
+    tex.emissive[4 * k + c] = linear_to_srgb8(p.emissive[c]);
+    const float v[2] = {p.orm[c], p.emissive[c]};
+    for (std::size_t j = 0; j < 2; ++j) {
+      tex.channel_min[3 * j + c] = std::min(tex.channel_min[3 * j + c], v[j]);
+      tex.channel_max[3 * j + c] = std::max(tex.channel_max[3 * j + c], v[j]);
+    }
+  }
+}
+
+// Colour, normals (and material channels) of the texels the mesh covers, from the mesh drawn onto the quad; returns
 // each texel's coverage.
 std::vector<double> paint_from_mesh(const MeshSurface& surface, const std::vector<std::uint32_t>& triangles, const SupportRect& r,
                                     const Grid& grid, double slab, double min_z, const TextureOptions& o, Texture& tex) {
@@ -382,11 +396,17 @@ std::vector<double> paint_from_mesh(const MeshSurface& surface, const std::vecto
                slab, o.coverage_samples, o.base_color};
   const std::vector<PaintedTexel> painted = paint_surface(*surface.mesh, surface.normals, triangles, pg);
   std::vector<double> coverage(painted.size(), 0.0);
+  if (surface.mesh->has_material_channels()) {
+    tex.orm.assign(4 * painted.size(), 255);
+    tex.emissive.assign(4 * painted.size(), 255);
+    for (std::size_t k = 0; k < painted.size(); ++k) tex.orm[4 * k + 2] = 0, std::fill_n(&tex.emissive[4 * k], 3, 0);
+  }
   for (std::size_t k = 0; k < painted.size(); ++k) {
     const PaintedTexel& p = painted[k];
     coverage[k] = p.coverage;
     if (!(p.coverage > 0)) continue;
     for (int c = 0; c < 3; ++c) tex.rgba[4 * k + static_cast<std::size_t>(c)] = linear_to_srgb8(p.color[static_cast<std::size_t>(c)]);
+    if (!tex.orm.empty()) paint_channels(p, k, tex);
     if (!tex.normals.empty()) {
       const double v[3] = {p.normal[0], p.normal[1], p.normal[2]};
       const std::array<double, 3> nm = within_cone(v, min_z);

@@ -5,6 +5,8 @@
 // seams' alpha.
 #pragma once
 
+#include <array>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -107,6 +109,16 @@ struct Texture {
   // Tangent-space normal map (glTF convention: RGB = (n.axis_u, n.axis_v, n.normal) * 0.5 + 0.5),
   // width * height * 4 with A = 255; empty when no normals were given.
   std::vector<std::uint8_t> normals;
+  // A mesh input's material channels (surface_paint.h), same layout with A = 255, both empty when
+  // the mesh has none (TriangleMesh::has_material_channels): `orm` R occlusion, G roughness,
+  // B metallic as linear bytes (as glTF's occlusion and metallicRoughness textures read them);
+  // `emissive` the emitted colour, sRGB.
+  std::vector<std::uint8_t> orm, emissive;
+  // Their range over the texels the surface covers, linear: occlusion, roughness, metallic,
+  // emissive R, G, B (min > max where none is covered). The level makes a channel that does not
+  // vary a factor (atlas.h LevelChannels).
+  std::array<float, 6> channel_min{INFINITY, INFINITY, INFINITY, INFINITY, INFINITY, INFINITY};
+  std::array<float, 6> channel_max{-INFINITY, -INFINITY, -INFINITY, -INFINITY, -INFINITY, -INFINITY};
   std::size_t covered = 0;         // texels with alpha > 0
 };
 

@@ -39,8 +39,9 @@ int texel_index(double floored) {
   return static_cast<int>(std::fmax(std::fmin(floored, 1e9), -1e9));
 }
 
-// sample_texture, with the alpha sum only when `kAlpha` (only MASK materials look at it).
-template <bool kAlpha>
+// sample_texture, with the alpha sum only when `kAlpha` (only MASK materials look at it); texels
+// read as sRGB colours, or as linear data (metallic, roughness, occlusion) when !kSrgb.
+template <bool kAlpha, bool kSrgb = true>
 std::array<float, 4> bilinear(const TextureImage& image, Vec2f uv, TextureWrap wrap_s, TextureWrap wrap_t) {
   // Texel centres lie at (i + 0.5) / width; repeating wraps work on any coordinate, so the
   // fraction is taken before the (float) product can lose precision far from 0..1.
@@ -62,9 +63,9 @@ std::array<float, 4> bilinear(const TextureImage& image, Vec2f uv, TextureWrap w
       const double weight = (dx ? ax : 1 - ax) * (dy ? ay : 1 - ay);
       if (weight == 0) continue;
       const std::uint8_t* t = &image.rgba[(static_cast<std::size_t>(iy[dy]) * static_cast<std::size_t>(image.width) + static_cast<std::size_t>(ix[dx])) * 4];
-      r += static_cast<float>(weight * srgb8_to_linear(t[0]));
-      g += static_cast<float>(weight * srgb8_to_linear(t[1]));
-      b += static_cast<float>(weight * srgb8_to_linear(t[2]));
+      r += static_cast<float>(weight * (kSrgb ? srgb8_to_linear(t[0]) : t[0] / 255.0));
+      g += static_cast<float>(weight * (kSrgb ? srgb8_to_linear(t[1]) : t[1] / 255.0));
+      b += static_cast<float>(weight * (kSrgb ? srgb8_to_linear(t[2]) : t[2] / 255.0));
       if (kAlpha) a += static_cast<float>(weight * t[3] / 255.0);
     }
   return {r, g, b, a};
@@ -120,6 +121,31 @@ SurfaceColor surface_color(const TriangleMesh& mesh, std::size_t t, const double
   SurfaceColor out;
   out.color = {linear_to_srgb8(rgba[0]), linear_to_srgb8(rgba[1]), linear_to_srgb8(rgba[2])};
   out.surface = !(m && m->alpha_mode == AlphaMode::kMask && rgba[3] < m->alpha_cutoff);
+  return out;
+}
+
+SurfaceChannels surface_channels(const TriangleMesh& mesh, std::size_t t, const double w[3]) {
+  SurfaceChannels out;
+  if (mesh.triangle_materials.empty()) return out;
+  const SurfaceMaterial& m = mesh.materials[mesh.triangle_materials[t]];
+  out.roughness = m.roughness, out.metallic = m.metallic, out.emissive = m.emissive;
+  if (mesh.corner_uvs.empty()) return out;
+  const std::array<Vec2f, 3>& uv = mesh.corner_uvs[t];
+  const Vec2f at{static_cast<float>(w[0] * uv[0].x + w[1] * uv[1].x + w[2] * uv[2].x),
+                 static_cast<float>(w[0] * uv[0].y + w[1] * uv[1].y + w[2] * uv[2].y)};
+  auto texel = [&](const TextureRef& r, bool srgb) {
+    const TextureImage& image = mesh.textures[static_cast<std::size_t>(r.image)];
+    return srgb ? bilinear<false, true>(image, at, r.wrap_s, r.wrap_t) : bilinear<false, false>(image, at, r.wrap_s, r.wrap_t);
+  };
+  if (m.metallic_roughness.image >= 0) {
+    const std::array<float, 4> mr = texel(m.metallic_roughness, false);
+    out.roughness *= mr[1], out.metallic *= mr[2];
+  }
+  if (m.occlusion.image >= 0) out.occlusion = 1 + m.occlusion_strength * (texel(m.occlusion, false)[0] - 1);
+  if (m.emissive_texture.image >= 0) {
+    const std::array<float, 4> e = texel(m.emissive_texture, true);
+    for (std::size_t c = 0; c < 3; ++c) out.emissive[c] *= e[c];
+  }
   return out;
 }
 

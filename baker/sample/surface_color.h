@@ -17,6 +17,16 @@ struct SurfaceColor {
 // At barycentric weights w of triangle t. Meshes without materials and vertex colours give white.
 SurfaceColor surface_color(const TriangleMesh& mesh, std::size_t t, const double w[3]);
 
+// The other channels of glTF's metallic-roughness model an engine shows at a point (glTF 2.0
+// 3.9.2-3.9.5), linear: occlusion (1 + strength x (texel R - 1)), roughness and metallic (factor x
+// texel G, B), and the emitted colour (factor x the sRGB texel, decoded). Texture coordinates as
+// for the base colour; a mesh without materials gets the defaults.
+struct SurfaceChannels {
+  float occlusion = 1, roughness = 1, metallic = 0;
+  std::array<float, 3> emissive{0, 0, 0};
+};
+SurfaceChannels surface_channels(const TriangleMesh& mesh, std::size_t t, const double w[3]);
+
 // The vertex colours of triangle t at barycentric weights w, interpolated in sRGB bytes as stored:
 // the colour of a mesh without materials (PLY, OFF), as its sampled points and its quads take it.
 Rgb8 interpolated_vertex_color(const TriangleMesh& mesh, std::size_t t, const double w[3]);
