@@ -8,7 +8,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 "$writer" "$work" || exit 1
 files=("$work"/*.glb)
-[[ ${#files[@]} -ge 10 ]] || { echo "expected 10 .glb files, got ${#files[@]}"; exit 1; }
+[[ ${#files[@]} -ge 12 ]] || { echo "expected 12 .glb files, got ${#files[@]}"; exit 1; }
 node "$validator/validate.js" "${files[@]}"
 status=$?
 # The extension block of every file, and the schema's examples, against the extension's schema.
@@ -65,6 +65,17 @@ for f in files:
                 or "QF_point_impostor" in doc.get("extensionsRequired", []):
             print(f, "QF_point_impostor structure wrong"); bad = 1
         continue
+    if f.endswith("_asset.glb"):
+        # A game asset with material channels (the plate): metallicRoughness and emissive textures.
+        right = doc["materials"][1]
+        if "metallicRoughnessTexture" not in right["pbrMetallicRoughness"] or "emissiveTexture" not in right:
+            print(f, "material channels missing"); bad = 1
+        continue
+    if f.startswith(os.path.join(os.path.dirname(f), "plate_")):
+        # Its level: one material, ORM and emissive atlas textures beside colour and normals.
+        mats = doc["materials"]
+        if len(mats) != 1 or "metallicRoughnessTexture" not in mats[0]["pbrMetallicRoughness"] or "emissiveTexture" not in mats[0]:
+            print(f, "level material channels missing"); bad = 1
     ext = doc["extensions"]["QF_impostor_level"]
     errors = list(check.iter_errors(ext))
     n = ext["quadCount"]

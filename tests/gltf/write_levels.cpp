@@ -9,9 +9,11 @@
 #include "domains/merge.h"
 #include "core/file_io.h"
 #include "gltf/glb.h"
+#include "pipeline/asset.h"
 #include "primitives/texture.h"
 #include "sample/sample.h"
 #include "shapes/shapes.h"
+#include "../unit/render/material_fixture.h"
 
 using namespace qf;
 
@@ -75,5 +77,16 @@ int main(int argc, char** argv) {
   const LodMesh lod = cluster_mesh(m, grade_vertices(m), co);
   write_bytes_atomically(dir + "/sphere_cluster.glb", encode_cluster_glb(lod));
   write_bytes_atomically(dir + "/sphere_cluster_draco.glb", encode_cluster_glb(lod, {}, true));  // KHR_draco_mesh_compression
+  // Material channels (issue 31): an asset whose halves differ in metallic, roughness and emission
+  // (metallicRoughness and emissive textures), and its level (ORM and emissive atlas textures).
+  write_bytes_atomically(dir + "/plate_asset.glb", encode_textured_mesh_glb(test::material_plate(true)));
+  AssetOptions ao;
+  ao.bake.primitives = {8};
+  ao.sample.ldi_size = 96;
+  ao.point_impostor = false;
+  ao.mesh_lods = AssetOptions::MeshLods::kNone;
+  const AssetBake plate = bake_asset(dir + "/plate_asset.glb", ao, "plate_asset.glb");
+  if (plate.files.empty()) return std::fprintf(stderr, "the plate's bake wrote no level\n"), 1;
+  write_bytes_atomically(dir + "/plate_level.glb", plate.files.front().bytes);
   return 0;
 }
