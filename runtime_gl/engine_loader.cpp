@@ -132,14 +132,11 @@ EngineMaterial engine_material(const tinygltf::Model& m, int index, int& uv_set)
   for (std::size_t c = 0; c < 3 && c < mat.emissiveFactor.size(); ++c) out.emissive[c] = static_cast<float>(mat.emissiveFactor[c]);
   out.emissive_texture = image_of(mat.emissiveTexture.index);
   wraps_of(mat.emissiveTexture.index, out.emissive_wrap_s, out.emissive_wrap_t);
-  if (out.base_texture < 0)
-    for (int t : {pbr.metallicRoughnessTexture.index, mat.emissiveTexture.index, mat.occlusionTexture.index})
-      if (image_of(t) >= 0) {
-        uv_set = t == pbr.metallicRoughnessTexture.index ? pbr.metallicRoughnessTexture.texCoord
-                 : t == mat.emissiveTexture.index       ? mat.emissiveTexture.texCoord
-                                                        : mat.occlusionTexture.texCoord;
-        break;
-      }
+  if (out.base_texture < 0) {  // without a base colour texture, the first channel texture's set
+    if (out.metal_rough_texture >= 0) uv_set = pbr.metallicRoughnessTexture.texCoord;
+    else if (out.emissive_texture >= 0) uv_set = mat.emissiveTexture.texCoord;
+    else if (out.occlusion_texture >= 0) uv_set = mat.occlusionTexture.texCoord;
+  }
   out.alpha = mat.alphaMode == "MASK" ? EngineMaterial::Alpha::kMask : mat.alphaMode == "BLEND" ? EngineMaterial::Alpha::kBlend : EngineMaterial::Alpha::kOpaque;
   out.alpha_cutoff = static_cast<float>(mat.alphaCutoff);
   out.double_sided = mat.doubleSided;

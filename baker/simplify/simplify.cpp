@@ -107,7 +107,7 @@ SimplifiedMesh simplify_mesh(const TriangleMesh& mesh, std::size_t target_triang
   return out;
 }
 
-TextureImage halve_texture(const TextureImage& t) {
+TextureImage halve_texture(const TextureImage& t, bool data) {
   TextureImage h;
   h.width = std::max(1, (t.width + 1) / 2), h.height = std::max(1, (t.height + 1) / 2);
   h.rgba.resize(4 * static_cast<std::size_t>(h.width) * static_cast<std::size_t>(h.height));
@@ -122,19 +122,29 @@ TextureImage halve_texture(const TextureImage& t) {
           const std::size_t y = static_cast<std::size_t>(std::min(2 * j + dj, t.height - 1));
           const std::uint8_t* p = &t.rgba[4 * (y * static_cast<std::size_t>(t.width) + x)];
           const double a = p[3] / 255.0;
-          for (int c = 0; c < 3; ++c) sum[c] += a * srgb8_to_linear(p[c]);
+          for (int c = 0; c < 3; ++c) sum[c] += a * (data ? p[c] / 255.0 : srgb8_to_linear(p[c]));
           alpha += a;
         }
       std::uint8_t* q = &h.rgba[4 * (static_cast<std::size_t>(j) * static_cast<std::size_t>(h.width) + static_cast<std::size_t>(i))];
-      for (int c = 0; c < 3; ++c) q[c] = alpha > 0 ? linear_to_srgb8(sum[c] / alpha) : 0;
+      for (int c = 0; c < 3; ++c)
+        q[c] = alpha > 0 ? (data ? static_cast<std::uint8_t>(std::lround(std::clamp(sum[c] / alpha, 0.0, 1.0) * 255)) : linear_to_srgb8(sum[c] / alpha)) : 0;
       q[3] = static_cast<std::uint8_t>(std::lround(alpha / 4 * 255));
     }
   return h;
 }
 
 void fit_textures(TriangleMesh& mesh, int max_side) {
-  for (TextureImage& t : mesh.textures)
-    while (std::max(t.width, t.height) > std::max(1, max_side)) t = halve_texture(t);
+  // Data textures: read as metallic-roughness or occlusion and never as a colour.
+  std::vector<char> data(mesh.textures.size(), 0);
+  for (const SurfaceMaterial& m : mesh.materials)
+    for (int i : {m.metallic_roughness.image, m.occlusion.image})
+      if (i >= 0) data[static_cast<std::size_t>(i)] = 1;
+  for (const SurfaceMaterial& m : mesh.materials)
+    for (int i : {m.texture, m.emissive_texture.image})
+      if (i >= 0) data[static_cast<std::size_t>(i)] = 0;
+  for (std::size_t k = 0; k < mesh.textures.size(); ++k)
+    while (std::max(mesh.textures[k].width, mesh.textures[k].height) > std::max(1, max_side))
+      mesh.textures[k] = halve_texture(mesh.textures[k], data[k] != 0);
 }
 
 }  // namespace qf

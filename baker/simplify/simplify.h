@@ -26,10 +26,12 @@ enum class SimplifyMethod { kCollapse, kSloppy };
 SimplifiedMesh simplify_mesh(const TriangleMesh& mesh, std::size_t target_triangles, SimplifyMethod method = SimplifyMethod::kCollapse);
 
 // A texture at half its size (sides rounded up): each texel the mean of 2 x 2, colours weighted by
-// alpha and averaged in linear light.
-TextureImage halve_texture(const TextureImage& texture);
+// alpha and averaged in linear light; `data` (metallic-roughness, occlusion: linear values, not
+// colours) averages the bytes as they are.
+TextureImage halve_texture(const TextureImage& texture, bool data = false);
 
-// Halves each of the mesh's textures until its longer side is at most `max_side` texels.
+// Halves each of the mesh's textures until its longer side is at most `max_side` texels (those the
+// materials read only as metallic-roughness or occlusion as data).
 void fit_textures(TriangleMesh& mesh, int max_side);
 
 

@@ -103,5 +103,19 @@ TEST(Simplify, HalvedTextureAveragesInLinearLightWeightedByAlpha) {
   EXPECT_EQ(m.textures[0].height, 1);
 }
 
+TEST(Simplify, MetallicRoughnessTexturesHalveAsDataNotColours) {
+  // Roughness (G) 0 and 1 side by side: the halved texel is roughness 0.5 (byte 128), not the
+  // sRGB mean (linear_to_srgb8(0.5) = 188), which would make the LOD rougher than the asset.
+  TriangleMesh m;
+  m.textures.push_back({2, 2, {0, 0, 0, 255, 0, 255, 0, 255, 0, 0, 0, 255, 0, 255, 0, 255}});
+  m.textures.push_back(m.textures[0]);
+  m.materials.resize(1);
+  m.materials[0].metallic_roughness.image = 0;
+  m.materials[0].texture = 1;  // the same texels as a base colour stay colours
+  fit_textures(m, 1);
+  EXPECT_EQ(m.textures[0].rgba[1], 128);
+  EXPECT_EQ(m.textures[1].rgba[1], linear_to_srgb8(0.5));
+}
+
 }  // namespace
 }  // namespace qf
