@@ -23,7 +23,8 @@ inline TextureImage flat_image(std::uint8_t r, std::uint8_t g, std::uint8_t b) {
 // metallic 1, factors 1) and emitting (1, 0.5, 0): factor x a white emissive texture. Otherwise
 // both halves have roughness 0.5 and metallic 0 (the right half through a texture of G 255, B 255
 // under factors 0.5 and 0) and no emission: constant channels, which a level keeps as factors.
-inline TriangleMesh material_plate(bool varying) {
+// `occluded`: the right half also has an occlusion texture of R 128 (occlusion 0.5).
+inline TriangleMesh material_plate(bool varying, bool occluded = false) {
   TriangleMesh m;
   constexpr int kCols = 16, kRows = 8;
   for (int j = 0; j <= kRows; ++j)
@@ -47,6 +48,10 @@ inline TriangleMesh material_plate(bool varying) {
     left.roughness = right.roughness = 0.5f;
     left.metallic = right.metallic = 0;
     m.textures.push_back(flat_image(255, 255, 255));
+  }
+  if (occluded) {
+    right.occlusion.image = static_cast<int>(m.textures.size());
+    m.textures.push_back(flat_image(128, 255, 255));
   }
   m.materials = {left, right};
   const auto at = [](int i, int j) { return static_cast<std::uint32_t>(j * (kCols + 1) + i); };

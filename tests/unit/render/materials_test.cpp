@@ -27,11 +27,11 @@ namespace {
 namespace fs = std::filesystem;
 
 // The fixture written as a glTF asset in a fresh folder; returns its path.
-std::string write_plate(bool varying, const std::string& name) {
+std::string write_plate(bool varying, const std::string& name, bool occluded = false) {
   const fs::path dir = fs::temp_directory_path() / ("qf_materials_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const std::string path = (dir / (name + ".glb")).string();
-  write_bytes_atomically(path, encode_textured_mesh_glb(test::material_plate(varying)));
+  write_bytes_atomically(path, encode_textured_mesh_glb(test::material_plate(varying, occluded)));
   return path;
 }
 
@@ -135,6 +135,31 @@ TEST(Materials, VaryingChannelsBecomeOrmAndEmissiveTexturesOnTheRightQuads) {
     }
     EXPECT_EQ(e[2], 255) << "constant channel: the factor carries it";
     EXPECT_EQ(o[0], 255) << "occlusion 1";
+  });
+  EXPECT_GT(left, 50u);
+  EXPECT_GT(right, 50u);
+}
+
+// Occlusion has no factor in glTF: where it varies, the ORM image's R carries it (1 where the
+// asset has none) and the level's occlusionTexture is that same image.
+TEST(Materials, VaryingOcclusionSharesTheOrmImage) {
+  const BakedScene level = baked_level(write_plate(false, "occluded", true));
+  ASSERT_EQ(level.engine.primitives.size(), 1u);
+  const EnginePrimitive& p = level.engine.primitives[0];
+  const EngineMaterial& mat = p.material;
+  ASSERT_GE(mat.occlusion_texture, 0);
+  EXPECT_EQ(mat.occlusion_texture, mat.metal_rough_texture);
+  EXPECT_FLOAT_EQ(mat.roughness, 0.5f) << "roughness stays a factor";
+  EXPECT_LT(mat.emissive_texture, 0);
+  const Image& color = level.engine.images[static_cast<std::size_t>(mat.base_texture)];
+  const Image& orm = level.engine.images[static_cast<std::size_t>(mat.occlusion_texture)];
+  std::size_t left = 0, right = 0;
+  for_each_covered_texel(p, color, [&](double x, std::size_t k, double texel) {
+    if (std::fabs(x - 1) < 0.05 + 2 * texel) return;
+    const int r = orm.rgba[4 * k], want = x < 1 ? 255 : 128;
+    (x < 1 ? left : right) += 1;
+    EXPECT_LE(std::abs(r - want), 2) << "occlusion at x " << x;
+    EXPECT_EQ(orm.rgba[4 * k + 1], 255) << "constant roughness: its factor carries it";
   });
   EXPECT_GT(left, 50u);
   EXPECT_GT(right, 50u);
