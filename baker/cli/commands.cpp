@@ -15,6 +15,7 @@
 #include "primitives/billboard.h"
 #include "shapes/shapes.h"
 #include "shapes/lattice.h"
+#include "shapes/plate.h"
 #include "shapes/tree.h"
 
 namespace qf::cli {
@@ -159,6 +160,8 @@ const std::vector<Command>& commands() {
             "  bush         stems and --leaves (default 1800) small alpha-masked leaves: foliage (.glb)\n"
             "  lattice      a tower of thin square beams, flat-shaded, one material (.glb); --seed sets\n"
             "               its storeys, taper, bracing and beam width\n"
+            "  plate        a 2 x 1 plate whose halves differ in roughness and metallic (a metallic-\n"
+            "               roughness texture) and whose right half emits (.glb): material channels\n"
             "Points are spread uniformly by area with a seeded generator (identical output for\n"
             "identical settings), with outward normals, colours, and radii from local spacing.",
         {{"output", 'o', "OUT", "", "output file (.ply, .qs, .xyz or .pwn); required"},
@@ -280,7 +283,7 @@ int run_generate(const ParsedArgs& args) {
   o.seed = static_cast<std::uint64_t>(args.get_int("seed", static_cast<long long>(o.seed), 0, (1ll << 62)));
   const std::string out = args.get("output");
   const std::string& shape = args.positional[0];
-  if (shape == "tree" || shape == "bush" || shape == "lattice") {
+  if (shape == "tree" || shape == "bush" || shape == "lattice" || shape == "plate") {
     if (file_extension(out) != "glb") throw UsageError("generate " + shape + " writes a .glb, not '" + out + "'");
     TriangleMesh asset;
     if (shape == "tree") {
@@ -293,6 +296,8 @@ int run_generate(const ParsedArgs& args) {
       b.seed = o.seed;
       b.leaves = static_cast<std::size_t>(args.get_int("leaves", static_cast<long long>(b.leaves), 1, 1000000));
       asset = generate_bush(b);
+    } else if (shape == "plate") {
+      asset = generate_material_plate();
     } else {
       LatticeOptions l;
       l.seed = o.seed;

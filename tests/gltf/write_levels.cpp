@@ -12,8 +12,8 @@
 #include "pipeline/asset.h"
 #include "primitives/texture.h"
 #include "sample/sample.h"
+#include "shapes/plate.h"
 #include "shapes/shapes.h"
-#include "../unit/render/material_fixture.h"
 
 using namespace qf;
 
@@ -79,7 +79,7 @@ int main(int argc, char** argv) {
   write_bytes_atomically(dir + "/sphere_cluster_draco.glb", encode_cluster_glb(lod, {}, true));  // KHR_draco_mesh_compression
   // Material channels (issue 31): an asset whose halves differ in metallic, roughness and emission
   // (metallicRoughness and emissive textures), and its level (ORM and emissive atlas textures).
-  write_bytes_atomically(dir + "/plate_asset.glb", encode_textured_mesh_glb(test::material_plate(true)));
+  write_bytes_atomically(dir + "/plate_asset.glb", encode_textured_mesh_glb(generate_material_plate()));
   AssetOptions ao;
   ao.bake.primitives = {8};
   ao.sample.ldi_size = 96;

@@ -10,7 +10,8 @@
 # mesh, whose alpha is encoded; both ramped at their edges (pipeline/bake.h use_surface_edges); the
 # simplified mesh LOD, a vertex-clustering LOD with thick lines, the same compressed with Draco and
 # the point impostor of the sphere; an impostor level of a generated bush, foliage whose quads are
-# drawn from its alpha-masked leaves; a torus's combined STEM_lods.glb (MSFT_lod) of its levels and
+# drawn from its alpha-masked leaves; the material plate and its level, whose roughness, metallic
+# and emission vary (metallicRoughness, ORM and emissive textures); a torus's combined STEM_lods.glb (MSFT_lod) of its levels and
 # that of its recommended chain. Neither engine switches MSFT_lod levels by screen coverage: each
 # shows one level of a combined file, and the test holds it to that level's own file and checks
 # that only the finest level's node (impostor_LOD0, chain_LOD0) was drawn or is left in the scene.
@@ -38,6 +39,8 @@ fail() { echo "FAIL: $*"; exit 1; }
 "$bake" cluster "$work/sphere.ply" -o "$work/cluster" --cells 0.6 --draco -q || fail "cluster sphere"
 "$bake" generate bush --leaves 600 --seed 2 -o "$work/bush.glb" -q || fail "generate bush"
 "$bake" "$work/bush.glb" -o "$work/bush" --primitives 100 --ldi 128 --mesh-lods none --no-measure -q || fail "bake bush"
+"$bake" generate plate -o "$work/plate.glb" -q || fail "generate plate"
+"$bake" "$work/plate.glb" -o "$work/plate" --primitives 30 --ldi 96 --mesh-lods none --no-measure -q || fail "bake plate"
 "$bake" generate torus -o "$work/torus.ply" -q || fail "generate torus"
 "$bake" "$work/torus.ply" -o "$work/torus" --lod-file --no-measure -q || fail "bake torus"
 "$bake" "$work/torus.ply" -o "$work/chain" --lod-file --chain --measure-views 2 -q || fail "bake torus chain"
@@ -52,6 +55,8 @@ cases=("$src/samples/octahedron.ply|$(ls "$work"/oct/octahedron_L*.glb | head -n
        "$work/sphere.ply|$work/cluster/sphere_C0.draco.glb|$work/cluster/sphere_C0.glb"
        "$work/sphere.ply|$work/sphere/sphere_points.glb"
        "$work/bush.glb|$(ls "$work"/bush/bush_L*.glb | head -n 1)"
+       "$work/plate.glb|$work/plate.glb"
+       "$work/plate.glb|$(ls "$work"/plate/plate_L*.glb | head -n 1)"
        "$work/torus.ply|$work/torus/torus_lods.glb|$work/torus/$finest|impostor_LOD0"
        "$work/torus.ply|$work/chain/torus_lods.glb|$work/chain/$chain0|chain_LOD0")
 

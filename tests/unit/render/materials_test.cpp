@@ -14,11 +14,11 @@
 #include "gl/egl.h"
 #include "gltf/glb.h"
 #include "io/model_io.h"
-#include "material_fixture.h"
 #include "pipeline/asset.h"
 #include "runtime_gl/camera.h"
 #include "runtime_gl/draw_gl11.h"
 #include "runtime_gl/loader.h"
+#include "shapes/plate.h"
 #include "tools/reference_scene.h"
 
 namespace qf::render {
@@ -31,7 +31,7 @@ std::string write_plate(bool varying, const std::string& name, bool occluded = f
   const fs::path dir = fs::temp_directory_path() / ("qf_materials_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   const std::string path = (dir / (name + ".glb")).string();
-  write_bytes_atomically(path, encode_textured_mesh_glb(test::material_plate(varying, occluded)));
+  write_bytes_atomically(path, encode_textured_mesh_glb(generate_material_plate(varying, occluded)));
   return path;
 }
 

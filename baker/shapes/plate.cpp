@@ -1,30 +1,20 @@
-// A test asset with material channels (issue 31, item 3): a flat 2 x 1 plate in z = 0, facing +z,
-// whose left half (x < 1) and right half are two materials. Written by the tests themselves
-// (encode_textured_mesh_glb), so nothing is read from outside the repository.
-#pragma once
+// The material plate (plate.h): two materials on a flat grid, written out as plain data.
+#include "shapes/plate.h"
 
-#include <cstdint>
-#include <vector>
-
-#include "core/types.h"
-
-namespace qf::test {
+namespace qf {
+namespace {
 
 // A 2 x 2 image of one RGBA texel value.
-inline TextureImage flat_image(std::uint8_t r, std::uint8_t g, std::uint8_t b) {
+TextureImage flat_image(std::uint8_t r, std::uint8_t g, std::uint8_t b) {
   TextureImage t;
   t.width = t.height = 2;
   for (int k = 0; k < 4; ++k) t.rgba.insert(t.rgba.end(), {r, g, b, 255});
   return t;
 }
 
-// `varying`: the left half a rough dielectric (roughness factor 0.9, metallic 0, no emission), the
-// right half polished metal through its metallic-roughness texture (G 51 = roughness 0.2, B 255 =
-// metallic 1, factors 1) and emitting (1, 0.5, 0): factor x a white emissive texture. Otherwise
-// both halves have roughness 0.5 and metallic 0 (the right half through a texture of G 255, B 255
-// under factors 0.5 and 0) and no emission: constant channels, which a level keeps as factors.
-// `occluded`: the right half also has an occlusion texture of R 128 (occlusion 0.5).
-inline TriangleMesh material_plate(bool varying, bool occluded = false) {
+}  // namespace
+
+TriangleMesh generate_material_plate(bool varying, bool occluded) {
   TriangleMesh m;
   constexpr int kCols = 16, kRows = 8;
   for (int j = 0; j <= kRows; ++j)
@@ -36,6 +26,7 @@ inline TriangleMesh material_plate(bool varying, bool occluded = false) {
   left.name = "left", right.name = "right";
   left.base_color = {0.8f, 0.3f, 0.2f, 1};
   right.base_color = {0.3f, 0.6f, 0.9f, 1};
+  left.double_sided = right.double_sided = true;  // seen from any side, as a sample should be
   right.metallic_roughness.image = 0;
   if (varying) {
     left.roughness = 0.9f, left.metallic = 0;
@@ -68,4 +59,4 @@ inline TriangleMesh material_plate(bool varying, bool occluded = false) {
   return m;
 }
 
-}  // namespace qf::test
+}  // namespace qf
