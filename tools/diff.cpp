@@ -339,6 +339,50 @@ OJson chain_changes(const Json& a, const Json& b) {
   return OJson{{"old", line(a)}, {"new", line(b)}};
 }
 
+// The measured errors of two manifests, where both sides measured them: each impostor level's
+// figure at each size (by file) and each band of the recommended chain (the file shown there and
+// its figure), old -> new where they differ, and the largest PSNR drop among them (a regression
+// of the look at some on-screen size, which bytes and structure alone do not show). Null when
+// nothing measured changed.
+OJson error_changes(const Json& a, const Json& b, double& worst_drop) {
+  using Figures = std::map<std::string, Json>;  // "what at N px" -> {psnr, iou[, file]}
+  const auto figures = [](const Json& m) {
+    Figures out;
+    if (!m.is_object()) return out;
+    for (const Json& l : m.value("levels", Json::array()))
+      if (l.is_object() && l.contains("measured") && l["measured"].is_array())
+        for (const Json& e : l["measured"])
+          if (e.is_object() && e.contains("pixels") && e.contains("psnr"))
+            out[l.value("file", std::string("?")) + " at " + e["pixels"].dump() + " px"] = {{"psnr", e["psnr"]}, {"iou", e.value("iou", Json())}};
+    const Json c = m.value("recommended_chain", Json());
+    if (!c.is_object() || !c.contains("sizes") || !c.contains("chain") || !c.contains("measured")) return out;
+    const Json& sizes = c["sizes"];
+    for (std::size_t k = 0; k < sizes.size(); ++k) {
+      const double size = sizes[k].get<double>(), lower = k + 1 < sizes.size() ? sizes[k + 1].get<double>() : 0;
+      for (const Json& e : c["chain"]) {
+        const bool covers = (e["max_pixels"].is_null() || size <= e["max_pixels"].get<double>()) && lower >= e["min_pixels"].get<double>();
+        if (!covers) continue;
+        for (const Json& f : c["measured"])
+          if (f["file"] == e["file"] && f["at_pixels"].size() > k)
+            out["chain band " + sizes[k].dump() + " px"] = {{"psnr", f["at_pixels"][k]["psnr"]}, {"iou", f["at_pixels"][k]["iou"]}, {"file", e["file"]}};
+      }
+    }
+    return out;
+  };
+  const Figures fa = figures(a), fb = figures(b);
+  OJson out = OJson::array();
+  for (const auto& [what, old] : fa) {
+    const auto it = fb.find(what);
+    if (it == fb.end() || it->second == old) continue;
+    OJson e{{"what", what}, {"psnr", {old["psnr"], it->second["psnr"]}}, {"iou", {old["iou"], it->second["iou"]}}};
+    if (old.contains("file")) e["file"] = {old["file"], it->second["file"]};
+    if (old["psnr"].is_number() && it->second["psnr"].is_number())
+      worst_drop = std::max(worst_drop, old["psnr"].get<double>() - it->second["psnr"].get<double>());
+    out.push_back(e);
+  }
+  return out.empty() ? OJson() : out;
+}
+
 // Keys whose values differ between two JSON values, as JSON pointers (at most `limit`).
 void json_changes(const Json& a, const Json& b, const std::string& at, OJson& out, std::size_t limit) {
   if (out.size() >= limit || a == b) return;
@@ -405,7 +449,11 @@ OJson diff_pair(const std::string& name, const std::string& pa, const std::strin
     if (!levels.empty()) r["impostor_levels"] = levels;
     const OJson chain = chain_changes(ja, jb);
     if (!chain.is_null()) r["recommended_chain"] = chain;
-    r["within_thresholds"] = true;  // a manifest changes with its levels; those decide
+    double drop = 0;
+    const OJson errors = error_changes(ja, jb, drop);
+    if (!errors.is_null()) r["measured_errors"] = {{"changes", errors}, {"worst_psnr_drop", round_to(drop, 2)}};
+    // A manifest changes with its levels, which decide, unless a measured look got worse.
+    r["within_thresholds"] = drop <= o.thresholds.max_error_drop;
     return r;
   }
   if (ext != "glb") {
@@ -467,6 +515,21 @@ void changed_file_text(std::ostream& out, const OJson& f) {
     const auto side = [](const OJson& v) { return v.is_null() ? std::string("none") : v.get<std::string>(); };
     out << "    recommended chain: " << side(f["recommended_chain"]["old"]) << "\n      now: " << side(f["recommended_chain"]["new"]) << "\n";
   }
+  if (f.contains("measured_errors")) {
+    const OJson& me = f["measured_errors"];
+    out << "    measured errors (worst PSNR drop " << me["worst_psnr_drop"] << " dB):\n";
+    std::size_t shown = 0;
+    for (const OJson& e : me["changes"]) {
+      if (++shown > 12) {
+        out << "      ... " << me["changes"].size() - 12 << " more\n";
+        break;
+      }
+      out << "      " << e["what"].get<std::string>() << ": " << e["psnr"][0] << " -> " << e["psnr"][1] << " dB, IoU " << e["iou"][0] << " -> "
+          << e["iou"][1];
+      if (e.contains("file") && e["file"][0] != e["file"][1]) out << " (" << e["file"][0].get<std::string>() << " -> " << e["file"][1].get<std::string>() << ")";
+      out << "\n";
+    }
+  }
   if (f.contains("structure")) structure_text(out, f["structure"]);
   if (f.contains("texels")) {
     const OJson& t = f["texels"];
@@ -494,6 +557,7 @@ OJson diff_bakes(const std::string& old_path, const std::string& new_path, const
                           {"max_changed_share", o.thresholds.max_changed},
                           {"pixel_tolerance", o.thresholds.pixel_tolerance},
                           {"max_quad_change_share", o.thresholds.max_quad_change},
+                          {"max_error_drop", o.thresholds.max_error_drop},
                           {"render", o.render}};
   OJson files = OJson::array();
   std::size_t identical = 0, changed = 0, added = 0, removed = 0;
@@ -540,7 +604,8 @@ std::string diff_text(const OJson& r) {
   }
   const OJson& t = r["thresholds"];
   out << "verdict: " << r["verdict"].get<std::string>() << " (thresholds: PSNR >= " << t["min_psnr"] << " dB, changed pixels <= "
-      << t["max_changed_share"] << ", quads added/removed <= " << t["max_quad_change_share"] << ")\n";
+      << t["max_changed_share"] << ", quads added/removed <= " << t["max_quad_change_share"] << ", measured PSNR drop <= "
+      << t["max_error_drop"] << " dB)\n";
   return out.str();
 }
 

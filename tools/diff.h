@@ -16,6 +16,9 @@ struct DiffThresholds {
   double max_changed = 0.005;    // share of a view's pixels that may change
   int pixel_tolerance = 2;       // 8-bit levels: a pixel changed when a channel differs by more
   double max_quad_change = 0;    // share of a level's quads that may be added or removed
+  // dB a manifest's measured figure (a level at a size, a chain band) may fall by: a regression
+  // of the look as the bake itself measured it
+  double max_error_drop = 0.5;
 };
 
 struct DiffOptions {

@@ -27,6 +27,7 @@ qf::cli::CommandSpec diff_spec() {
        {"max-changed", 0, "SHARE", "0.005", "... and at most this share of each view's pixels changed"},
        {"pixel-tolerance", 0, "LEVELS", "2", "a pixel (texel) changed when a channel differs by more (0..255)"},
        {"max-quad-change", 0, "SHARE", "0", "... and at most this share of a level's quads added or removed"},
+       {"max-error-drop", 0, "DB", "0.5", "a changed manifest passes when no measured figure (a level at a size, a chain band) falls by more"},
        {"views", 0, "N", "6", "canonical views per .glb"},
        {"size", 0, "PX", "128", "image side of each view"},
        {"images", 0, "DIR", "", "write DIR/NAME.diff.exr (float |old - new|, views stacked) and .diff.png (x4) per changed .glb"},
@@ -40,6 +41,7 @@ int run(const qf::cli::ParsedArgs& args) {
   o.thresholds.max_changed = args.get_double("max-changed", o.thresholds.max_changed, 0, 1);
   o.thresholds.pixel_tolerance = static_cast<int>(args.get_int("pixel-tolerance", o.thresholds.pixel_tolerance, 0, 255));
   o.thresholds.max_quad_change = args.get_double("max-quad-change", o.thresholds.max_quad_change, 0, 1);
+  o.thresholds.max_error_drop = args.get_double("max-error-drop", o.thresholds.max_error_drop, 0, 1000);
   o.views = static_cast<int>(args.get_int("views", o.views, 1, 1000));
   o.size = static_cast<int>(args.get_int("size", o.size, 8, 4096));
   o.images = args.get("images");
