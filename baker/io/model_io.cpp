@@ -33,12 +33,13 @@ Model read_model(const std::string& path, const ReadOptions& options, ReadReport
   if (ext == "qs") m.points = read_qsplat(path, options, report);
   else if (ext == "xyz") m.points = read_xyz(path, false, options, report);
   else if (ext == "pwn") m.points = read_xyz(path, true, options, report);
+  else if (ext == "las" || ext == "laz") m.points = read_las(path, options, report);
   else if (ext == "off") m.is_mesh = true, m.mesh = read_off(path, options, report);
   else if (ext == "obj") m.is_mesh = true, m.mesh = read_obj(path, options, report);
   else if (ext == "gltf" || ext == "glb") m.is_mesh = true, m.mesh = read_gltf(path, options, report);
   else
     throw UsageError("unknown input format '." + ext + "' (" + path +
-                     "); supported: .ply .qs .xyz .pwn (point sets), .ply .off .obj .gltf .glb (meshes)");
+                     "); supported: .ply .qs .xyz .pwn .las .laz (point sets), .ply .off .obj .gltf .glb (meshes)");
   return m;
 }
 
@@ -49,17 +50,18 @@ Model decode_model(ByteView bytes, const std::string& path, const ReadOptions& o
   if (ext == "qs") m.points = decode_qsplat(bytes, path, report);
   else if (ext == "xyz") m.points = decode_xyz(bytes, path, false, options, report);
   else if (ext == "pwn") m.points = decode_xyz(bytes, path, true, options, report);
+  else if (ext == "las" || ext == "laz") m.points = decode_las(bytes, path, options, report);
   else if (ext == "off") m.is_mesh = true, m.mesh = decode_off(bytes, path, options, report);
   else if (ext == "obj") m.is_mesh = true, m.mesh = decode_obj(bytes, path, options, report);
   else if (ext == "gltf" || ext == "glb") m.is_mesh = true, m.mesh = decode_gltf(bytes, path, options, report);
   else
     throw UsageError("unknown input format '." + ext + "' (" + path +
-                     "); supported: .ply .qs .xyz .pwn (point sets), .ply .off .obj .gltf .glb (meshes)");
+                     "); supported: .ply .qs .xyz .pwn .las .laz (point sets), .ply .off .obj .gltf .glb (meshes)");
   return m;
 }
 
 const std::vector<std::string>& point_set_extensions() {
-  static const std::vector<std::string> e{"ply", "qs", "xyz", "pwn"};
+  static const std::vector<std::string> e{"ply", "qs", "xyz", "pwn", "las", "laz"};
   return e;
 }
 const std::vector<std::string>& mesh_extensions() {

@@ -1,6 +1,6 @@
 // Reading and writing every supported file format (architecture.md, "io/").
 //
-// Point sets: PLY (ascii / binary LE / binary BE), QSplat .qs, XYZ, PWN.
+// Point sets: PLY (ascii / binary LE / binary BE), QSplat .qs, XYZ, PWN, LAS / LAZ.
 // Triangle meshes: PLY with a face element, OFF (also COFF/NOFF/NCOFF), OBJ (+ MTL), glTF 2.0.
 // Every reader throws InputError with the file, the line or byte offset and what was expected;
 // it never returns partial data.
@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/file_io.h"
@@ -29,6 +30,9 @@ struct ReadReport {
   std::size_t fragments = 0;        // QSplat: data fragments read
   std::size_t skipped_primitives = 0;  // glTF: point and line primitives (only triangles are baked)
   std::vector<std::string> warnings;   // what was read but not honoured (glTF skins, morph targets)
+  // What the file's header says, as (key, value) in the reader's order (LAS/LAZ: version, point
+  // format, scale, offset, the origin the points were moved by, VLRs, ...); empty for most formats.
+  std::vector<std::pair<std::string, std::string>> header;
 };
 
 // A file's content: a point set or a triangle mesh.
@@ -38,7 +42,8 @@ struct Model {
   TriangleMesh mesh;  // when is_mesh
 };
 
-// Reads any supported file, choosing the reader by extension (ply, qs, xyz, pwn, off, obj).
+// Reads any supported file, choosing the reader by extension (ply, qs, xyz, pwn, las, laz, off, obj,
+// gltf, glb).
 // Throws UsageError for an unknown extension.
 Model read_model(const std::string& path, const ReadOptions& options = {}, ReadReport* report = nullptr);
 
@@ -47,6 +52,17 @@ Model read_ply(const std::string& path, const ReadOptions& options = {}, ReadRep
 PointSet read_qsplat(const std::string& path, const ReadOptions& options = {}, ReadReport* report = nullptr);
 PointSet read_xyz(const std::string& path, bool require_normals, const ReadOptions& options = {},
                   ReadReport* report = nullptr);
+// LAS 1.0–1.4, point data formats 0–10 (extra bytes past the standard record allowed), and LAZ
+// (LASzip-compressed LAS, decoded with laz-perf 3.4.0: formats 0–3 and 6–8, chunked; the header
+// says whether a file is compressed, whatever its extension). Positions are the records' integers
+// x scale + offset, computed in double; when float cannot hold them to the file's resolution
+// (|coordinate| > 2^23 x scale, e.g. UTM), they are moved by an origin (the header box's centre,
+// rounded to whole units), given in a comment "origin X Y Z ..." and in ReadReport::header.
+// Colours (formats 2, 3, 5, 7, 8, 10): 16-bit values scaled to 8 bits (high byte), or taken as
+// they are when none exceeds 255. Classification (formats 0–5: its low 5 bits; 6–10: the byte)
+// becomes the scalar field "classification". The file is read a block of records or one LAZ chunk
+// at a time. Errors: "las.*" (header, VLRs, body), "laz.*" (LASzip VLR, chunk table, chunks).
+PointSet read_las(const std::string& path, const ReadOptions& options = {}, ReadReport* report = nullptr);
 TriangleMesh read_off(const std::string& path, const ReadOptions& options = {}, ReadReport* report = nullptr);
 TriangleMesh read_obj(const std::string& path, const ReadOptions& options = {}, ReadReport* report = nullptr);
 // glTF 2.0 (.gltf with external or data-URI buffers and images, .glb): the default scene (else the
@@ -67,6 +83,7 @@ Model decode_model(ByteView bytes, const std::string& path, const ReadOptions& o
 Model decode_ply(ByteView bytes, const std::string& path, const ReadOptions& options = {}, ReadReport* report = nullptr);
 PointSet decode_xyz(ByteView bytes, const std::string& path, bool require_normals, const ReadOptions& options = {},
                     ReadReport* report = nullptr);
+PointSet decode_las(ByteView bytes, const std::string& path, const ReadOptions& options = {}, ReadReport* report = nullptr);
 TriangleMesh decode_off(ByteView bytes, const std::string& path, const ReadOptions& options = {}, ReadReport* report = nullptr);
 TriangleMesh decode_obj(ByteView bytes, const std::string& path, const ReadOptions& options = {}, ReadReport* report = nullptr);
 // External buffers and images are read relative to `path`'s folder.
