@@ -2,7 +2,7 @@
 # Builds the libFuzzer targets of tests/fuzz (Debian's clang, ASan + UBSan, folder build-fuzz, every
 # core) and runs each for SECONDS with a memory cap and a per-input timeout, two at a time on two cores.
 #
-#   scripts/fuzz.sh SECONDS [TARGET...]     targets: ply qsplat off obj xyz manifest glb cache gltf (default: all)
+#   scripts/fuzz.sh SECONDS [TARGET...]     targets: ply qsplat off obj xyz las manifest glb cache gltf (default: all)
 #
 # Prints one line per target (executions, executions/s, corpus size, coverage features) and closes
 # with exactly "N passed, N failed" (also when the build fails: 0 passed); exits 1 when any target
@@ -15,7 +15,7 @@
 set -uo pipefail
 
 root="$(cd "$(dirname "$0")/.." && pwd)"
-all_targets=(ply qsplat off obj xyz manifest glb cache gltf)
+all_targets=(ply qsplat off obj xyz las manifest glb cache gltf)
 
 usage() {
   echo "usage: scripts/fuzz.sh SECONDS [TARGET...]   (targets: ${all_targets[*]})" >&2
@@ -53,13 +53,13 @@ cmake --build "$build" -j "$cores" --target "${build_targets[@]}" >"$build/build
 #    with -merge=1) and the files of tests/data with the target's extensions.
 extensions() {
   case "$1" in
-    ply) echo ply ;; qsplat) echo qs ;; off) echo off ;; obj) echo obj ;; xyz) echo "xyz pwn" ;;
+    ply) echo ply ;; qsplat) echo qs ;; off) echo off ;; obj) echo obj ;; xyz) echo "xyz pwn" ;; las) echo "las laz" ;;
     manifest) echo json ;; glb) echo glb ;; cache) echo qfamg ;; gltf) echo "gltf glb" ;;
   esac
 }
 dictionary() {
   case "$1" in
-    ply) echo ply ;; off) echo off ;; obj) echo obj ;; xyz) echo xyz ;; manifest) echo json ;; glb) echo glb ;; gltf) echo gltf ;; *) echo "" ;;
+    ply) echo ply ;; off) echo off ;; obj) echo obj ;; xyz) echo xyz ;; las) echo las ;; manifest) echo json ;; glb) echo glb ;; gltf) echo gltf ;; *) echo "" ;;
   esac
 }
 max_len() {  # large enough for the seeds; small inputs keep the runs fast

@@ -33,6 +33,7 @@ std::string human_bytes(std::size_t b) {
 // What info says of a file, in both of its forms.
 struct InfoFacts {
   std::vector<std::string> attributes;  // in a fixed order; "position" always
+  std::vector<std::string> scalars;     // per-point scalar fields by name (LAS: "classification")
   Bounds bounds;
   std::size_t count = 0, memory = 0;
   const std::vector<std::string>* comments = nullptr;
@@ -51,6 +52,8 @@ InfoFacts info_facts(const Model& m) {
   f.count = m.is_mesh ? m.mesh.positions.size() : m.points.size();
   f.memory = m.is_mesh ? m.mesh.memory_bytes() : m.points.memory_bytes();
   f.comments = m.is_mesh ? &m.mesh.comments : &m.points.comments;
+  if (!m.is_mesh)
+    for (const ScalarField& s : m.points.scalars) f.scalars.push_back(s.name);
   return f;
 }
 
@@ -64,6 +67,12 @@ void print_info_json(const std::string& path, const Model& m, const ReadReport& 
   j[m.is_mesh ? "vertices" : "points"] = f.count;
   if (m.is_mesh) j["triangles"] = m.mesh.triangles.size();
   j["attributes"] = f.attributes;
+  if (!f.scalars.empty()) j["scalars"] = f.scalars;
+  if (!report.header.empty()) {
+    nlohmann::json h = nlohmann::json::object();
+    for (const auto& [key, value] : report.header) h[key] = value;
+    j["header"] = h;
+  }
   if (!b.empty()) j["bounds"] = {{"min", vec_json(b.min)}, {"max", vec_json(b.max)}, {"diagonal", canonical_double(b.diagonal())}};
   j["memory_bytes"] = f.memory;
   j["comments"] = *f.comments;
@@ -95,6 +104,16 @@ void print_info_text(const std::string& path, const Model& m, const ReadReport& 
   else
     std::cout << "points:      " << f.count << "\n";
   std::cout << "attributes:  " << attr_text << "\n";
+  if (!f.scalars.empty()) {
+    std::cout << "scalars:    ";
+    for (const std::string& name : f.scalars) std::cout << " " << name;
+    std::cout << "\n";
+  }
+  // The format's own header facts (LAS/LAZ), as the reader found them.
+  for (const auto& [key, value] : report.header) {
+    const std::string label = key + ":";
+    std::cout << "  " << label << std::string(label.size() < 15 ? 15 - label.size() : 1, ' ') << value << "\n";
+  }
   if (!m.is_mesh && !m.points.has_radii()) std::cout << "             (radii absent: estimated from local spacing when needed)\n";
   if (!b.empty())
     std::cout << "bounds:      min " << vec_text(b.min) << "  max " << vec_text(b.max) << "\n"

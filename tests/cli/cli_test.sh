@@ -321,6 +321,28 @@ expect 2 "bake bad primitives" -- "$bake" "$work/oct.ply" -o "$work/out5" --prim
 expect 2 "bake level out of range" -- "$bake" "$work/oct.ply" -o "$work/out5" --levels 99
 unset QF_CACHE
 
+# --- LAS and LAZ (issue 35): info with the header's facts, convert carries the classification, bake end to end ---
+las=$data/las
+expect 0 "info LAZ" -- "$bake" info "$las/points_f7.laz"
+grep -q "format: *laz 1.4 (point format 7)" "$work/out" && grep -q "scalars: *classification" "$work/out" \
+  && grep -q "origin: *512" "$work/out" && ok || bad "info of a LAZ file: $(cat "$work/out")"
+"$bake" info --json "$las/points_f3.laz" >"$work/info.json"
+/usr/bin/python3 -c 'import json, sys, jsonschema
+j = json.load(open(sys.argv[1])); jsonschema.validate(j, json.load(open(sys.argv[2])))
+assert j["points"] == 2000 and j["header"]["point_format"] == "3" and j["scalars"] == ["classification"], j' \
+  "$work/info.json" "$schema" 2>"$work/err" && ok || bad "info --json of a LAZ file: $(tail -3 "$work/err")"
+"$bake" info --json "$las/points_f3.las" >"$work/info_las.json"
+/usr/bin/python3 -c 'import json, sys
+a, b = (json.load(open(f)) for f in sys.argv[1:3])
+assert a["bounds"] == b["bounds"] and a["points"] == b["points"], (a["bounds"], b["bounds"])' \
+  "$work/info_las.json" "$work/info.json" 2>"$work/err" && ok || bad "the LAS and the LAZ of one point set differ: $(tail -2 "$work/err")"
+expect 0 "convert LAS to PLY" -- "$bake" convert "$las/points_f6.las" "$work/las.ply"
+head -c 400 "$work/las.ply" | grep -q "property float classification" && ok || bad "converted LAS keeps its classification"
+expect 0 "bake a LAS file" -- "$bake" "$las/points_f3.las" -o "$work/las_out" --primitives 100,30
+ls "$work/las_out"/points_f3_L*.glb >/dev/null 2>&1 && [[ -f "$work/las_out/manifest.json" ]] && ok || bad "bake of a LAS file: $(ls "$work/las_out")"
+expect 0 "bake a LAZ file" -- "$bake" "$las/points_f7.laz" -o "$work/laz_out" --primitives 100,30
+ls "$work/laz_out"/points_f7_L*.glb >/dev/null 2>&1 && ok || bad "bake of a LAZ file: $(ls "$work/laz_out")"
+
 # --- every malformed file: exit 1, message names file and code, no output ---
 while IFS=$'\t' read -r file code; do
   [[ -z "$file" || "$file" == \#* ]] && continue

@@ -154,6 +154,42 @@ put("empty.pwn", b"", "xyz.empty")
 put("comments_only.obj", "# nothing but a comment\nmtllib none.mtl\n", "obj.no_vertices")
 put("comments_only.xyz", "# nothing but a comment\n\n", "xyz.no_points")
 
+# Issue 35: LAS and LAZ. A small LAS 1.2 file of point format 3 written here; LAZ cases patch the
+# committed tests/data/las files (written by qf-bench-las, as their README says).
+def las_file(points=4, fmt=3, minor=2, count=None, vlrs=0, scale=0.01, record_length=None):
+    rl = record_length if record_length is not None else {0: 20, 1: 28, 2: 26, 3: 34}[fmt]
+    head = bytearray(227)
+    head[0:4] = b"LASF"
+    head[24:26] = bytes([1, minor])
+    struct.pack_into("<HIIBHI", head, 94, 227, 227, vlrs, fmt, rl, points if count is None else count)
+    struct.pack_into("<3d3d", head, 131, scale, scale, scale, 0, 0, 0)
+    struct.pack_into("<6d", head, 179, 1, 0, 1, 0, 1, 0)
+    body = b"".join(struct.pack("<3iHBBbBH", i, i, 0, 0, 9, 2, 0, 0, 0).ljust(rl, b"\0")[:rl] for i in range(points))
+    return bytes(head) + body
+
+
+las_dir = os.path.join(here, "..", "las")
+f3_laz = open(os.path.join(las_dir, "points_f3.laz"), "rb").read()
+f7_laz = open(os.path.join(las_dir, "points_f7.laz"), "rb").read()
+put("empty.las", b"", "las.header.magic")
+put("not_las.las", "hello world\n", "las.header.magic")
+put("header_truncated.las", las_file()[:100], "las.header.truncated")
+put("bad_version.las", patch(las_file(), 24, b"\x02\x00"), "las.header.version")
+put("bad_point_format.las", patch(las_file(), 104, b"\x0c"), "las.header.format")
+put("short_record.las", patch(las_file(), 105, struct.pack("<H", 10)), "las.header.record_length")
+put("zero_scale.las", las_file(scale=0.0), "las.header.scale")
+put("no_points.las", las_file(points=0), "las.empty")
+put("count_lies.las", las_file(count=1000), "las.body.truncated")
+put("vlr_past_points.las", las_file(vlrs=1), "las.vlr")
+put("compressed_without_vlr.laz", patch(las_file(), 104, b"\x83"), "laz.vlr")
+# points_f3.laz: header 227, LASzip VLR 54 + 52 bytes (3 items from byte 315), points at 333.
+put("chunk_table_missing.laz", patch(f3_laz, 333, struct.pack("<q", -1)), "laz.chunk_table")
+put("chunk_table_cut.laz", f3_laz[:len(f3_laz) - 6], "laz.chunk_table")
+put("item_version_1.laz", patch(f3_laz, 319, struct.pack("<H", 1)), "laz.unsupported")
+# points_f7.laz: header 375, VLR 54 + 46, points at 475, first chunk at 483: its raw point (36
+# bytes) and count (4), then the layers' byte counts from 523.
+put("layer_sizes_past_chunk.laz", patch(f7_laz, 523, struct.pack("<I", 0x7FFFFFFF)), "laz.chunk")
+
 with open(os.path.join(here, "EXPECTED.tsv"), "w") as f:
     f.write("# file\terror code (every file: exit code 1, no output file)\n")
     for name, code in expected:
