@@ -304,13 +304,19 @@ void LasReader::choose_origin() {
     const double reach = box_ok ? std::max(std::abs(lo), std::abs(hi)) : std::abs(h_.offset[a]);
     if (reach > 8388608.0 * std::abs(h_.scale[a])) fits = false;
   }
+  if (!fits) std::copy(centre, centre + 3, origin_);
+  // Every record must give a finite float: the largest integer times the scale, plus what is
+  // left of the offset, stays within float's range.
+  for (int a = 0; a < 3; ++a)
+    if (!(std::abs(h_.scale[a]) * 2147483648.0 + std::abs(h_.offset[a] - origin_[a]) < 3.0e38))
+      fail("las.header.scale", 131 + 8 * a, "scale " + std::to_string(h_.scale[a]) + " and offset " + std::to_string(h_.offset[a]) +
+                                                " put coordinates beyond the range of a float");
   if (fits) return;
   std::ostringstream c;
   c.precision(15);
   c << "origin " << centre[0] << " " << centre[1] << " " << centre[2]
     << " (LAS coordinates = position + origin; the points were moved to keep float precision)";
   out_.comments.push_back(c.str());
-  std::copy(centre, centre + 3, origin_);
 }
 
 void LasReader::prepare_output() {

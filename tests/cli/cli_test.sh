@@ -336,6 +336,8 @@ assert j["points"] == 2000 and j["header"]["point_format"] == "3" and j["scalars
 a, b = (json.load(open(f)) for f in sys.argv[1:3])
 assert a["bounds"] == b["bounds"] and a["points"] == b["points"], (a["bounds"], b["bounds"])' \
   "$work/info_las.json" "$work/info.json" 2>"$work/err" && ok || bad "the LAS and the LAZ of one point set differ: $(tail -2 "$work/err")"
+cp "$las/points_f3.laz" "$work/compressed.las"  # the header, not the extension, says LAZ
+"$bake" info "$work/compressed.las" | grep -q "format: *laz 1.2 (point format 3)" && ok || bad "a LAZ file named .las"
 expect 0 "convert LAS to PLY" -- "$bake" convert "$las/points_f6.las" "$work/las.ply"
 head -c 400 "$work/las.ply" | grep -q "property float classification" && ok || bad "converted LAS keeps its classification"
 expect 0 "bake a LAS file" -- "$bake" "$las/points_f3.las" -o "$work/las_out" --primitives 100,30

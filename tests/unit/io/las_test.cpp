@@ -21,9 +21,11 @@ using test::LasWriteOptions;
 
 const double kCentre[3] = {10.0, -20.0, 5.0};
 
+// The LAS reader itself (read_model's dispatch by extension is checked by the CLI tests), so that
+// this file builds with the reader and laz-perf alone for a quick sanitizer run.
 PointSet decode(const std::string& bytes, const std::string& name, ReadReport* report = nullptr) {
   const ByteView v(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
-  return decode_model(v, name, {}, report).points;
+  return decode_las(v, name, {}, report);
 }
 
 std::string error_code(const std::string& bytes, const std::string& name = "bad.las") {
@@ -115,8 +117,6 @@ TEST(Las, LazReadsTheSamePointsAsItsLas) {
     ASSERT_EQ(laz.colors.size(), las.colors.size());
     for (std::size_t i = 0; i < las.colors.size(); ++i) ASSERT_TRUE(laz.colors[i] == las.colors[i]) << i;
     EXPECT_EQ(report.format, "laz 1." + std::to_string(c.minor) + " (point format " + std::to_string(c.format) + ")");
-    // The .las extension on a compressed file reads it too: the header says what it is.
-    EXPECT_EQ(decode(laz_bytes, "p.las").size(), las.size());
   }
 }
 
@@ -165,7 +165,7 @@ TEST(Las, EightBitColoursAreNotScaled) {
 }
 
 TEST(Las, FileAndMemoryReadersAgree) {
-  // read_model streams the file in blocks (several here: 4 MiB of 34-byte records is ~123k points).
+  // read_las streams the file in blocks (several here: 4 MiB of 34-byte records is ~123k points).
   const std::vector<LasPoint> pts = test::random_las_points(150000, 21, kCentre, 200.0);
   test::TempDir dir;
   for (const bool laz : {false, true}) {
@@ -173,7 +173,7 @@ TEST(Las, FileAndMemoryReadersAgree) {
     o.compress = laz;
     const std::string bytes = test::las_bytes(pts, o);
     const std::string path = dir.write(laz ? "big.laz" : "big.las", bytes);
-    const PointSet from_file = read_model(path).points, from_memory = decode(bytes, path);
+    const PointSet from_file = read_las(path), from_memory = decode(bytes, path);
     ASSERT_EQ(from_file.size(), pts.size());
     for (std::size_t i = 0; i < pts.size(); ++i) ASSERT_TRUE(from_file.positions[i] == from_memory.positions[i]) << i;
     EXPECT_EQ(from_file.scalars[0].values, from_memory.scalars[0].values);
