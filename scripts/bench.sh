@@ -24,15 +24,24 @@
 # (user + sys) time and peak RSS of the whole command (GNU time -v), bytes per point, and the
 # growth exponents from 1M to 10M (scripts/big_table.py). Needs ~12 GB and ~15 minutes; not part
 # of "all" (CI does not run it).
-# usage: scripts/bench.sh [io|analysis|amg|render|bake|sample|cluster|batch|fidelity|chain|big]...   (default: all but big)
+# las: LAS/LAZ reading (issue 35): 10M points of formats 3 and 7, LAS and LAZ: seconds, points/s, peak RSS.
+# usage: scripts/bench.sh [io|las|analysis|amg|render|bake|sample|cluster|batch|fidelity|chain|big]...   (default: all but big)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh >/dev/null
 what=("$@")
-[[ ${#what[@]} -eq 0 ]] && what=(io analysis amg render bake sample cluster batch fidelity chain)
+[[ ${#what[@]} -eq 0 ]] && what=(io las analysis amg render bake sample cluster batch fidelity chain)
 for w in "${what[@]}"; do
   case $w in
     io) build/bin/qf-bench-io ;;
+    las)  # issue 35: 10M points as LAS and LAZ (formats 3 and 7), each read in a fresh process
+      tmp=$(mktemp -d)
+      for f in f3.laz f7.laz f3.las f7.las; do
+        build/bin/qf-bench-las write "$tmp/$f" 10000000 "${f:1:1}"
+        build/bin/qf-bench-las read "$tmp/$f"
+        rm -f "$tmp/$f"
+      done
+      rmdir "$tmp" ;;
     analysis)
       models=$(scripts/fetch-models.sh bunny00.off | tail -1)
       echo "surface analysis: time per step (wall clock, fastest of 3 runs); B/pt = peak memory added by the analysis per point;"

@@ -150,7 +150,7 @@ class LasReader {
   std::vector<std::uint64_t> read_chunk_table(std::uint64_t first_chunk, std::uint64_t& table_offset,
                                               std::vector<std::uint64_t>& counts);
   void decode_chunk(std::size_t index, std::uint64_t offset, std::uint64_t bytes, std::uint64_t count);
-  void check_layers(const std::vector<std::uint8_t>& chunk, std::size_t index, std::uint64_t offset) const;
+  void check_layers(const std::vector<std::uint8_t>& chunk, std::size_t index, std::uint64_t offset, std::uint64_t count) const;
   void finish_colors();
   void report_facts() const;
 
@@ -471,13 +471,16 @@ std::vector<std::uint64_t> LasReader::read_chunk_table(std::uint64_t first_chunk
   return sizes;
 }
 
-void LasReader::check_layers(const std::vector<std::uint8_t>& chunk, std::size_t index, std::uint64_t offset) const {
+void LasReader::check_layers(const std::vector<std::uint8_t>& chunk, std::size_t index, std::uint64_t offset, std::uint64_t count) const {
   // A layered (1.4) chunk: the first point raw, its point count, one byte count per layer, then
   // the layers. laz-perf allocates each layer's bytes as counted: they must lie in the chunk.
   const std::size_t layers = 9 + (h_.format == 7 ? 1 : h_.format == 8 ? 2 : 0) + h_.extra_bytes();
   const std::size_t head = h_.record_length + 4, table_end = head + 4 * layers;
   if (chunk.size() < table_end)
     fail("laz.chunk", offset, "chunk " + std::to_string(index) + " of " + std::to_string(chunk.size()) + " bytes is shorter than its layer table");
+  if (le32(&chunk[h_.record_length]) != count)
+    fail("laz.chunk", offset + h_.record_length, "chunk " + std::to_string(index) + " counts " + std::to_string(le32(&chunk[h_.record_length])) +
+                                                     " points, its chunk table entry " + std::to_string(count));
   std::uint64_t sum = 0;
   for (std::size_t l = 0; l < layers; ++l) sum += le32(&chunk[head + 4 * l]);
   if (sum > chunk.size() - table_end)
@@ -488,7 +491,7 @@ void LasReader::check_layers(const std::vector<std::uint8_t>& chunk, std::size_t
 void LasReader::decode_chunk(std::size_t index, std::uint64_t offset, std::uint64_t bytes, std::uint64_t count) {
   std::vector<std::uint8_t> chunk(static_cast<std::size_t>(bytes));
   src_.read(offset, chunk.size(), chunk.data());
-  if (h_.format >= 6) check_layers(chunk, index, offset);
+  if (h_.format >= 6) check_layers(chunk, index, offset, count);
   ChunkInput in{chunk.data(), chunk.size()};
   const lazperf::las_decompressor::ptr decoder = lazperf::build_las_decompressor(
       [&in](unsigned char* out, std::size_t n) { in.take(out, n); }, h_.format, h_.extra_bytes());

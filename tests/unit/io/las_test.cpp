@@ -255,6 +255,7 @@ TEST(LasMalformed, LayeredChunkSizes) {
   const std::size_t points = 375 + 54 + 34 + 6 * 2;
   const std::size_t layers = points + 8 + 36 + 4;  // first raw point (36 bytes), point count
   EXPECT_EQ(error_code(patched(good, layers, std::uint32_t(0x7FFFFFFF)), "bad.laz"), "laz.chunk");
+  EXPECT_EQ(error_code(patched(good, layers - 4, std::uint32_t(17)), "bad.laz"), "laz.chunk");  // it holds 20
 }
 
 TEST(LasMalformed, TruncationsAndBitFlipsNeverCrash) {
