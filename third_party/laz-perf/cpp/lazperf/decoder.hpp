@@ -184,6 +184,10 @@ public:
         {
             unsigned dv = value / (length >>= DM__LengthShift);
             unsigned t = dv >> m.table_shift;
+            // quasiflat: a malformed stream can leave value >= length, and t past the table
+            // (upstream 3.4.0 then reads outside it); valid streams never get here.
+            if (t > m.table_size)
+                t = m.table_size;
 
             sym = m.decoder_table[t];      // initial decision based on table look-up
             n = m.decoder_table[t+1] + 1;
