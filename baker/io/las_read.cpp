@@ -584,6 +584,7 @@ PointSet LasReader::read() {
 }  // namespace
 
 PointSet decode_las(ByteView bytes, const std::string& path, const ReadOptions&, ReadReport* report) {
+  // No ReadOptions apply: integer records under a checked scale and offset are always finite.
   const MemorySource src(bytes);
   return LasReader(src, path, report).read();
 }
