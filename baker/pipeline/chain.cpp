@@ -39,16 +39,19 @@ std::size_t choose_among(const std::vector<FileScores>& files, std::size_t band,
 }
 
 // The files valid at the band's size and within the byte cap; without one, the valid ones; without
-// those, every file.
+// those (a band above every file's size), the files made for the largest sizes.
 std::size_t choose(const Measurements& m, std::size_t band, std::size_t cap, const std::vector<double>& max_pixels, const ChainRule& o) {
   const std::size_t n = m.files.size();
-  std::vector<bool> valid(n), capped(n), all(n, true);
+  const auto limit = [&](std::size_t i) { return i < max_pixels.size() && max_pixels[i] > 0 ? kShownAbove * max_pixels[i] : 0.0; };
+  double largest = 0;
+  std::vector<bool> valid(n), capped(n), largest_made(n);
   for (std::size_t i = 0; i < n; ++i) {
-    const double limit = i < max_pixels.size() && max_pixels[i] > 0 ? kShownAbove * max_pixels[i] : 0;
-    valid[i] = limit == 0 || m.sizes[band] <= limit;
+    valid[i] = limit(i) == 0 || m.sizes[band] <= limit(i);
     capped[i] = valid[i] && m.files[i].bytes <= cap;
+    largest = std::max(largest, limit(i));
   }
-  for (const std::vector<bool>* allowed : {&capped, &valid, &all}) {
+  for (std::size_t i = 0; i < n; ++i) largest_made[i] = limit(i) == largest;
+  for (const std::vector<bool>* allowed : {&capped, &valid, &largest_made}) {
     const std::size_t pick = choose_among(m.files, band, *allowed, o);
     if (pick < n) return pick;
   }

@@ -31,8 +31,11 @@ for e in measured.values():
 def valid(e, k):  # shown at most shown_above x its own max_screen_pixels
     return e["max_screen_pixels"] is None or sizes[k] <= c["shown_above"] * e["max_screen_pixels"]
 def ok(e, k): return e["at_pixels"][k]["psnr"] >= c["min_psnr"] and e["at_pixels"][k]["iou"] >= c["min_iou"]
-def pick(k, cap):  # among valid files of at most cap bytes (the nearer band's choice), else valid ones, else all
-    for within in ([e for e in c["measured"] if valid(e, k) and e["bytes"] <= cap], [e for e in c["measured"] if valid(e, k)], c["measured"]):
+def limit(e): return 0 if e["max_screen_pixels"] is None else c["shown_above"] * e["max_screen_pixels"]
+largest = max(limit(e) for e in c["measured"])
+def pick(k, cap):  # among valid files of at most cap bytes (the nearer band's choice), else valid ones, else the files made for the largest sizes
+    for within in ([e for e in c["measured"] if valid(e, k) and e["bytes"] <= cap], [e for e in c["measured"] if valid(e, k)],
+                   [e for e in c["measured"] if limit(e) == largest]):
         if not within: continue
         good = [e for e in within if ok(e, k)]
         if good: return min(good, key=lambda e: e["bytes"])

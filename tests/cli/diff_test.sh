@@ -75,10 +75,30 @@ cp "$work/k1/ball_C0.draco.glb" "$work/k3.draco.glb"
 "$bake" "$work/ring.ply" -o "$work/c2" --chain --measure-views 2 --chain-psnr 0 -q
 "$diff" "$work/c1" "$work/c2" --no-render --json >"$work/j"; rc=$?
 chain="[x for x in r['files'] if x['name'] == 'manifest.json'][0]['recommended_chain']"
-[[ $rc -eq 0 && $(field "$work/j" "$chain['old'] != $chain['new'] and $chain['old'].startswith('ring_L')") == True ]] && ok ||
-  bad "a changed chain: exit $rc, old and new listed"
+errors="[x for x in r['files'] if x['name'] == 'manifest.json'][0].get('measured_errors')"
+[[ $(field "$work/j" "$chain['old'] != $chain['new'] and $chain['old'].startswith('ring_L')") == True ]] && ok ||
+  bad "a changed chain: old and new listed"
+# The bands whose file changed are listed with their figures; the exit status follows the worst drop.
+[[ $(field "$work/j" "$errors is not None and all(e['what'].startswith('chain band ') and e['file'][0] != e['file'][1] for e in $errors['changes']) and ($rc == 1) == ($errors['worst_psnr_drop'] > 0.5)") == True ]] && ok ||
+  bad "the chain's bands: exit $rc, $(field "$work/j" "$errors")"
 "$diff" "$work/c1" "$work/c2" --no-render >"$work/out"
-grep -q "^    recommended chain: ring_L.* px, .* dB" "$work/out" && grep -q "^      now: ring_L" "$work/out" && ok || bad "the chain in text: $(cat "$work/out")"
+grep -q "^    recommended chain: ring_L.* px, .* dB" "$work/out" && grep -q "^      now: ring_L" "$work/out" && grep -q "^      chain band [0-9]* px: .* dB" "$work/out" && ok ||
+  bad "the chain in text: $(cat "$work/out")"
+# A level measured 2 dB worse at 32 px is a regression (beyond thresholds, named), a better one is not;
+# --max-error-drop allows it.
+cp -r "$work/c1" "$work/c3"
+python3 - "$work/c3/manifest.json" <<'PY'
+import json, sys
+m = json.load(open(sys.argv[1]))
+e = next(x for x in m["levels"][0]["measured"] if x["pixels"] == 32)
+e["psnr"] = round(e["psnr"] - 2, 2)
+json.dump(m, open(sys.argv[1], "w"), indent=2)
+PY
+"$diff" "$work/c1" "$work/c3" --no-render --json >"$work/j"; rc=$?
+[[ $rc -eq 1 && $(field "$work/j" "$errors['worst_psnr_drop'] == 2.0 and $errors['changes'][0]['what'].endswith(' at 32 px')") == True ]] && ok ||
+  bad "a level 2 dB worse: exit $rc, $(field "$work/j" "$errors")"
+"$diff" "$work/c3" "$work/c1" --no-render >/dev/null; [[ $? -eq 0 ]] && ok || bad "a better measured look is no regression"
+"$diff" "$work/c1" "$work/c3" --no-render --max-error-drop 2.5 >/dev/null; [[ $? -eq 0 ]] && ok || bad "--max-error-drop 2.5 lets a 2 dB drop pass"
 
 # --- usage ---
 "$diff" "$work/a" "$work/a/$level" >/dev/null 2>"$work/err"; [[ $? -eq 2 ]] && grep -q "not a file with a folder" "$work/err" && ok || bad "file vs folder: exit 2"
