@@ -21,9 +21,11 @@ struct MeasureOptions {
   // recommended chain adds 256 px, a near band.
   std::vector<int> sizes{128, 64, 32, 16};
   // Directions spread over the bounding sphere (sphere_direction), 4 for the bake's time, and the
-  // truth's supersampling of the largest size (truth_side).
+  // truth's supersampling of the largest size (truth_side): 4, a 512-px truth for 128 px, a
+  // quarter of the pixels of eval's 8 x; on bunny00, the generated tree, a bush and the
+  // octahedron it moved every figure by at most 0.23 dB and no level's screen size.
   int views = 4;
-  int truth = 8;
+  int truth = 4;
   bool as_drawn = false;  // also the input itself drawn at each size (Measurements::as_drawn)
   ReadOptions read;       // how the input is read again (as the bake read it)
 };

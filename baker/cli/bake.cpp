@@ -52,7 +52,7 @@ CommandSpec bake_spec() {
                                               "(error under half a pixel) and there is no chain (needs no GL driver)"},
                     {"measure-views", 0, "N", "4", "directions each output is drawn from when measured, at 128, 64, 32 and 16 px on\n"
                                                    "screen (and 256 with --chain), by the engine method against the truth (the input drawn\n"
-                                                   "at 4x the size, box-filtered): a level's max_screen_pixels is the largest of those sizes at which its\n"
+                                                   "once at 4x the largest size, box-filtered to each): a level's max_screen_pixels is the largest of those sizes at which its\n"
                                                    "look holds (PSNR within 1 dB of its best, IoU within 0.05 of its IoU there; manifest measuring)"},
                     {"chain", 0, "", "", "also the recommended chain (manifest recommended_chain): the mesh LODs and the point\n"
                                          "impostor are measured too; per band, never more bytes than nearer, the smallest file\n"

@@ -39,9 +39,9 @@ assert levels[0]["max_screen_pixels"] > levels[0]["geometric_max_screen_pixels"]
 PY
 
 # 2. The figures are qf-render eval's: the same views, the candidate drawn at the size, the truth
-#    drawn at 1024 px (8 x 128) and box-filtered down (eval --truth 1024/S).
+#    drawn at 512 px (4 x 128) and box-filtered down (eval --truth 512/S).
 finest=$(python3 -c "import json,sys; print(min(json.load(open(sys.argv[1]))['levels'], key=lambda l: l['level'])['file'])" "$work/tree/manifest.json")
-"$render" eval "$work/tree.glb" "$work/tree/$finest" --size 32 --views 4 --truth 32 -m engine -o "$work/eval.json" 2>/dev/null || fail "eval"
+"$render" eval "$work/tree.glb" "$work/tree/$finest" --size 32 --views 4 --truth 16 -m engine -o "$work/eval.json" 2>/dev/null || fail "eval"
 python3 - "$work/tree/manifest.json" "$work/eval.json" "$finest" <<'PY' || fail "the bake's figure differs from qf-render eval's"
 import json, sys
 m, e, name = json.load(open(sys.argv[1])), json.load(open(sys.argv[2])), sys.argv[3]
