@@ -67,6 +67,21 @@ std::vector<Scores> scores_at_sizes(Renderer& renderer, const std::vector<SizeVi
   return out;
 }
 
+// The input as the truth: a glTF file as its file says (the loader, as qf-render eval draws it),
+// others, and glTF files the loader does not take (Draco-compressed: runtime_gl decodes no
+// Draco), as the baker's readers read them.
+AnyScene measured_input(const std::string& path, const ReadOptions& read) {
+  const std::string ext = file_extension(path);
+  if (ext == "glb" || ext == "gltf") {
+    try {
+      return load_scene(path);
+    } catch (const InputError&) {
+      // The bake read it, so its reader can.
+    }
+  }
+  return load_input(path, read);
+}
+
 }  // namespace
 
 int truth_factor(int size, int truth) { return std::max(1, std::min(truth, kMaxTruthSide / std::max(1, size))); }
@@ -88,10 +103,7 @@ Measurements measure_files(const std::string& input_path, const std::vector<Cand
   } catch (const std::runtime_error& e) {
     throw UsageError(std::string("measuring the outputs draws them, which needs an EGL/OpenGL driver (or --no-measure): ") + e.what());
   }
-  // A glTF input is drawn as its file says (the loader, as qf-render eval draws it); others as the
-  // readers read them.
-  const std::string ext = file_extension(input_path);
-  const AnyScene input = ext == "glb" || ext == "gltf" ? load_scene(input_path) : load_input(input_path, o.read);
+  const AnyScene input = measured_input(input_path, o.read);
   const Sphere sphere = bounding_sphere(input.bounds());
   const std::vector<SizeViews> sizes = truth_views(input, sphere, o);
   // 3. The input as drawn at each size (when asked: it costs as much as a few candidates), then
