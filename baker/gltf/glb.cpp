@@ -497,9 +497,11 @@ std::vector<std::uint8_t> encode_mesh_glb(const TriangleMesh& mesh, bool smooth_
   prim.mode = TINYGLTF_MODE_TRIANGLES;
   prim.material = 0;
   prim.attributes["POSITION"] = add_floats(m, pos, 3, TINYGLTF_TYPE_VEC3, true);
-  if (smooth_normals) {
+  // The mesh's own normals where it has them (an input's hard edges stay hard), else smooth ones.
+  const bool own_normals = mesh.normals.size() == mesh.positions.size();
+  if (own_normals || smooth_normals) {
     std::vector<float> nrm;
-    for (Vec3f n : mesh.smooth_normals()) nrm.insert(nrm.end(), {n.x, n.y, n.z});
+    for (Vec3f n : own_normals ? mesh.normals : mesh.smooth_normals()) nrm.insert(nrm.end(), {n.x, n.y, n.z});
     prim.attributes["NORMAL"] = add_floats(m, nrm, 3, TINYGLTF_TYPE_VEC3, false);
   }
   if (coloured) prim.attributes["COLOR_0"] = add_colors(m, mesh.colors);

@@ -85,9 +85,9 @@ double point_switch_distance(const PointImpostorInfo& info);  // s Z0 on the ref
 // uncompressed fallback (the extension is then required; lines and points stay plain).
 std::vector<std::uint8_t> encode_cluster_glb(const LodMesh& lod, const GltfOptions& options = {}, bool draco = false);
 
-// A plain triangle mesh (an edge-collapse LOD): indexed triangles, smooth area-weighted NORMALs when
-// `smooth_normals` (else none: engines then shade each triangle flat), COLOR_0 (16-bit linear)
-// where the mesh has colours.
+// A plain triangle mesh (an edge-collapse LOD): indexed triangles, NORMALs: the mesh's own where it
+// has them, else smooth area-weighted ones when `smooth_normals` (else none: engines then shade each
+// triangle flat), COLOR_0 (16-bit linear) where the mesh has colours.
 std::vector<std::uint8_t> encode_mesh_glb(const TriangleMesh& mesh, bool smooth_normals, const GltfOptions& options = {});
 
 // A mesh with its materials as a game asset (qf-bake generate tree): one primitive per material,

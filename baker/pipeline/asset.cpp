@@ -45,38 +45,87 @@ std::vector<std::size_t> default_simplify_budgets(const TriangleMesh& mesh) {
   return budgets;
 }
 
+namespace {
+
+// Whether two LODs are the same mesh: the same vertices, triangles and surface.
+bool same_mesh(const TriangleMesh& a, const TriangleMesh& b) {
+  const auto same_uvs = [](const std::array<Vec2f, 3>& x, const std::array<Vec2f, 3>& y) {
+    for (std::size_t k = 0; k < 3; ++k)
+      if (x[k].x != y[k].x || x[k].y != y[k].y) return false;
+    return true;
+  };
+  return a.triangles == b.triangles && a.triangle_materials == b.triangle_materials && a.positions == b.positions &&
+         a.normals == b.normals && a.colors == b.colors && a.corner_uvs.size() == b.corner_uvs.size() &&
+         std::equal(a.corner_uvs.begin(), a.corner_uvs.end(), b.corner_uvs.begin(), same_uvs);
+}
+
+// One LOD's file and manifest entry (`s` is finished for writing: normals, textures, sidedness).
+nlohmann::json simplify_level_file(SimplifiedMesh& s, std::size_t budget, double diagonal, bool collapsed, const std::string& name,
+                                   std::vector<OutputFile>& files, bool smooth) {
+  // A mesh with materials (textured glTF, OBJ + MTL) keeps them, its textures sized for the
+  // level's screen: at most 2 x max_screen_pixels texels a side (the spider's 768-px texture in
+  // its 3-px level cost 1.4 MB; at its 342-triangle level, drawn at its 43 px, sides of 4x, 2x
+  // and 1x scored 16.25, 16.24 and 16.12 dB in 100, 39 and 22 KB); others get the LOD material.
+  const double max_screen_pixels = s.error > 0 ? std::min(0.5 * diagonal / s.error, 1e9) : 1e9;
+  const bool own_materials = !s.mesh.materials.empty();
+  // Normals as the input's reference is drawn: its own where it has them (carried through the
+  // simplifier), else smooth or none (flat).
+  if (own_materials && smooth && s.mesh.normals.empty()) s.mesh.normals = s.mesh.smooth_normals();
+  if (own_materials) fit_textures(s.mesh, static_cast<int>(std::min(2 * max_screen_pixels, 16384.0)));
+  // Double-sided, as the LOD material and the impostor levels are, where triangles were collapsed:
+  // a collapsed thin part (a leg, a leaf) may show its back faces. All kept, the input's sidedness
+  // stays (2CylinderEngine's copy, double-sided, showed the backs of its open parts: 56.4 dB).
+  if (collapsed)
+    for (SurfaceMaterial& m : s.mesh.materials) m.double_sided = true;
+  files.push_back({name, own_materials ? encode_textured_mesh_glb(s.mesh) : encode_mesh_glb(s.mesh, smooth)});
+  return {{"file", name},
+          {"target_triangles", budget},
+          {"triangles", s.mesh.triangles.size()},
+          {"vertices", s.mesh.positions.size()},
+          {"bytes", files.back().bytes.size()},
+          {"error", canonical_double(static_cast<float>(s.error))},
+          {"max_screen_pixels", static_cast<long long>(max_screen_pixels)}};
+}
+
+}  // namespace
+
 nlohmann::json simplify_level_files(const TriangleMesh& mesh, const std::vector<std::size_t>& budgets, const std::string& stem,
                                     std::vector<OutputFile>& files, bool smooth, SimplifyMethod method) {
   const double diagonal = mesh.bounds().diagonal();
-  nlohmann::json levels = nlohmann::json::array();
+  const char* simplifier = method == SimplifyMethod::kSloppy ? "simplifySloppy" : "simplify";
+  nlohmann::json levels = nlohmann::json::array(), skipped = nlohmann::json::array(), stopped;
+  TriangleMesh previous;  // the last written LOD's mesh, as simplified
+  std::string previous_name;
   for (std::size_t i = 0; i < budgets.size(); ++i) {
+    if (!stopped.is_null()) {
+      skipped.push_back({{"target_triangles", budgets[i]}, {"skipped", "not tried: " + stopped.get<std::string>()}});
+      continue;
+    }
     SimplifiedMesh s = simplify_mesh(mesh, budgets[i], method);
     // simplifySloppy may cluster a small budget's mesh away entirely (2CylinderEngine at 52).
     if (s.mesh.triangles.empty())
-      throw UsageError("a budget of " + std::to_string(budgets[i]) + " triangles leaves nothing of this mesh (" +
-                       (method == SimplifyMethod::kSloppy ? "simplifySloppy" : "simplify") + " collapsed it whole); give a larger one");
-    const std::string name = stem + "_S" + std::to_string(i) + ".glb";
-    // A mesh with materials (textured glTF, OBJ + MTL) keeps them, its textures sized for the
-    // level's screen: at most 2 x max_screen_pixels texels a side (the spider's 768-px texture in
-    // its 3-px level cost 1.4 MB; at its 342-triangle level, drawn at its 43 px, sides of 4x, 2x
-    // and 1x scored 16.25, 16.24 and 16.12 dB in 100, 39 and 22 KB); others get the LOD material.
-    const double max_screen_pixels = s.error > 0 ? std::min(0.5 * diagonal / s.error, 1e9) : 1e9;
-    const bool own_materials = !s.mesh.materials.empty();
-    if (own_materials && smooth) s.mesh.normals = s.mesh.smooth_normals();
-    if (own_materials) fit_textures(s.mesh, static_cast<int>(std::min(2 * max_screen_pixels, 16384.0)));
-    // Double-sided, as the LOD material and the impostor levels are: a collapsed thin part (a leg,
-    // a leaf) may show its back faces.
-    for (SurfaceMaterial& m : s.mesh.materials) m.double_sided = true;
-    files.push_back({name, own_materials ? encode_textured_mesh_glb(s.mesh) : encode_mesh_glb(s.mesh, smooth)});
-    levels.push_back({{"file", name},
-                      {"target_triangles", budgets[i]},
-                      {"triangles", s.mesh.triangles.size()},
-                      {"vertices", s.mesh.positions.size()},
-                      {"bytes", files.back().bytes.size()},
-                      {"error", canonical_double(static_cast<float>(s.error))},
-                      {"max_screen_pixels", static_cast<long long>(max_screen_pixels)}});
+      throw UsageError("a budget of " + std::to_string(budgets[i]) + " triangles leaves nothing of this mesh (" + simplifier +
+                       " collapsed it whole); give a larger one");
+    // 1. Above its budget, the simplifier has stalled: no collapse is left that keeps the topology
+    //    (thin beams, many parts, vertices split at creases and seams), and every smaller budget
+    //    would give this mesh again.
+    if (s.mesh.triangles.size() > budgets[i])
+      stopped = std::string(simplifier) + " stalled at " + std::to_string(s.mesh.triangles.size()) + " triangles (budget " +
+                std::to_string(budgets[i]) + "); the smaller budgets give the same mesh";
+    // 2. The same mesh as the last LOD is not written again.
+    if (!levels.empty() && same_mesh(s.mesh, previous)) {
+      skipped.push_back({{"target_triangles", budgets[i]}, {"skipped", "same mesh as " + previous_name + ".glb"}});
+      continue;
+    }
+    previous = s.mesh;
+    previous_name = stem + "_S" + std::to_string(levels.size());
+    const bool collapsed = s.mesh.triangles.size() < mesh.triangles.size();
+    levels.push_back(simplify_level_file(s, budgets[i], diagonal, collapsed, previous_name + ".glb", files, smooth));
   }
-  return levels;
+  nlohmann::json out{{"levels", levels}};
+  if (!skipped.empty()) out["skipped"] = skipped;
+  if (!stopped.is_null()) out["stopped"] = stopped;
+  return out;
 }
 
 nlohmann::json cluster_level_files(const std::vector<LodMesh>& lods, const std::string& stem, bool draco,
@@ -131,8 +180,9 @@ nlohmann::json stage_entry(const StageTime& t) {
 
 // 2. Mesh inputs: mesh LODs for near and middle distances beside the impostors (their manifest
 // entry; null when none), their files appended to `files`.
+// `smooth`: a mesh without normals of its own is drawn smooth (else flat, as glTF draws it).
 nlohmann::json mesh_lod_outputs(const TriangleMesh& mesh, const AssetOptions& o, const std::string& stem,
-                                std::vector<OutputFile>& files) {
+                                std::vector<OutputFile>& files, bool smooth) {
   if (o.mesh_lods == AssetOptions::MeshLods::kClustering) {
     const VertexGrading grading = grade_vertices(mesh);
     ClusterOptions co;
@@ -146,10 +196,12 @@ nlohmann::json mesh_lod_outputs(const TriangleMesh& mesh, const AssetOptions& o,
             {"lod_rule", "largest cell_width <= X * R, R = 2 D tan(fov/2) / window height, X = 5; "
                          "thick line width = _THICKNESS / R pixels"}};
   }
-  if (o.mesh_lods == AssetOptions::MeshLods::kSimplify && !default_simplify_budgets(mesh).empty())
-    return {{"method", "simplify"},
-            {"levels", simplify_level_files(mesh, default_simplify_budgets(mesh), stem, files)},
-            {"lod_rule", "coarsest level whose max_screen_pixels >= the object's on-screen size (bounding-box diagonal, pixels)"}};
+  if (o.mesh_lods == AssetOptions::MeshLods::kSimplify && !default_simplify_budgets(mesh).empty()) {
+    nlohmann::json lods = simplify_level_files(mesh, default_simplify_budgets(mesh), stem, files, smooth);
+    lods["method"] = "simplify";
+    lods["lod_rule"] = "coarsest level whose max_screen_pixels >= the object's on-screen size (bounding-box diagonal, pixels)";
+    return lods;
+  }
   return nullptr;
 }
 
@@ -395,14 +447,16 @@ AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::
   MeshSurface surface;  // a mesh input's quads draw the mesh itself
   const PointSet points = load_point_set(path, o.read, o.sample, "bake", a.read, &a.sampled, &mesh, &surface.point_triangles);
   const bool is_mesh = !a.sampled.backend.empty();
+  // A mesh's normals: its own; else flat for glTF (as engines draw it), smooth for the others (as
+  // the reference is drawn, tools/reference_scene.cpp). Its quads and mesh LODs are drawn so too.
+  const bool gltf = a.read.format == "glb" || a.read.format == "gltf";
   if (is_mesh) {
     surface.mesh = &mesh;
-    const bool gltf = a.read.format == "glb" || a.read.format == "gltf";
     surface.normals = mesh.normals.size() == mesh.positions.size() ? mesh.normals : gltf ? std::vector<Vec3f>{} : mesh.smooth_normals();
   }
   // 2-4. The outputs: mesh LODs, impostor levels, the point impostor.
   const auto lods_start = std::chrono::steady_clock::now();
-  nlohmann::json mesh_lods = is_mesh ? mesh_lod_outputs(mesh, o, stem, a.files) : nlohmann::json(nullptr);
+  nlohmann::json mesh_lods = is_mesh ? mesh_lod_outputs(mesh, o, stem, a.files, !gltf) : nlohmann::json(nullptr);
   const double lods_seconds = seconds_since(lods_start);
   BakeOptions bake_options = o.bake;
   use_surface_edges(bake_options, is_mesh);
@@ -410,6 +464,7 @@ AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::
   a.manifest = impostor_outputs(a.result, stem, input_name, a.files);
   if (is_mesh && o.point_impostor) a.manifest["point_impostor"] = point_impostor_output(points, o, a.sampled.pixel, stem, a.files);
   if (!mesh_lods.is_null()) {
+    if (mesh_lods.contains("stopped")) a.result.warnings.push_back("mesh LODs: " + mesh_lods["stopped"].get<std::string>());
     a.manifest["mesh_lods"] = std::move(mesh_lods);
     a.result.times.push_back({"mesh lods", lods_seconds, 0, 0});
   }

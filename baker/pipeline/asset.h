@@ -85,11 +85,15 @@ std::vector<double> default_cluster_cells(const TriangleMesh& mesh);
 // those of at least 16 triangles.
 std::vector<std::size_t> default_simplify_budgets(const TriangleMesh& mesh);
 
-// Edge-collapse LODs of `mesh` as files STEM_S<i>.glb (smooth normals, or none; a mesh with
-// materials keeps them and its textures, others get the LOD material), appended to `files`; returns their manifest entries (target and kept triangles, vertices, bytes, error and
-// the largest on-screen size of the object at which that error stays under half a pixel, as the
-// impostor levels give it). Shared by the bake and `qf-bake simplify`. UsageError for a budget
-// that leaves no triangle.
+// Edge-collapse LODs of `mesh` as files STEM_S<i>.glb, appended to `files`: normals the mesh's own
+// where it has them (kept through the simplifier), else smooth ones when `smooth`, else none (flat);
+// a mesh with materials keeps them and its textures, others get the LOD material. A budget whose
+// LOD is the same mesh as the last one written is skipped, and where the simplifier stalls (stays
+// above its budget) the smaller budgets are not tried. Returns {"levels": the written LODs' manifest
+// entries (file, target and kept triangles, vertices, bytes, error and the largest on-screen size of
+// the object at which that error stays under half a pixel, as the impostor levels give it),
+// "skipped": [{target_triangles, skipped: why}] and "stopped": why, where there are any}. Shared by
+// the bake and `qf-bake simplify`. UsageError for a budget that leaves no triangle.
 nlohmann::json simplify_level_files(const TriangleMesh& mesh, const std::vector<std::size_t>& budgets, const std::string& stem,
                                     std::vector<OutputFile>& files, bool smooth = true,
                                     SimplifyMethod method = SimplifyMethod::kCollapse);

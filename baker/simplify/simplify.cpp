@@ -78,16 +78,20 @@ SimplifiedMesh simplify_mesh(const TriangleMesh& mesh, std::size_t target_triang
   else
     kept.resize(meshopt_simplify(kept.data(), indices.data(), indices.size(), &mesh.positions[0].x, mesh.positions.size(),
                                  sizeof(Vec3f), target_triangles * 3, 1.0f, 0, &relative_error));
-  // 2. Keep only the vertices still used, in first-use order (meshopt_optimizeVertexFetch's order).
+  // 2. Keep only the vertices still used (with their colours and normals: a flat-shaded input has
+  //    its vertices split at each crease, which meshoptimizer keeps as seams, so the kept corners
+  //    keep the input's hard edges), in first-use order (meshopt_optimizeVertexFetch's order).
   std::vector<unsigned> remap(mesh.positions.size());
   const std::size_t used = meshopt_optimizeVertexFetchRemap(remap.data(), kept.data(), kept.size(), mesh.positions.size());
   SimplifiedMesh out;
   out.mesh.positions.resize(used);
   if (mesh.colors.size() == mesh.positions.size()) out.mesh.colors.resize(used);
+  if (mesh.normals.size() == mesh.positions.size()) out.mesh.normals.resize(used);
   for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
     if (remap[v] == ~0u) continue;
     out.mesh.positions[remap[v]] = mesh.positions[v];
     if (!out.mesh.colors.empty()) out.mesh.colors[remap[v]] = mesh.colors[v];
+    if (!out.mesh.normals.empty()) out.mesh.normals[remap[v]] = mesh.normals[v];
   }
   // 3. The triangles, with materials and texture coordinates taken over from the input's.
   const bool surface = !mesh.corner_uvs.empty() || !mesh.triangle_materials.empty();

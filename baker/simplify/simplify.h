@@ -14,11 +14,12 @@ struct SimplifiedMesh {
 };
 
 // Collapses edges until at most `target_triangles` remain (or no collapse keeps the topology:
-// then fewer are removed; the result says how many are left). Vertex colours follow their
-// vertices; a mesh with materials or texture coordinates keeps its materials and textures, and
+// then fewer are removed; the result says how many are left). Vertex colours and normals follow
+// their vertices (vertices split at a crease, as a flat-shaded input's are, stay split: its hard
+// edges stay hard); a mesh with materials or texture coordinates keeps its materials and textures, and
 // each kept triangle takes its material and corner UVs from the input triangles around it (seams
-// are collapsed across; a corner on one takes the side of the rest of its triangle); normals are
-// left to the writer. Deterministic. Throws std::invalid_argument on a mesh without triangles.
+// are collapsed across; a corner on one takes the side of the rest of its triangle); a mesh
+// without normals gets none (left to the writer). Deterministic. Throws std::invalid_argument on a mesh without triangles.
 // kSloppy: meshoptimizer's simplifySloppy instead (vertices clustered on a grid, topology not
 // kept: thin parts and separate pieces merge), the peer of the fidelity league for assets where
 // edge collapse stalls (issue 31).
