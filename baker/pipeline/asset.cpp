@@ -108,10 +108,15 @@ nlohmann::json simplify_level_files(const TriangleMesh& mesh, const std::vector<
                        " collapsed it whole); give a larger one");
     // 1. Above its budget, the simplifier has stalled: no collapse is left that keeps the topology
     //    (thin beams, many parts, vertices split at creases and seams), and every smaller budget
-    //    would give this mesh again.
+    //    would give this mesh again. simplifySloppy as the fallback was measured and not taken
+    //    (engine method, 8 views, 128 px, against the input): 2CylinderEngine's stalled 33,008
+    //    triangles score 25.8 dB, IoU 0.996; sloppy at 6,182 and 1,307 triangles 12.9 dB, 0.976 and
+    //    11.9 dB, 0.915; the lattice's stalled 224 triangles IoU 0.24, sloppy at 54 IoU 0.10.
     if (s.mesh.triangles.size() > budgets[i])
       stopped = std::string(simplifier) + " stalled at " + std::to_string(s.mesh.triangles.size()) + " triangles (budget " +
-                std::to_string(budgets[i]) + "); the smaller budgets give the same mesh";
+                std::to_string(budgets[i]) + "): no collapse left keeps the topology (thin parts, separate pieces, creases), so the " +
+                "smaller budgets give the same mesh; simplifySloppy is no fallback: it breaks thin parts and merges pieces " +
+                "(2CylinderEngine at 6182 triangles: 12.9 dB, IoU 0.976 against the input, where the stalled mesh scores 25.8 dB, 0.996)";
     // 2. The same mesh as the last LOD is not written again.
     if (!levels.empty() && same_mesh(s.mesh, previous)) {
       skipped.push_back({{"target_triangles", budgets[i]}, {"skipped", "same mesh as " + previous_name + ".glb"}});
