@@ -63,6 +63,36 @@ TEST(TexturedGltf, NodeTransformsPlaceTheMeshWhereAnEngineDoes) {
   EXPECT_EQ(m.mesh.corner_uvs.size(), 12u);
 }
 
+// Normals go by the inverse transpose of the node's matrix: a rotation turns them with the
+// positions (the adjugate turned them back: 2CylinderEngine's rotated parts lit wrongly), a mirror
+// flips them with the winding.
+TEST(TexturedGltf, NodeTransformsTurnNormalsAsAnEngineDoes) {
+  // The triangle (0,0,0) (1,0,0) (0,1,0) with NORMAL (0,0,1) at each corner.
+  const auto normal_under = [](const std::string& node) {
+    test::TempDir dir;
+    const std::string path = dir.write("n.gltf", R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[)" + node + R"(],
+  "meshes":[{"primitives":[{"attributes":{"POSITION":0,"NORMAL":1},"indices":2}]}],
+  "buffers":[{"byteLength":78,"uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAAAAAAAAIA/AAAAAAAAAAAAAIA/AAAAAAAAAAAAAIA/AAABAAIA"}],
+  "bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":36},{"buffer":0,"byteOffset":72,"byteLength":6}],
+  "accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]},
+               {"bufferView":1,"componentType":5126,"count":3,"type":"VEC3"},
+               {"bufferView":2,"componentType":5123,"count":3,"type":"SCALAR"}]})");
+    const Model m = read_model(path);
+    EXPECT_EQ(m.mesh.normals.size(), 3u);
+    return m.mesh.normals.empty() ? Vec3f{} : m.mesh.normals[0];
+  };
+  // 90 degrees about x: y goes to z, z to -y.
+  const Vec3f turned = normal_under(R"({"mesh":0,"rotation":[0.70710678,0,0,0.70710678]})");
+  EXPECT_NEAR(turned.x, 0, 1e-6);
+  EXPECT_NEAR(turned.y, -1, 1e-6);
+  EXPECT_NEAR(turned.z, 0, 1e-6);
+  // Mirrored in z, scaled in x: the normal is -z.
+  const Vec3f mirrored = normal_under(R"({"mesh":0,"scale":[3,1,-1]})");
+  EXPECT_NEAR(mirrored.x, 0, 1e-6);
+  EXPECT_NEAR(mirrored.y, 0, 1e-6);
+  EXPECT_NEAR(mirrored.z, -1, 1e-6);
+}
+
 TEST(TexturedGltf, SampledPointsCarryTheTexelsAtTheirUvs) {
   const std::vector<FacePoint> face = top_face(sampled("cube.gltf"));
   ASSERT_GT(face.size(), 1000u);
