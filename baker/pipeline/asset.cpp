@@ -98,7 +98,7 @@ nlohmann::json simplify_level_files(const TriangleMesh& mesh, const std::vector<
   std::string previous_name;
   for (std::size_t i = 0; i < budgets.size(); ++i) {
     if (!stopped.is_null()) {
-      skipped.push_back({{"target_triangles", budgets[i]}, {"skipped", "not tried: " + stopped.get<std::string>()}});
+      skipped.push_back({{"target_triangles", budgets[i]}, {"skipped", std::string("not tried: ") + simplifier + " stalled above a larger budget (see stopped)"}});
       continue;
     }
     SimplifiedMesh s = simplify_mesh(mesh, budgets[i], method);
