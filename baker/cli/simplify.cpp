@@ -22,13 +22,14 @@ CommandSpec simplify_spec() {
           "triangles with the input's own normals (kept through the simplifier: hard edges stay hard) or,\n"
           "for a mesh without, smooth normals (or none with --normals flat: engines then shade each triangle\n"
           "flat). A budget whose LOD is the same mesh as the last one is skipped, and where the simplifier\n"
-          "stalls above a budget the smaller ones are not tried (manifest: skipped, stopped). manifest.json gives each LOD's triangles, vertices, bytes, meshoptimizer's error and the\n"
+          "stalls above a budget the smaller ones are not tried (manifest: skipped, stopped). manifest.json\n"
+          "gives each LOD's triangles, vertices, bytes, meshoptimizer's error and the\n"
           "largest on-screen size at which that error stays under half a pixel.",
           {output_option("OUTDIR", "output folder (created if needed); required"),
            {"triangles", 't', "N,N,...", "", "triangle budgets, one LOD each; required"},
-           {"normals", 0, "smooth|flat", "as the input is drawn",
+           {"normals", 0, "smooth|flat", "flat for glTF, else smooth",
             "for a mesh without normals of its own: vertex normals area-weighted over the LOD's triangles, or none\n"
-            "(default: none for glTF, smooth for the others; a mesh's own normals are always kept)"},
+            "(a mesh's own normals are always kept)"},
            {"method", 0, "collapse|sloppy", "collapse",
             "meshoptimizer's edge collapse (simplify: keeps the topology), or simplifySloppy (clusters vertices\n"
             "on a grid: reaches any budget, merging thin parts and pieces)"},
