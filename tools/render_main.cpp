@@ -83,6 +83,15 @@ std::vector<OptionSpec> draw_option_specs() {
   };
 }
 
+// Options the method does not read are refused, never silently ignored (-m engine --no-lighting
+// drew lit): the engine method draws the glTF materials as an engine does, without the
+// lock-by-depth methods' settings.
+void refuse_unused_options(const ParsedArgs& a, Method method) {
+  if (method != Method::kEngine) return;
+  for (const char* name : {"no-lighting", "alpha-ref", "transparency", "depth-offset", "normalize"})
+    if (a.has(name)) throw UsageError(std::string("--") + name + " applies to the lock-by-depth methods, not to the engine method");
+}
+
 DrawSettings read_draw_settings(const ParsedArgs& a) {
   DrawSettings s;
   s.method = method_from_name(a.get("method", "overlap"));
@@ -94,6 +103,7 @@ DrawSettings read_draw_settings(const ParsedArgs& a) {
   if (a.has("normalize")) s.normalize = static_cast<float>(a.get_double("normalize", 0, 0, 1));
   if (a.has("alpha-mode")) s.alpha_mode = a.get_choice("alpha-mode", {"OPAQUE", "MASK", "BLEND"}, "");
   s.alpha_cutoff = static_cast<float>(a.get_double("alpha-cutoff", -1, 0, 1));
+  refuse_unused_options(a, s.method);
   return s;
 }
 
@@ -159,6 +169,12 @@ int run_render(const ParsedArgs& a) {
   // A mesh's materials only the engine method draws (the others show it grey), so it is the
   // default there. glTF files keep the plain-quads default (other tools' LODs are drawn so).
   if (scene.kind == AnyScene::kMesh && scene.asset && !a.has("method")) settings.method = Method::kEngine;
+  refuse_unused_options(a, settings.method);
+  // Only the engine method reads the material's alpha mode and cutoff (eval's engine pass reads
+  // them whatever --method says; a render draws one method).
+  if (settings.method != Method::kEngine)
+    for (const char* name : {"alpha-mode", "alpha-cutoff"})
+      if (a.has(name)) throw UsageError(std::string("--") + name + " applies to the engine method (-m engine) only");
   if (a.has("mesh")) {
     if (scene.kind != AnyScene::kPoints) throw UsageError("--mesh goes with a point impostor (.glb with QF_point_impostor)");
     AnyScene m = load_scene(a.get("mesh"));

@@ -149,6 +149,12 @@ m = json.load(open(sys.argv[1]))["mean"]
 sys.exit(0 if m["engine"] == m["as_drawn"] and m["engine"]["psnr"] < 99 and 0.5 < m["engine"]["soft_iou"] <= 1 else 1)' "$work/truth.json" &&
   ok || bad "eval against the truth: the set as drawn scores otherwise than its as_drawn entry"
 expect 0 "" --version
+# Options the method does not read are refused (exit 2, naming the option), never silently ignored.
+for args in "-m engine --no-lighting" "-m engine --transparency 0.5" "--alpha-mode MASK" "-m overlap --alpha-cutoff 0.3"; do
+  "$render" "${file[points]}" -o "$work/unused.png" --size 32 $args 2>"$work/err"
+  rc=$? option=${args##*--}
+  [[ $rc == 2 && ! -e "$work/unused.png" ]] && grep -q -- "--${option%% *} applies" "$work/err" && ok || bad "render $args was not refused: $(cat "$work/err")"
+done
 
 echo "render tests: $pass passed, $fail failed"
 [[ $fail == 0 ]]
