@@ -403,15 +403,16 @@ nlohmann::json measuring_entry(const Measurements& m, const HoldBar& bar) {
 // max_screen_pixels; the point impostor's size at its switch distance, nearer than which its
 // points part (it fades to the mesh there).
 double file_max_pixels(const nlohmann::json& manifest, const std::string& file, double diagonal) {
-  for (const char* list : {"levels", "mesh_lods"}) {
-    const nlohmann::json& entries = std::string(list) == "levels" ? manifest["levels"] : manifest.value("mesh_lods", nlohmann::json::object()).value("levels", nlohmann::json::array());
-    for (const nlohmann::json& e : entries)
+  std::vector<const nlohmann::json*> lists{&manifest.at("levels")};
+  if (manifest.contains("mesh_lods") && manifest["mesh_lods"].contains("levels")) lists.push_back(&manifest["mesh_lods"]["levels"]);
+  for (const nlohmann::json* entries : lists)
+    for (const nlohmann::json& e : *entries)
       if (e.at("file") == file) return e.at("max_screen_pixels").get<double>();
-  }
   if (manifest.contains("point_impostor") && manifest["point_impostor"].at("file") == file) {
+    // D H / (2 tan(fov / 2) d) is symmetric in pixels and distance: the pixels at a distance.
     const nlohmann::json& p = manifest["point_impostor"];
-    return diagonal * p.at("switch_screen_height").get<double>() /
-           (2 * std::tan(0.5 * p.at("switch_fov_degrees").get<double>() * 3.14159265358979323846 / 180) * p.at("switch_distance").get<double>());
+    return distance_for_pixels(diagonal, p.at("switch_distance").get<double>(), p.at("switch_screen_height").get<double>(),
+                               p.at("switch_fov_degrees").get<double>());
   }
   return 0;
 }
