@@ -217,7 +217,12 @@ GLuint upload(const Image& img, GLint internal_format) {
   glBindTexture(GL_TEXTURE_2D, t);
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
   glTexImage2D(GL_TEXTURE_2D, 0, internal_format, img.width, img.height, 0, GL_RGBA, GL_UNSIGNED_BYTE, img.rgba.data());
-  glGenerateMipmap(GL_TEXTURE_2D);  // as WebGL engines do (glTF samplers ask for trilinear)
+  // A file's own mip levels (KTX2) as an engine uploads them; else made as WebGL engines make
+  // them for a PNG (glTF samplers ask for trilinear).
+  for (std::size_t k = 0; k < img.mips.size(); ++k)
+    glTexImage2D(GL_TEXTURE_2D, static_cast<GLint>(k + 1), internal_format, img.mips[k].width, img.mips[k].height, 0, GL_RGBA,
+                 GL_UNSIGNED_BYTE, img.mips[k].rgba.data());
+  if (img.mips.empty()) glGenerateMipmap(GL_TEXTURE_2D);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);

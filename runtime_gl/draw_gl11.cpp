@@ -544,7 +544,7 @@ DrawStats Renderer::draw(const Camera& camera, const DrawSettings& s) {
   const bool additive = !engine && m.impostor && is_additive(s.method);
   const float inv = 1.0f / 255;
   if (additive) glClearColor(0, 0, 0, 0);
-  else glClearColor(s.background.r * inv, s.background.g * inv, s.background.b * inv, 1);
+  else glClearColor(s.background.r * inv, s.background.g * inv, s.background.b * inv, engine && s.coverage_alpha ? 0 : 1);
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   glDepthMask(GL_TRUE);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);

@@ -30,6 +30,10 @@ struct DrawSettings {
   // < 0 = the method's default (kDefaultNormalize for overlap, off for the others).
   float normalize = -1;
   EngineLights lights;         // engine method
+  // Engine method: the frame is cleared to alpha 0 instead of 1, so its alpha channel holds the
+  // coverage (the method blends alpha as ONE, ONE_MINUS_SRC_ALPHA and writes 1 where opaque or
+  // masked): one frame over black then gives the frame over any background (render_pair).
+  bool coverage_alpha = false;
 };
 
 // The overlap method's normalising threshold: measured on bunny00 at 273 quads (26 views), holes

@@ -90,7 +90,7 @@ EngineMaterial engine_material(const tinygltf::Model& m, int index, int& uv_set)
   for (std::size_t c = 0; c < 4 && c < pbr.baseColorFactor.size(); ++c) out.base_color[c] = static_cast<float>(pbr.baseColorFactor[c]);
   auto image_of = [&](int texture) {
     if (texture < 0 || texture >= static_cast<int>(m.textures.size())) return -1;
-    const int src = m.textures[static_cast<std::size_t>(texture)].source;
+    const int src = texture_source(m.textures[static_cast<std::size_t>(texture)]);
     return src >= 0 && src < static_cast<int>(m.images.size()) ? src : -1;
   };
   auto wraps_of = [&](int texture, int& s, int& t) {

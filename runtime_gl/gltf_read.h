@@ -13,7 +13,9 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/gltf_keys.h"
 #include "runtime_gl/engine_scene.h"
+#include "runtime_gl/ktx2_image.h"
 #include "runtime_gl/scene.h"
 
 namespace qf::render {
@@ -102,7 +104,12 @@ std::vector<T> number_array(const tinygltf::Value& ext, const char* key, const s
   return out;
 }
 
+// A KTX2 image's bytes as the loader kept them (loader.cpp: tinygltf does not decode KTX2), so
+// to_image transcodes them.
+constexpr const char* kKtx2Mime = "image/ktx2";
+
 inline Image to_image(const tinygltf::Image& img, const std::string& path) {
+  if (img.mimeType == kKtx2Mime && img.width < 0) return decode_ktx2(img.image.data(), img.image.size(), path);
   if (img.bits != 8 || (img.component != 3 && img.component != 4) || img.width <= 0 || img.height <= 0)
     fail(path, "image", "image '" + img.name + "' is not an 8-bit RGB or RGBA image");
   Image out;
@@ -114,6 +121,17 @@ inline Image to_image(const tinygltf::Image& img, const std::string& path) {
     for (int c = 0; c < 4; ++c)
       out.rgba[i * 4 + c] = c < img.component ? img.image[i * static_cast<std::size_t>(img.component) + c] : 255;
   return out;
+}
+
+// The image a texture shows: its source, else its KHR_texture_basisu image (a KTX2-only texture
+// names its image in the extension alone); -1 for none.
+inline int texture_source(const tinygltf::Texture& t) {
+  if (t.source >= 0) return t.source;
+  const auto ext = t.extensions.find(kBasisuExtension);
+  if (ext == t.extensions.end() || !ext->second.IsObject() || !ext->second.Has("source")) return -1;
+  const tinygltf::Value& s = ext->second.Get("source");
+  const double d = s.IsNumber() ? s.GetNumberAsDouble() : -1;
+  return d >= 0 && d < 1e9 && d == static_cast<double>(static_cast<int>(d)) ? static_cast<int>(d) : -1;
 }
 
 }  // namespace gltf

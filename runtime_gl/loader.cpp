@@ -47,6 +47,13 @@ bool load_image_checked(tinygltf::Image* image, const int index, std::string* er
       return false;
     }
   }
+  // KTX2 (KHR_texture_basisu): kept as bytes, transcoded with its mip levels by to_image.
+  if (bytes && size > 0 && is_ktx2(bytes, static_cast<std::size_t>(size))) {
+    image->image.assign(bytes, bytes + size);
+    image->mimeType = gltf::kKtx2Mime;
+    image->width = image->height = -1;
+    return true;
+  }
   return tinygltf::LoadImageData(image, index, err, warn, width, height, bytes, size, nullptr);
 }
 
@@ -288,7 +295,7 @@ std::uint32_t texture_of(const tinygltf::Model& m, int material, std::uint32_t w
   if (material < 0 || material >= static_cast<int>(m.materials.size())) return white;
   const int t = m.materials[static_cast<std::size_t>(material)].pbrMetallicRoughness.baseColorTexture.index;
   if (t < 0 || t >= static_cast<int>(m.textures.size())) return white;
-  const int src = m.textures[static_cast<std::size_t>(t)].source;
+  const int src = gltf::texture_source(m.textures[static_cast<std::size_t>(t)]);
   return src >= 0 && src < static_cast<int>(m.images.size()) ? static_cast<std::uint32_t>(src) : white;
 }
 

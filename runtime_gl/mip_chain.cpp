@@ -6,12 +6,25 @@
 
 namespace qf::render {
 
+namespace {
+
+void premultiply_alpha(Image& image) {
+  for (std::size_t i = 0; i < image.rgba.size(); i += 4)
+    for (int c = 0; c < 3; ++c)
+      image.rgba[i + c] = static_cast<std::uint8_t>((image.rgba[i + c] * image.rgba[i + 3] + 127) / 255);
+}
+
+}  // namespace
+
 std::vector<Image> mip_chain(const Image& base, bool premultiply) {
-  std::vector<Image> chain{base};
-  if (premultiply)
-    for (std::size_t i = 0; i < chain[0].rgba.size(); i += 4)
-      for (int c = 0; c < 3; ++c)
-        chain[0].rgba[i + c] = static_cast<std::uint8_t>((chain[0].rgba[i + c] * chain[0].rgba[i + 3] + 127) / 255);
+  std::vector<Image> chain{Image{base.width, base.height, base.rgba, {}}};
+  if (!base.mips.empty()) {
+    chain.insert(chain.end(), base.mips.begin(), base.mips.end());
+    if (premultiply)
+      for (Image& level : chain) premultiply_alpha(level);
+    return chain;
+  }
+  if (premultiply) premultiply_alpha(chain[0]);
   while (chain.back().width > 1 || chain.back().height > 1) {
     const Image& a = chain.back();
     Image b;

@@ -16,6 +16,9 @@ namespace qf::render {
 struct Image {
   int width = 0, height = 0;
   std::vector<std::uint8_t> rgba;
+  // Mip levels 1.. of a file that carries its own (KTX2: the baker's coverage-preserving ones);
+  // empty: the renderer makes them, as engines do for a PNG.
+  std::vector<Image> mips = {};
 };
 
 // One drawable of an impostor: `vertex_count` consecutive vertices from `first_vertex`, drawn as

@@ -17,20 +17,26 @@
 # 2CylinderEngine and spider when installed): impostor levels vs the asset as drawn, simplify and
 # simplifySloppy at twice the quads in triangles and the crossed billboard at equal bytes (engine
 # method), PSNR / IoU / soft IoU / holes / bytes at each level's own size and half of it (~25 min).
-# chain: the recommended chain (qf-bake bake --chain, scripts/chain_table.py) on bunny00, fandisk,
-# elephant, the dragon and assimp's textured spider: the chain, its bytes, bake and chain seconds.
+# scans: the scan league (scripts/scan_table.py): CGAL's building, b9_training, kitten and oni
+# baked by default; impostor levels against the reconstruction's mesh LODs at equal bytes.
+# chain: the recommended chain (scripts/chain_table.py) on bunny00, fandisk, the generated tree and
+# assimp's textured glTF box and spider: the chain, its bytes, and the bake's wall and CPU seconds
+# with --no-chain and with the chain (the default), with their ratio.
 # big: one big asset (issue 20): a generated torus and bunny00's mesh sampled by depth peeling, at
 # 1M and 10M points each, baked with the defaults on 2 threads: seconds per stage, wall and CPU
 # (user + sys) time and peak RSS of the whole command (GNU time -v), bytes per point, and the
 # growth exponents from 1M to 10M (scripts/big_table.py). Needs ~12 GB and ~15 minutes; not part
 # of "all" (CI does not run it).
 # las: LAS/LAZ reading (issue 35): 10M points of formats 3 and 7, LAS and LAZ: seconds, points/s, peak RSS.
-# usage: scripts/bench.sh [io|las|analysis|amg|render|bake|sample|cluster|batch|fidelity|chain|big]...   (default: all but big)
+# textures: PNG against KTX2 textures (issue 32, scripts/textures_table.py) on bunny00's vertices and
+# a 1M-point torus: per level bytes, GPU bytes, PSNR / IoU at its own size, holes at 1/4 and 1/8 of it
+# with mipmaps; per set bytes and bake seconds.
+# usage: scripts/bench.sh [io|las|analysis|amg|render|bake|sample|cluster|batch|fidelity|chain|scans|textures|big]...   (default: all but big)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh >/dev/null
 what=("$@")
-[[ ${#what[@]} -eq 0 ]] && what=(io las analysis amg render bake sample cluster batch fidelity chain)
+[[ ${#what[@]} -eq 0 ]] && what=(io las analysis amg render bake sample cluster batch fidelity chain scans textures)
 for w in "${what[@]}"; do
   case $w in
     io) build/bin/qf-bench-io ;;
@@ -71,7 +77,7 @@ for w in "${what[@]}"; do
         build/bin/qf-bake convert "$models/$m.off" "$tmp/$m.xyz" --vertices -q
         build/bin/qf-bake "$tmp/$m.xyz" -o "$tmp/$m" -q
         echo "render: $m (default LOD set)"
-        build/bin/qf-bench-render "$tmp/$m.xyz" "$tmp/$m"/*.glb
+        build/bin/qf-bench-render "$tmp/$m.xyz" "$tmp/$m"/*_L*.glb
         echo
       done
       rm -rf "$tmp" ;;
@@ -189,13 +195,29 @@ for w in "${what[@]}"; do
       python3 scripts/fidelity_table.py build/bin "$models" "$tmp" \
         --models "bunny00.off,fandisk.off,elephant.off,ChineseDragon-10kv.off,b9_training.ply$assets"
       rm -rf "$tmp" ;;
-    chain)
-      models=$(scripts/fetch-models.sh bunny00.off fandisk.off elephant.off ChineseDragon-10kv.off | tail -1)
+    scans)
+      models=$(scripts/fetch-models.sh points_3/building.ply b9_training.ply kitten.xyz oni.pwn | tail -1)
       tmp=$(mktemp -d)
-      python3 scripts/chain_table.py build/bin "$models" "$tmp" bunny00.off fandisk.off elephant.off ChineseDragon-10kv.off \
-        /usr/share/assimp/models/OBJ/spider.obj
+      python3 scripts/scan_table.py build/bin/qf-bake "$models" "$tmp" --models building.ply,b9_training.ply,kitten.xyz,oni.pwn
       rm -rf "$tmp" ;;
-    *) echo "unknown benchmark '$w' (io, analysis, amg, render, bake, sample, cluster, batch, fidelity, chain, big)" >&2; exit 2 ;;
+    textures)
+      models=$(scripts/fetch-models.sh bunny00.off | tail -1)
+      tmp=$(mktemp -d)
+      build/bin/qf-bake convert "$models/bunny00.off" "$tmp/bunny00.xyz" --vertices -q
+      build/bin/qf-bake generate torus --points 1000000 -o "$tmp/torus1m.ply" -q
+      python3 scripts/textures_table.py build/bin "$tmp" "$tmp/bunny00.xyz" "$tmp/torus1m.ply"
+      rm -rf "$tmp" ;;
+    chain)
+      models=$(scripts/fetch-models.sh bunny00.off fandisk.off | tail -1)
+      tmp=$(mktemp -d)
+      build/bin/qf-bake generate tree -o "$tmp/tree.glb" -q
+      assets=("$tmp/tree.glb")
+      for f in /usr/share/assimp/models/glTF2/BoxTextured-glTF-Binary/BoxTextured.glb /usr/share/assimp/models/OBJ/spider.obj; do
+        if [[ -f $f ]]; then assets+=("$f"); else echo "(assimp-testmodels not installed: $(basename "$f") skipped)"; fi
+      done
+      python3 scripts/chain_table.py build/bin "$models" "$tmp" bunny00.off fandisk.off "${assets[@]}"
+      rm -rf "$tmp" ;;
+    *) echo "unknown benchmark '$w' (io, las, analysis, amg, render, bake, sample, cluster, batch, fidelity, chain, scans, textures, big)" >&2; exit 2 ;;
   esac
   echo
 done

@@ -9,6 +9,7 @@ packages=(
   # the design card's libraries
   libtinygltf-dev nlohmann-json3-dev libstb-dev   # glTF writer/loader (+ its JSON and image deps)
   libdraco-dev                                    # Draco mesh/point compression
+  libzstd-dev                                     # zstd for Basis Universal (third_party/basis_universal): UASTC KTX2
   libopenimageio-dev openimageio-tools            # image I/O and image algorithms
   libopenexr-dev                                  # EXR difference images
   libeigen3-dev                                   # sparse matrices, eigen-solvers
@@ -25,7 +26,9 @@ packages=(
   clang libclang-rt-14-dev                        # libFuzzer + sanitizer runtimes: scripts/fuzz.sh, tests/fuzz
   assimp-testmodels                               # glTF 2.0 and OBJ test models, valid and malformed: the assets test
   chromium                                        # three.js and Babylon.js renders (scripts/three-render, babylon-render): engine-truth tests, fidelity league
-  slurm-wlm munge python3-yaml                    # the slurm test: a one-node cluster runs scripts/slurm/; the README's Kubernetes YAML
+  blender python3-numpy                           # Blender 3.4 (background mode) and its glTF importer's numpy, which Debian's package
+                                                  # does not depend on (without it every import fails): the engine_blender test
+  slurm-wlm munge python3-yaml                    # the slurm test: a one-node cluster runs scripts/slurm/; docs/farm.md's Kubernetes YAML
 )
 
 missing=()

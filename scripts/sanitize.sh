@@ -1,13 +1,13 @@
 #!/usr/bin/env bash
 # The sanitizer pass of scripts/test.sh: builds the tests and the CLI with AddressSanitizer +
 # UndefinedBehaviorSanitizer (gcc, RelWithDebInfo, -DQF_SANITIZE=ON) and runs every test label that
-# needs no GL context: unit, readers, cli, gltf, models, slurm. Left out: the labels render and engine
-# (qf-render, qf-diff: EGL/OpenGL), the tests of the mesh sampler's GL backend (qf_test_sample's
+# needs no GL context of its own: unit, readers, cli, gltf, models. Left out: the labels render and
+# engine (qf-render, qf-diff: EGL/OpenGL), the tests of the mesh sampler's GL backend (qf_test_sample's
 # Sample.* tests that draw with OpenGL, SampleModels.*; its CPU backend runs in the tests kept and
-# in every bake). The slurm test's daemons are the system's; the bakes it schedules are the
-# sanitized qf-bake (~46 s under ASan here). Two GL users remain, headless through
-# EGL on llvmpipe: cli_test.sh's `convert --sampler gl` and batch_test.sh's `--eval` (qf-render eval);
-# Mesa and LeakSanitizer: tests/lsan.supp, baker/gl/egl.cpp.
+# in every bake), and three scale tests (scale_tests below). GL users remain, headless through EGL
+# on llvmpipe: every bake's measuring (tools/measure.h: our code sanitized, Mesa's not),
+# cli_test.sh's `convert --sampler gl` and batch_test.sh's `--eval` (qf-render eval); Mesa and
+# LeakSanitizer: tests/lsan.supp, baker/gl/egl.cpp.
 #
 #   scripts/sanitize.sh [BUILD_DIR]     (default build-asan)
 set -euo pipefail
@@ -21,6 +21,11 @@ targets=(qf-bake qf-render qf_test_io qf_test_core qf_test_sample qf_test_cluste
          qf_write_test_levels qf_test_render_cpu)
 # Tests of the GL sampler backend (by name: they share qf_test_sample with CPU-only tests).
 gl_tests='^SampleModels\.|^Sample\.(CountsMatchProjectedAreaOnAnalyticMeshes|PointsLieOnTheSurface|ClosedMeshesHaveEvenLayerCounts|GlMatchesTheCpuReference|PerAxisTrianglesGiveTheSamePointsWithFewerLayers|GlIsDeterministic)$'
+# Scale tests whose code paths the smaller tests kept here already run, left out for the CI's time
+# (seconds under ASan, 2 cores): AmgLarge.* (a million points through the AMG, 106 s), cgal_batch
+# (a batch of CGAL's models: the batch code runs in `batch`, the models in `cgal_models`, 150 s)
+# and slurm (the same bakes scheduled by Slurm, 130 s).
+scale_tests='^AmgLarge\.|^cgal_batch$|^slurm$'
 
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DQF_SANITIZE=ON >/dev/null
 cmake --build "$build" -j "$jobs" --target "${targets[@]}"
@@ -33,4 +38,4 @@ cmake --build "$build" -j "$jobs" --target "${targets[@]}"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:intercept_tls_get_addr=0 \
 LSAN_OPTIONS=suppressions=$PWD/tests/lsan.supp:print_suppressions=0 \
 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-  ctest --test-dir "$build" --output-on-failure -j "$jobs" -L 'unit|readers|cli|gltf|models|slurm' -LE 'render|engine' -E "$gl_tests"
+  ctest --test-dir "$build" --output-on-failure -j "$jobs" -L 'unit|readers|cli|gltf|models' -LE 'render|engine' -E "$gl_tests|$scale_tests"

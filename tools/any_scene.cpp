@@ -107,6 +107,20 @@ ViewMetrics mean_of(const std::vector<ViewMetrics>& v) {
 RenderPair render_pair(Renderer& r, const Camera& c, DrawSettings s) {
   RenderPair p;
   s.background = {0, 0, 0};
+  if (s.method == Method::kEngine) {
+    // One frame: its alpha is the coverage A, and a frame over white is the one over black plus
+    // (1 - A) x 255 (exact for the engine's blend; half the drawing of the bake's measuring).
+    s.coverage_alpha = true;
+    r.draw(c, s);
+    p.over_black = r.read_pixels();
+    p.over_white = p.over_black;
+    for (std::size_t i = 0; i < p.over_white.rgba.size(); i += 4) {
+      const int open = 255 - p.over_white.rgba[i + 3];
+      for (std::size_t k = 0; k < 3; ++k) p.over_white.rgba[i + k] = static_cast<std::uint8_t>(std::min(255, p.over_white.rgba[i + k] + open));
+      p.over_black.rgba[i + 3] = p.over_white.rgba[i + 3] = 255;
+    }
+    return p;
+  }
   r.draw(c, s);
   p.over_black = r.read_pixels();
   s.background = {255, 255, 255};

@@ -10,7 +10,7 @@
 
 #include "io/model_io.h"
 #include "runtime_gl/draw_gl11.h"
-#include "tools/image_ops.h"
+#include "tools/image_metrics.h"
 #include "runtime_gl/loader.h"
 
 namespace qf::render {
@@ -51,7 +51,8 @@ AnyScene load_input(const std::string& path, const ReadOptions& read = {});
 // A .glb file's bytes in memory, as load_scene reads the file; errors name `name`.
 AnyScene load_scene(const std::vector<std::uint8_t>& glb, const std::string& name);
 
-// The scene drawn from `c` over black and over white (coverage = 1 - (W - B) / 255).
+// The scene drawn from `c` over black and over white (coverage = 1 - (W - B) / 255): by the
+// engine method one frame with its coverage in alpha, by the others two frames.
 RenderPair render_pair(Renderer& r, const Camera& c, DrawSettings s);
 
 // The mean of each metric over views.

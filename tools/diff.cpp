@@ -17,8 +17,9 @@
 #include "core/file_io.h"
 #include "core/gltf_keys.h"
 #include "gl/egl.h"
-#include "tools/any_scene.h"
 #include "runtime_gl/camera.h"
+#include "tools/any_scene.h"
+#include "tools/image_ops.h"
 
 namespace qf::render {
 namespace {
@@ -29,12 +30,13 @@ namespace fs = std::filesystem;
 
 // --- files -------------------------------------------------------------------------------------
 
-// Files a bake writes that are compared: not the reports (they hold times), not hidden staging.
+// Files a bake writes that are compared: not the reports (report.json and the batch's hold times;
+// report.html shows the files compared here), not hidden staging.
 bool compared(const fs::path& rel) {
   for (const fs::path& part : rel)
     if (!part.empty() && part.string()[0] == '.') return false;
   const std::string name = rel.filename().string();
-  return name != "report.json" && name.rfind("batch-report", 0) != 0 && name.find(".tmp-") == std::string::npos;
+  return name != "report.json" && name != "report.html" && name.rfind("batch-report", 0) != 0 && name.find(".tmp-") == std::string::npos;
 }
 
 std::vector<std::string> list_files(const std::string& dir) {
@@ -229,6 +231,18 @@ struct ImageDiff {
   bool within = true;
 };
 
+// A render pair as drawn over `background` (colour = B + (W - B) x background / 255: each method
+// is linear in the background).
+Image over_background(const RenderPair& p, Rgb8 background) {
+  Image out = p.over_black;
+  const std::uint8_t bg[3] = {background.r, background.g, background.b};
+  for (std::size_t i = 0; i + 3 < out.rgba.size(); i += 4)
+    for (int c = 0; c < 3; ++c)
+      out.rgba[i + c] = static_cast<std::uint8_t>(std::lround(p.over_black.rgba[i + c] +
+                                                              (int(p.over_white.rgba[i + c]) - int(p.over_black.rgba[i + c])) * bg[c] / 255.0));
+  return out;
+}
+
 ImageDiff image_diff(const AnyScene& a, const AnyScene& b, const std::string& name, const DiffOptions& o) {
   static std::unique_ptr<HeadlessContext> context;  // one GL context for every file of a run
   if (!context) context = std::make_unique<HeadlessContext>();
@@ -249,7 +263,14 @@ ImageDiff image_diff(const AnyScene& a, const AnyScene& b, const std::string& na
   for (int i = 0; i < o.views; ++i) {
     const Camera cam = orbit_camera(sphere, sphere_direction(i, o.views), 0, w, w);
     std::vector<float> diff;
-    const ViewMetrics m = compare_renders(render_pair(ra, cam, settings), render_pair(rb, cam, settings), background, &diff);
+    const RenderPair pa = render_pair(ra, cam, settings), pb = render_pair(rb, cam, settings);
+    const ViewMetrics m = compare_renders(pa, pb, background, &diff);
+    if (o.pictures) {
+      DiffPictures& p = (*o.pictures)[name];
+      p.old_views.push_back(over_background(pa, background));
+      p.new_views.push_back(over_background(pb, background));
+      p.diff_views.push_back(to_8bit(diff, w, w, 4));
+    }
     std::size_t changed = 0;
     const float tol = float(o.thresholds.pixel_tolerance) / 255.0f;
     for (std::size_t p = 0; p + 2 < diff.size(); p += 3) changed += std::max({diff[p], diff[p + 1], diff[p + 2]}) > tol ? 1 : 0;

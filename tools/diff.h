@@ -7,7 +7,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include <map>
 #include <string>
+#include <vector>
+
+#include "runtime_gl/scene.h"
 
 namespace qf::render {
 
@@ -21,12 +25,20 @@ struct DiffThresholds {
   double max_error_drop = 0.5;
 };
 
+// A changed .glb's renders from the image diff's views, each view in each: the old and the new file
+// over the grey the PSNR is computed over, and |old - new| x 4 (the difference images).
+struct DiffPictures {
+  std::vector<Image> old_views, new_views, diff_views;
+};
+
 struct DiffOptions {
   DiffThresholds thresholds;
   int views = 6;            // canonical views (evenly over the sphere), framing both files
   int size = 128;           // square image side, pixels
   bool render = true;       // false: byte and structural diff only (texel changes decide)
   std::string images;       // folder for difference images (NAME.diff.exr / .png); empty = none
+  // When set, receives every rendered changed .glb's pictures by name (qf-diff --html).
+  std::map<std::string, DiffPictures>* pictures = nullptr;
 };
 
 // Compares two .glb files or two folders (files paired by relative path; report.json and

@@ -1,13 +1,16 @@
 // qf-diff OLD NEW: how two bakes differ (tools/diff.h), for people (text) or CI (--json).
 // Exit codes: 0 identical or within the thresholds, 1 beyond them, 2 bad usage or unreadable
 // input (a comparison that could not be made is not a pass), 3 internal error.
+#include <filesystem>
 #include <iostream>
+#include <map>
 
 #include "cli/args.h"
 #include "cli/program.h"
 #include "core/error.h"
 #include "core/file_io.h"
 #include "tools/diff.h"
+#include "tools/diff_html.h"
 
 namespace {
 
@@ -19,8 +22,8 @@ qf::cli::CommandSpec diff_spec() {
       "moved and their errors changed, texel statistics (and the share of texels changed when the\n"
       "atlases have the same sizes); then an image diff: both drawn by runtime_gl from --views canonical\n"
       "views framing both (PSNR, share of changed pixels; EXR and PNG difference images with --images).\n"
-      "Folders pair their files by relative path; report.json and batch-report*.json (times) and\n"
-      "hidden files are left out; added or removed files are beyond any threshold.\n"
+      "Folders pair their files by relative path; report.json, report.html and batch-report*.json\n"
+      "(times, pages) and hidden files are left out; added or removed files are beyond any threshold.\n"
       "Exit status: 0 identical or within the thresholds, 1 beyond them, 2 bad usage or unreadable input.",
       {{"json", 0, "", "", "print the report as JSON (default: text)"},
        {"min-psnr", 0, "DB", "40", "a changed .glb passes when every view's PSNR is at least DB"},
@@ -31,6 +34,9 @@ qf::cli::CommandSpec diff_spec() {
        {"views", 0, "N", "6", "canonical views per .glb"},
        {"size", 0, "PX", "128", "image side of each view"},
        {"images", 0, "DIR", "", "write DIR/NAME.diff.exr (float |old - new|, views stacked) and .diff.png (x4) per changed .glb"},
+       {"html", 0, "DIR", "", "also write DIR/index.html, a self-contained page: per changed .glb its old, new and difference\n"
+                             "(x4) images from every view with their PSNR; the manifest's chain and measured-error changes;\n"
+                             "what was added, removed or identical (for people, or as a CI artefact)"},
        {"no-render", 0, "", "", "bytes and structure only: texel changes take the place of pixel changes"}},
       2, 2, "qf-diff"};
 }
@@ -46,7 +52,15 @@ int run(const qf::cli::ParsedArgs& args) {
   o.size = static_cast<int>(args.get_int("size", o.size, 8, 4096));
   o.images = args.get("images");
   o.render = !args.flag("no-render");
+  std::map<std::string, qf::render::DiffPictures> pictures;
+  const std::string html = args.get("html");
+  if (!html.empty()) o.pictures = &pictures;
   const nlohmann::ordered_json report = qf::render::diff_bakes(args.positional[0], args.positional[1], o);
+  if (!html.empty()) {
+    std::filesystem::create_directories(html);
+    const std::string page = qf::render::diff_page(report, pictures);
+    qf::write_file_atomically(html + "/index.html", [&](std::ostream& out) { out << page; });
+  }
   if (args.flag("json")) std::cout << report.dump(2) << "\n";
   else std::cout << qf::render::diff_text(report);
   return report["verdict"] == "different" ? 1 : 0;

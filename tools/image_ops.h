@@ -1,12 +1,13 @@
-// Image files and image arithmetic for qf-render and qf-diff, on OpenImageIO (the one file that
-// includes it): PNG/EXR writing, contact sheets, and the fidelity metrics of `qf-render eval`
-// (paper section 6: render original and simplification with the same camera and compare).
+// Image files for qf-render and qf-diff, on OpenImageIO (the one file that includes it): PNG/EXR
+// writing, reading, contact sheets. The metrics are image_metrics.h (no OpenImageIO: qf-bake
+// measures with them without loading its ~250 libraries).
 #pragma once
 
 #include <string>
 #include <vector>
 
 #include "runtime_gl/scene.h"
+#include "tools/image_metrics.h"
 
 namespace qf::render {
 
@@ -23,37 +24,6 @@ Image load_image(const std::string& path);
 Image contact_sheet(const std::vector<Image>& images, int columns, Rgb8 background,
                     const std::vector<std::string>& captions = {});
 
-// One view's comparison. A render's coverage c is recovered from two renders over black (B) and
-// white (W): W - B = (1 - c) * 255 for every method, since each is linear in the background. The
-// colours compared are both composited over `background`.
-struct ViewMetrics {
-  double psnr = 0;         // dB, over pixels covered (c >= 0.5) by either image; 99 when identical
-  double iou = 1;          // silhouette intersection over union (c >= 0.5)
-  // Sum of min(c_ref, c) / sum of max(c_ref, c) over all pixels: the IoU of fractional coverage
-  // (a leaf or a beam covers part of a pixel, which the silhouette's 0.5 threshold rounds away).
-  double soft_iou = 1;
-  double mae = 0;          // mean absolute difference, 0..1, over the same pixels
-  double holes = 0;        // share of reference-covered pixels where the impostor's c < 0.5
-  double see_through = 0;  // share of reference-covered pixels where the impostor's 0.5 <= c < 0.9
-  std::size_t covered = 0; // pixels covered by the reference
-  double brightness = 0;   // mean grey (0..255) over the impostor's covered pixels (c >= 0.5)
-  double reference_brightness = 0;  // the same over the reference's
-};
-struct RenderPair {
-  Image over_black, over_white;
-};
-// `diff` (if given) receives |reference - impostor| as linear floats, RGB, 0..1.
-ViewMetrics compare_renders(const RenderPair& reference, const RenderPair& impostor, Rgb8 background,
-                            std::vector<float>* diff = nullptr);
-
 // Writes a float RGB image (e.g. a difference image) as OpenEXR (half floats, zip), atomically.
 void save_exr(const std::string& path, const std::vector<float>& rgb, int width, int height);
-// `image` reduced by a whole `factor` (its sides divisible by it), each pixel the mean of a
-// factor x factor block of bytes: a resolve in sRGB bytes, so that a pair over black and white
-// still gives coverage = 1 - (W - B) / 255.
-Image box_downsample(const Image& image, int factor);
-
-// A float RGB image as 8-bit, scaled by `gain` and clamped (difference images made visible).
-Image to_8bit(const std::vector<float>& rgb, int width, int height, float gain);
-
 }  // namespace qf::render

@@ -3,11 +3,14 @@
 
 #include <algorithm>
 #include <memory>
+#include <limits>
 #include <stdexcept>
 
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/progress.h"
 #include "gl/egl.h"
+#include "pipeline/chain.h"
 #include "runtime_gl/camera.h"
 #include "tools/any_scene.h"
 
@@ -21,7 +24,7 @@ DrawSettings engine_settings() {
   return s;
 }
 
-Scores scores_of(const ViewMetrics& m) { return {m.psnr, m.iou, m.soft_iou}; }
+Scores scores_of(const ViewMetrics& m) { return {m.psnr, m.iou, m.soft_iou, true}; }
 
 // One on-screen size: its cameras and the truth from each.
 struct SizeViews {
@@ -53,11 +56,15 @@ std::vector<SizeViews> truth_views(const AnyScene& input, const Sphere& sphere, 
   return out;
 }
 
-// 2. A scene attached to `renderer`, drawn at every size from the truth's views, scored per view
-// and averaged per size.
-std::vector<Scores> scores_at_sizes(Renderer& renderer, const std::vector<SizeViews>& sizes) {
+// 2. A scene attached to `renderer`, drawn at every size up to `largest` pixels from the truth's
+// views, scored per view and averaged per size.
+std::vector<Scores> scores_at_sizes(Renderer& renderer, const std::vector<SizeViews>& sizes, double largest) {
   std::vector<Scores> out;
   for (const SizeViews& s : sizes) {
+    if (s.size > largest) {
+      out.push_back(Scores{0, 0, 0, false});
+      continue;
+    }
     renderer.resize(s.size, s.size);
     std::vector<ViewMetrics> per_view;
     for (std::size_t v = 0; v < s.cams.size(); ++v)
@@ -66,6 +73,8 @@ std::vector<Scores> scores_at_sizes(Renderer& renderer, const std::vector<SizeVi
   }
   return out;
 }
+
+}  // namespace
 
 // The input as the truth: a glTF file as its file says (the loader, as qf-render eval draws it),
 // others, and glTF files the loader does not take (Draco-compressed: runtime_gl decodes no
@@ -82,8 +91,6 @@ AnyScene measured_input(const std::string& path, const ReadOptions& read) {
   return load_input(path, read);
 }
 
-}  // namespace
-
 int truth_factor(int size, int truth) { return std::max(1, std::min(truth, kMaxTruthSide / std::max(1, size))); }
 
 int truth_side(const std::vector<int>& sizes, int truth) {
@@ -95,7 +102,7 @@ int truth_side(const std::vector<int>& sizes, int truth) {
 }
 
 Measurements measure_files(const std::string& input_path, const std::vector<Candidate>& candidates, const MeasureOptions& o) {
-  Measurements m{o.sizes, o.views, o.truth, {}, {}};
+  Measurements m{o.sizes, o.views, o.truth, {}};
   if (o.sizes.empty() || o.views < 1) return m;
   std::unique_ptr<HeadlessContext> context;
   try {
@@ -103,20 +110,20 @@ Measurements measure_files(const std::string& input_path, const std::vector<Cand
   } catch (const std::runtime_error& e) {
     throw UsageError(std::string("measuring the outputs draws them, which needs an EGL/OpenGL driver (or --no-measure): ") + e.what());
   }
+  progress::step("measuring: drawing the input's reference views");
   const AnyScene input = measured_input(input_path, o.read);
   const Sphere sphere = bounding_sphere(input.bounds());
   const std::vector<SizeViews> sizes = truth_views(input, sphere, o);
-  // 3. The input as drawn at each size (when asked: it costs as much as a few candidates), then
-  // every candidate, loaded and uploaded once (only what the engine method draws).
+  // 3. Every candidate, loaded and uploaded once (only what the engine method draws), drawn where
+  // it can be chosen.
   Renderer renderer(1, 1);
-  if (o.as_drawn) {
-    renderer.set_engine_only(input.engine);
-    m.as_drawn = scores_at_sizes(renderer, sizes);
-  }
+  progress::step("measuring the outputs as an engine draws them", candidates.size());
   for (const Candidate& c : candidates) {
     const AnyScene scene = load_scene(*c.bytes, c.file);
     renderer.set_engine_only(scene.engine);
-    m.files.push_back({c.file, c.kind, c.bytes->size(), scores_at_sizes(renderer, sizes)});
+    const double largest = c.max_pixels > 0 ? kShownAbove * c.max_pixels : std::numeric_limits<double>::infinity();
+    m.files.push_back({c.file, c.kind, c.bytes->size(), scores_at_sizes(renderer, sizes, largest)});
+    progress::advance();
   }
   return m;
 }

@@ -17,17 +17,16 @@
 namespace qf::render {
 
 struct MeasureOptions {
-  // On-screen sizes, largest first (see Measurements::sizes): where impostor levels switch. The
-  // recommended chain adds 256 px, a near band.
-  std::vector<int> sizes{128, 64, 32, 16};
+  // On-screen sizes, largest first (see Measurements::sizes): where impostor levels switch, and
+  // 256 px, the recommended chain's near band.
+  std::vector<int> sizes{256, 128, 64, 32, 16};
   // Directions spread over the bounding sphere (sphere_direction), 4 for the bake's time, and the
-  // truth's supersampling of the largest size (truth_side): 4, a 512-px truth for 128 px, a
-  // quarter of the pixels of eval's 8 x; on bunny00, the generated tree, a bush and the
-  // octahedron it moved every figure by at most 0.23 dB and no level's screen size.
+  // truth's supersampling of the largest size (truth_side): 2, a 512-px truth, so 4 x for 128 px,
+  // a quarter of the pixels of eval's 8 x (on bunny00, the generated tree, a bush and the
+  // octahedron it moved every figure by at most 0.23 dB and no level's screen size), 2 x for 256.
   int views = 4;
-  int truth = 4;
-  bool as_drawn = false;  // also the input itself drawn at each size (Measurements::as_drawn)
-  ReadOptions read;       // how the input is read again (as the bake read it)
+  int truth = 2;
+  ReadOptions read;  // how the input is read again (as the bake read it)
 };
 
 // The largest side the truth is drawn at (8 x 512 px would be 4096; 4 x is as good a box filter).
@@ -42,8 +41,15 @@ int truth_factor(int size, int truth);
 // same). UsageError when a size does not divide it.
 int truth_side(const std::vector<int>& sizes, int truth);
 
-// Draws the input at `input_path` (the truth once per view, as drawn once per size and view) and every
-// candidate (loaded once, drawn from the same views) and returns the mean scores per size. Makes
+// The input as the measuring draws it (the truth; the bake's report.html draws it so too): a glTF
+// file through the loader, as its file says; other files, and glTF files the loader does not take
+// (Draco), as the baker's readers read them with `read`. Throws their InputErrors.
+struct AnyScene;
+AnyScene measured_input(const std::string& input_path, const ReadOptions& read);
+
+// Draws the input at `input_path` (the truth once per view) and every candidate (loaded once, drawn
+// from the same views at each size up to kShownAbove x its max_pixels) and returns the mean scores
+// per size (Scores::measured false at the sizes above). Makes
 // its own headless GL context: throws UsageError when there is none, and the readers' and
 // loader's InputErrors.
 Measurements measure_files(const std::string& input_path, const std::vector<Candidate>& candidates, const MeasureOptions& options = {});

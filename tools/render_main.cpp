@@ -364,7 +364,7 @@ EvalViews measure_views(const Sphere& sphere, int views, int w, int h, const Ref
   return e;
 }
 
-// The eval report (README: qf-render eval): inputs, settings, the means and every view.
+// The eval report (docs/cli.md: qf-render eval): inputs, settings, the means and every view.
 ordered_json eval_report(const ParsedArgs& a, const AnyScene& baked, const EvalViews& e, int views, int w, int h, int truth,
                          const DrawSettings& settings, Rgb8 background) {
   const ImpostorScene& s = baked.impostor;

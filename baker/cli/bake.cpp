@@ -14,18 +14,21 @@
 #include "cli/commands.h"
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/progress.h"
 #include "pipeline/asset.h"
 #include "tools/measure.h"
+#include "tools/report_html.h"
 
 namespace qf::cli {
 
 CommandSpec bake_spec() {
   CommandSpec spec{"bake", "IN -o OUTDIR [options]   (also: qf-bake IN -o OUTDIR)",
-                   "bake a point set into impostor levels: one .glb per level, manifest.json, report.json",
+                   "bake a point set into impostor levels: one .glb per level, manifest.json, report.json, report.html",
                    "Each level's .glb holds the domain primitives as textured quads (colour + basis function\n"
                    "as alpha, normal maps when the input has normals) in one atlas, and the QF_impostor_level\n"
                    "extension (schemas/QF_impostor_level). manifest.json lists the levels; report.json the\n"
-                   "settings, times and counts. Nothing is left half-written if the bake fails.",
+                   "settings, times and counts; report.html shows it all in a browser (see --no-report-html).\n"
+                   "Nothing is left half-written if the bake fails.",
                    {output_option("OUTDIR", "output folder (created if needed); required"),
                     {"primitives", 'n', "N,N,...", "1000,300,100,30", "bake the levels nearest these numbers of primitives"},
                     {"levels", 0, "K,K,...", "", "instead: these level numbers (0 = points, negative = from the coarsest)"},
@@ -38,29 +41,45 @@ CommandSpec bake_spec() {
                                            "texel size at every level (as --texel-density 0)"},
                     {"max-texture", 0, "N", "1024", "largest texture side of one primitive, texels"},
                     {"margin", 0, "M", "0", "extra rectangle margin, in mean point radii"},
+                    {"textures", 0, "png|ktx2", "png", "the levels' textures: png (every engine loads them; the engine makes the mip levels,\n"
+                                                     "by box filtering) or ktx2 (Basis Universal, KHR_texture_basisu, required: ~1/4 of the\n"
+                                                     "GPU memory, coverage-preserving mip levels in the file; three.js needs its KTX2Loader)"},
+                    {"ktx2-color", 0, "etc1s|uastc", "etc1s", "--textures ktx2: the Basis codec of colour (+ alpha) and emission textures"},
+                    {"ktx2-normal", 0, "etc1s|uastc", "uastc", "--textures ktx2: the Basis codec of normal maps and occlusion/roughness/metallic"},
+                    {"ktx2-quality", 0, "Q", "128", "--textures ktx2: ETC1S quality, 1..255 (codebook sizes; more is larger and sharper)"},
                     {"lod-file", 0, "", "", "also write STEM_lods.glb: every level in one file under MSFT_lod (finest in the scene,\n"
                                              "the others as its lower LODs, switched by MSFT_screencoverage)"},
                     {"lod-screen-height", 0, "PX", "1080", "screen height the MSFT_screencoverage values and the chain's switch distances assume"},
                     {"point-seed", 0, "S", "1", "mesh inputs: seed of the point impostor's random order (STEM_points.glb)"},
                     {"no-points", 0, "", "", "mesh inputs: do not write the point impostor"},
                     {"mesh-lods", 0, "simplify|clustering|none", "simplify",
-                     "mesh inputs: the mesh LODs beside the impostors: simplify = meshoptimizer's edge collapse\n"
-                     "(STEM_S<i>.glb at the input's triangles / 4, 16, 64, 256, 1024), clustering = seed 002's\n"
-                     "vertex clustering with thick edges (STEM_C<i>.glb, cells = diagonal / 128 .. 8)"},
+                     "the mesh LODs beside the impostors: simplify = meshoptimizer's edge collapse\n"
+                     "(STEM_S<i>.glb at the mesh's triangles / 4, 16, 64, 256, 1024; a point set's mesh is its\n"
+                     "surface reconstructed by CGAL's advancing front from up to 50k of its points), clustering =\n"
+                     "seed 002's vertex clustering with thick edges (mesh inputs: STEM_C<i>.glb, cells = diagonal\n"
+                     "/ 128 .. 8; a point set gets none)"},
                     {"no-mesh-lods", 0, "", "", "the same as --mesh-lods none"},
                     {"no-measure", 0, "", "", "do not measure the outputs on screen: each level keeps its geometric max_screen_pixels\n"
                                               "(error under half a pixel) and there is no chain (needs no GL driver)"},
-                    {"measure-views", 0, "N", "4", "directions each output is drawn from when measured, at 128, 64, 32 and 16 px on\n"
-                                                   "screen (and 256 with --chain), by the engine method against the truth (the input drawn\n"
-                                                   "once at 4x the largest size, box-filtered to each): a level's max_screen_pixels is the largest of those sizes at which its\n"
-                                                   "look holds (PSNR within 1 dB of its best, IoU within 0.05 of its IoU there; manifest measuring)"},
-                    {"chain", 0, "", "", "also the recommended chain (manifest recommended_chain): the mesh LODs and the point\n"
-                                         "impostor are measured too; per band, never more bytes than nearer, the smallest file\n"
-                                         "that reaches --chain-psnr and IoU 0.9 (else the best PSNR less 1 dB per doubling of\n"
-                                         "bytes), with its switch distance (--lod-screen-height, 60 degree field of view); with\n"
-                                         "--lod-file, STEM_lods.glb holds the chain's files"},
-                    {"chain-psnr", 0, "DB", "30", "--chain: the quality bar, dB (engine method against the truth; implies --chain)"},
-                    drop_nonfinite_option(), quiet_option()},
+                    {"measure-views", 0, "N", "4", "directions each output is drawn from when measured, at 256, 128, 64, 32 and 16 px on\n"
+                                                   "screen, by the engine method against the truth (the input drawn once at 512 px,\n"
+                                                   "box-filtered to each): a level's max_screen_pixels is the largest of those sizes at which\n"
+                                                   "its look holds (PSNR within 1 dB of its best, IoU within 0.05 of its IoU there; manifest\n"
+                                                   "measuring)"},
+                    {"no-chain", 0, "", "", "no recommended chain (manifest recommended_chain, made by default): per band, never\n"
+                                            "more bytes than nearer, the smallest file that reaches --chain-psnr and IoU 0.9 (else\n"
+                                            "the best PSNR less 1 dB per doubling of bytes), among the files valid there (at most 2x\n"
+                                            "their max_screen_pixels; mesh LODs and the point impostor are drawn only there), with its\n"
+                                            "switch distance (--lod-screen-height, 60 degree field of view); with --lod-file,\n"
+                                            "STEM_lods.glb holds the chain's files. Without it only the impostor levels are drawn"},
+                    {"chain-psnr", 0, "DB", "30", "the recommended chain's quality bar, dB (engine method against the truth)"},
+                    {"no-report-html", 0, "", "", "do not write report.html, the bake's page for a browser (written by default: self-contained,\n"
+                                                  "the input beside every output drawn by the engine method at its own on-screen size and at\n"
+                                                  "256 px, per file bytes, texels, GPU bytes and measured error, the chain as bands, the\n"
+                                                  "warnings; without a GL driver it has no images and says so)"},
+                    drop_nonfinite_option(),
+                    {"quiet", 'q', "", "", "no progress and no summary on stderr (progress: on a terminal one line, redrawn;\n"
+                                           "otherwise a line every 5 s or QF_PROGRESS_SECONDS: the step running and its count)"}},
                    1, 1};
   append_point_input_options(spec.options);
   return spec;
@@ -80,6 +99,12 @@ AssetOptions read_asset_options(const OptionValues& args) {
   o.texel_density = args.get_double("texel-density", args.has("texel") ? 0.0 : o.texel_density, 0.0, 1000.0);
   o.texture.max_side = static_cast<int>(args.get_int("max-texture", o.texture.max_side, 4, 4096 - 8));
   o.support.margin = static_cast<float>(args.get_double("margin", o.support.margin, 0.0, 100.0));
+  o.gltf.textures = parse_textures(args.get_choice("textures", {"png", "ktx2"}, textures_name(o.gltf.textures)));
+  o.gltf.color_codec = parse_basis_codec(args.get_choice("ktx2-color", {"etc1s", "uastc"}, basis_codec_name(o.gltf.color_codec)));
+  o.gltf.normal_codec = parse_basis_codec(args.get_choice("ktx2-normal", {"etc1s", "uastc"}, basis_codec_name(o.gltf.normal_codec)));
+  o.gltf.etc1s_quality = static_cast<int>(args.get_int("ktx2-quality", o.gltf.etc1s_quality, 1, 255));
+  if (o.gltf.textures != GltfOptions::Textures::kKtx2 && (args.has("ktx2-color") || args.has("ktx2-normal") || args.has("ktx2-quality")))
+    throw UsageError("--ktx2-color, --ktx2-normal and --ktx2-quality need --textures ktx2");
   if (args.has("levels") && args.has("primitives")) throw UsageError("give --levels or --primitives, not both");
   if (args.has("levels")) {
     o.levels = args.get_int_list("levels", std::numeric_limits<long long>::min(), std::numeric_limits<long long>::max());
@@ -95,6 +120,8 @@ AssetOptions read_asset_options(const OptionValues& args) {
   a.sample = read_sample_options(args);
   a.point_seed = static_cast<std::uint64_t>(args.get_int("point-seed", 1, 0, 1ll << 62));
   a.point_impostor = !args.flag("no-points");
+  for (const char* name : {"ldi", "sampler", "all-triangles", "visibility-views", "point-seed", "no-points"})
+    if (args.has(name)) a.mesh_only_given.push_back(std::string("--") + name);
   const std::string lods = args.flag("no-mesh-lods") ? "none" : args.get_choice("mesh-lods", {"simplify", "clustering", "none"}, "simplify");
   a.mesh_lods = lods == "simplify" ? AssetOptions::MeshLods::kSimplify
                 : lods == "clustering" ? AssetOptions::MeshLods::kClustering
@@ -102,17 +129,21 @@ AssetOptions read_asset_options(const OptionValues& args) {
   render::MeasureOptions measure;
   measure.views = static_cast<int>(args.get_int("measure-views", measure.views, 1, 1000));
   measure.read = a.read;
-  a.chain = args.flag("chain") || args.has("chain-psnr");
-  // The chain adds a near band and the input as drawn (the floor an impostor must beat).
-  if (a.chain) measure.sizes.insert(measure.sizes.begin(), 256), measure.as_drawn = true;
+  a.chain = !args.flag("no-chain");
   a.chain_rule.min_psnr = args.get_double("chain-psnr", a.chain_rule.min_psnr, 0.0, 99.0);
   a.chain_rule.screen_height = a.lod_screen_height;
-  if (args.flag("no-measure") && (a.chain || args.has("measure-views")))
-    throw UsageError("--no-measure leaves nothing for --chain, --chain-psnr or --measure-views to do");
+  if (args.flag("no-measure") && (args.has("chain-psnr") || args.has("measure-views")))
+    throw UsageError("--no-measure leaves nothing for --chain-psnr or --measure-views to do");
+  if (args.flag("no-chain") && args.has("chain-psnr")) throw UsageError("--no-chain leaves nothing for --chain-psnr to do");
   if (!args.flag("no-measure"))
     a.measure = [measure](const std::string& input, const std::vector<Candidate>& candidates) {
       return render::measure_files(input, candidates, measure);
     };
+  if (!args.flag("no-report-html")) {
+    render::BakePageOptions page;
+    page.read = a.read;
+    a.report_page = [page](const AssetBake& bake, const std::string& input) { return render::bake_page(bake, input, page); };
+  }
   return a;
 }
 
@@ -129,15 +160,43 @@ void print_bake_summary(const AssetBake& a, const std::string& in, const std::st
   if (!a.sampled.backend.empty())
     std::fprintf(stderr, "  sampled: %s, pixel %.4g, layers %d/%d/%d, %.3f s\n", a.sampled.backend.c_str(), a.sampled.pixel,
                  a.sampled.layers[0], a.sampled.layers[1], a.sampled.layers[2], a.sampled.seconds);
+  if (a.manifest.contains("recommended_chain")) {
+    // The chain, nearest first: each file down to the on-screen size it is shown to, its error there.
+    std::fprintf(stderr, "  recommended chain:");
+    const char* sep = " ";
+    for (const nlohmann::json& e : a.manifest["recommended_chain"]["chain"]) {
+      std::fprintf(stderr, "%s%s to %d px (%.1f dB%s)", sep, e["file"].get<std::string>().c_str(), e["min_pixels"].get<int>(),
+                   e["error"]["psnr"].get<double>(), e["bar_met"].get<bool>() ? "" : ", under the bar");
+      sep = ", ";
+    }
+    std::fprintf(stderr, "\n");
+  }
   for (const std::string& w : r.warnings) std::fprintf(stderr, "  warning: %s\n", w.c_str());
+}
+
+// Seconds between progress lines in a log: QF_PROGRESS_SECONDS, default 5.
+double progress_seconds() {
+  const char* v = std::getenv("QF_PROGRESS_SECONDS");
+  if (!v || !*v) return 5;
+  char* end = nullptr;
+  const double s = std::strtod(v, &end);
+  if (*end || !(s >= 0.01 && s <= 86400))
+    throw UsageError(std::string("QF_PROGRESS_SECONDS: expected seconds between progress lines (0.01 to 86400), got '") + v + "'");
+  return s;
 }
 
 int run_bake(const ParsedArgs& args) {
   const std::string& in = args.positional[0];
   const std::string outdir = args.require("output");
   const AssetOptions options = read_asset_options(args);
-  const AssetBake a = bake_asset(in, options, in);
-  write_asset(outdir, a.files, a.manifest, a.report);
+  AssetBake a;
+  {
+    // A bake of millions of points runs for minutes: its steps on stderr while it runs.
+    const progress::ProgressDisplay shown(stderr, ::isatty(2) != 0, !args.flag("quiet"), "qf-bake bake", progress_seconds());
+    a = bake_asset(in, options, in);
+    progress::step("writing " + outdir);
+    write_asset(outdir, a.files, a.manifest, a.report, "qf-bake", a.page);
+  }
   if (!args.flag("quiet")) print_bake_summary(a, in, outdir);
   return 0;
 }

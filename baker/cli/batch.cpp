@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <limits>
@@ -13,6 +14,7 @@
 #include "core/error.h"
 #include "core/file_io.h"
 #include "pipeline/batch.h"
+#include "tools/report_html.h"
 
 namespace qf::cli {
 namespace {
@@ -128,6 +130,14 @@ void write_report(const std::string& path, const nlohmann::json& report) {
   write_file_atomically(path, [&](std::ostream& out) { out << report.dump(2) << "\n"; });
 }
 
+// The report's page (render::batch_page) beside it: its name with .html for .json. Returns its path.
+std::string write_page(const std::string& report_path, const nlohmann::json& report) {
+  const std::filesystem::path page = std::filesystem::path(report_path).replace_extension(".html");
+  const std::string html = render::batch_page(report, page.parent_path().empty() ? "." : page.parent_path().string());
+  write_file_atomically(page.string(), [&](std::ostream& out) { out << html; });
+  return page.string();
+}
+
 }  // namespace
 
 CommandSpec batch_spec() {
@@ -144,13 +154,16 @@ CommandSpec batch_spec() {
       "Each asset bakes in its own process: a bad or crashing asset fails alone, with its file and\n"
       "reason in the report. A killed batch leaves no half-written file; rerunning it finishes the job.\n"
       "The report (JSON, schemas/batch-report.schema.json) gives per asset its status, time, peak\n"
-      "memory, primitives and texels. Exit status: 0 when every asset is baked or up to date, 1 when\n"
+      "memory, primitives and texels; beside it, the same name with .html is its page for a browser:\n"
+      "one sortable row per asset with its thumbnail, figures and failure message, linking the asset's\n"
+      "report.html (each asset writes one unless its settings say \"no-report-html\": true).\n"
+      "Exit status: 0 when every asset is baked or up to date, 1 when\n"
       "any failed (or was skipped after a failure) or the manifest is bad, 2 for a bad command line.",
       {{"output", 'o', "OUTDIR", "the manifest's \"output\"", "root folder of the baked assets"},
        {"jobs", 'j', "N", std::to_string(cores) + " (cores)", "assets baked at once"},
        {"threads", 0, "N", "cores / jobs", "threads of each asset's bake (outputs do not depend on it)"},
        {"shard", 0, "I/N", "1/1", "bake shard I of N: the assets at positions I, I+N, I+2N, ... of the manifest (1-based);\n"
-                                  "run I = 1..N on N machines (see README: a Slurm array job), then merge-reports"},
+                                  "run I = 1..N on N machines (see docs/farm.md: a Slurm array job), then merge-reports"},
        {"force", 0, "", "", "rebake every asset, up to date or not"},
        {"keep-going", 'k', "", "", "after a failed asset, still bake the rest (default: stop starting new ones, like make)"},
        {"dry-run", 'n', "", "", "list what would be baked; bake nothing"},
@@ -195,7 +208,8 @@ int run_batch(const ParsedArgs& args) {
   if (!o.dry_run) {
     const std::string path = report_path(args, o);
     write_report(path, report);
-    if (!o.quiet) std::fprintf(stderr, "qf-bake batch: report: %s\n", path.c_str());
+    const std::string page = write_page(path, report);
+    if (!o.quiet) std::fprintf(stderr, "qf-bake batch: report: %s, page: %s\n", path.c_str(), page.c_str());
   }
   return batch_exit_code(report);
 }
@@ -204,7 +218,8 @@ CommandSpec merge_reports_spec() {
   return {"merge-reports", "REPORT.json... -o OUT.json",
           "join the reports of the shards of one batch (qf-bake batch --shard I/N) into one",
           "Checks that the reports come from the same manifest and sharding, with no shard or asset twice;\n"
-          "the joined report lists every asset in manifest order, the totals, and the shards missing.\n"
+          "the joined report lists every asset in manifest order, the totals, and the shards missing;\n"
+          "its page for a browser goes beside it (OUT.html, as qf-bake batch writes one).\n"
           "Exit status: 0 when every asset is baked or up to date and no shard is missing, else 1.",
           {{"output", 'o', "OUT.json", "", "the joined report; required"}, {"quiet", 'q', "", "", "print no summary"}},
           1, std::numeric_limits<std::size_t>::max()};
@@ -224,6 +239,7 @@ int run_merge_reports(const ParsedArgs& args) {
   }
   const nlohmann::json merged = merge_batch_reports(reports, args.positional);
   write_report(args.get("output"), merged);
+  write_page(args.get("output"), merged);
   if (!args.flag("quiet")) {
     const nlohmann::json& t = merged["totals"];
     std::fprintf(stderr, "qf-bake merge-reports: %zu report(s), %zu assets: %zu baked, %zu up to date, %zu failed, %zu skipped%s\n",

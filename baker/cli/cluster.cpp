@@ -68,7 +68,7 @@ int run_cluster(const ParsedArgs& args) {
 
   const std::string stem = std::filesystem::path(in).stem().string();
   std::vector<OutputFile> files;
-  const nlohmann::json levels = cluster_level_files(lods, stem, args.flag("draco"), files);
+  const nlohmann::json levels = cluster_level_files(lods, stem, args.flag("draco"), files, diagonal);
   const nlohmann::json manifest{{"input", in},
                                 {"triangles", mesh.triangles.size()},
                                 {"vertices", mesh.positions.size()},

@@ -135,7 +135,7 @@ static std::string shape_list() {
 const std::vector<Command>& commands() {
   static const std::vector<Command> table{
       {{"info", "FILE [options]", "describe a point set or mesh: format, counts, attributes, bounds, memory",
-        "FILE is any supported input: .ply (points or mesh), .qs, .xyz, .pwn, .off, .obj.",
+        "FILE is any supported input: .ply (points or mesh), .qs, .xyz, .pwn, .las, .laz, .off, .obj, .gltf, .glb.",
         {{"json", 0, "", "", "print a JSON object instead of text (schema: schemas/info.schema.json)"},
          drop_nonfinite_option()},
         1, 1},
@@ -192,6 +192,8 @@ const std::vector<Command>& commands() {
       {simplify_spec(), run_simplify},
       {batch_spec(), run_batch},
       {merge_reports_spec(), run_merge_reports},
+      {tile_spec(), run_tile},
+      {join_spec(), run_join},
   };
   return table;
 }

@@ -18,5 +18,7 @@ constexpr const char* kThicknessAttribute = "_THICKNESS";
 // A combined LOD file: MSFT_lod on the root node, its lower LODs' screen coverages in its extras.
 constexpr const char* kLodExtension = "MSFT_lod";
 constexpr const char* kScreenCoverageExtra = "MSFT_screencoverage";
+// A texture whose image is KTX2 (Basis Universal): its extension names the image (issue 32).
+constexpr const char* kBasisuExtension = "KHR_texture_basisu";
 
 }  // namespace qf

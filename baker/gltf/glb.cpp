@@ -14,6 +14,7 @@
 #include "core/color.h"
 #include "gltf/draco.h"
 #include "gltf/png.h"
+#include "primitives/mip_levels.h"
 
 namespace qf {
 namespace {
@@ -66,25 +67,63 @@ Value int_array(const std::vector<std::uint32_t>& v) {
   return Value(a);
 }
 
-// `rgb_only`: the alpha channel is left out (normal maps, whose alpha is unused and 255: 12% fewer
-// bytes for the bunny's finest normal atlas).
-int add_png_texture(tinygltf::Model& m, const std::vector<std::uint8_t>& rgba, int w, int h, const std::string& name,
-                    bool rgb_only = false) {
-  std::vector<std::uint8_t> rgb;
-  if (rgb_only) {
-    rgb.resize(rgba.size() / 4 * 3);
-    for (std::size_t k = 0; k < rgba.size() / 4; ++k) std::copy_n(&rgba[4 * k], 3, &rgb[3 * k]);
-  }
-  const std::vector<std::uint8_t> png = rgb_only ? encode_png(rgb.data(), w, h, 3) : encode_png(rgba.data(), w, h, 4);
+// What a texture holds: how its mip levels are made and how it is encoded.
+enum class TextureClass { kColor, kNormal, kData, kEmissive };
+
+// `rgb_only` (PNG): the alpha channel is left out (normal maps, whose alpha is unused and 255: 12%
+// fewer bytes for the bunny's finest normal atlas).
+std::vector<std::uint8_t> png_bytes(const std::vector<std::uint8_t>& rgba, int w, int h, bool rgb_only) {
+  if (!rgb_only) return encode_png(rgba.data(), w, h, 4);
+  std::vector<std::uint8_t> rgb(rgba.size() / 4 * 3);
+  for (std::size_t k = 0; k < rgba.size() / 4; ++k) std::copy_n(&rgba[4 * k], 3, &rgb[3 * k]);
+  return encode_png(rgb.data(), w, h, 3);
+}
+
+// KTX2: the coverage-preserving chain (colour, at the MASK cutoff) or the plain one, encoded with
+// the class's codec; normal maps in the encoder's normal-map mode, data linear.
+std::vector<std::uint8_t> ktx2_bytes(const std::vector<std::uint8_t>& rgba, int w, int h, TextureClass cls,
+                                     const GltfOptions& options) {
+  MipOptions mip;
+  mip.kind = cls == TextureClass::kNormal ? MipOptions::Kind::kNormal
+             : cls == TextureClass::kData ? MipOptions::Kind::kLinear
+                                          : MipOptions::Kind::kColor;
+  if (cls == TextureClass::kColor && options.alpha_mode == "MASK") mip.alpha_cutoff = options.alpha_cutoff;
+  Ktx2Options k;
+  k.codec = cls == TextureClass::kColor || cls == TextureClass::kEmissive ? options.color_codec : options.normal_codec;
+  k.srgb = cls == TextureClass::kColor || cls == TextureClass::kEmissive;
+  k.normal_map = cls == TextureClass::kNormal;
+  k.etc1s_quality = options.etc1s_quality;
+  k.threads = options.threads;
+  return encode_ktx2(mip_levels(TextureImage{w, h, rgba}, mip), k);
+}
+
+// Adds an image and a texture of it in the options' format; returns the texture's index.
+int add_texture(tinygltf::Model& m, const std::vector<std::uint8_t>& rgba, int w, int h, const std::string& name,
+                TextureClass cls, const GltfOptions& options, TextureCost* cost) {
+  const bool ktx2 = options.textures == GltfOptions::Textures::kKtx2;
+  const std::vector<std::uint8_t> bytes = ktx2 ? ktx2_bytes(rgba, w, h, cls, options) : png_bytes(rgba, w, h, cls != TextureClass::kColor);
   tinygltf::Image img;
   img.name = name;
-  img.mimeType = "image/png";
-  img.bufferView = add_view(m, png.data(), png.size(), 0);
+  img.mimeType = ktx2 ? "image/ktx2" : "image/png";
+  img.bufferView = add_view(m, bytes.data(), bytes.size(), 0);
   m.images.push_back(img);
   tinygltf::Texture t;
-  t.source = static_cast<int>(m.images.size() - 1);
+  const int source = static_cast<int>(m.images.size() - 1);
+  // KHR_texture_basisu without a fallback: the texture names its KTX2 image in the extension
+  // alone, and the extension is required (the extension's spec).
+  if (ktx2) t.extensions[kBasisuExtension] = Value(Value::Object{{"source", Value(source)}});
+  else t.source = source;
   t.sampler = 0;
   m.textures.push_back(t);
+  if (cost) {
+    cost->file_bytes += bytes.size();
+    // Every mip level down to 1x1: RGBA8 texels, or 4x4 blocks of 16 bytes (a level under 4 texels
+    // a side still takes a whole block).
+    for (std::size_t lw = static_cast<std::size_t>(w), lh = static_cast<std::size_t>(h);; lw = std::max<std::size_t>(1, lw / 2), lh = std::max<std::size_t>(1, lh / 2)) {
+      cost->gpu_bytes += ktx2 ? 16 * ((lw + 3) / 4) * ((lh + 3) / 4) : 4 * lw * lh;
+      if (lw == 1 && lh == 1) break;
+    }
+  }
   return static_cast<int>(m.textures.size() - 1);
 }
 
@@ -152,29 +191,32 @@ tinygltf::Node& add_single_node_scene(tinygltf::Model& m, tinygltf::Mesh mesh) {
 
 // A level's materials, one per atlas image (one draw call each in an engine); returns the first's
 // index.
-int add_level_materials(tinygltf::Model& m, const Atlas& atlas, const GltfOptions& options, const std::string& prefix) {
+int add_level_materials(tinygltf::Model& m, const Atlas& atlas, const GltfOptions& options, const std::string& prefix,
+                        TextureCost* cost) {
   const int first_material = static_cast<int>(m.materials.size());
   for (std::size_t i = 0; i < atlas.images.size(); ++i) {
     tinygltf::Material mat;
     mat.name = prefix + "atlas_" + std::to_string(i);
     mat.pbrMetallicRoughness.baseColorTexture.index =
-        add_png_texture(m, atlas.images[i], atlas.widths[i], atlas.heights[i], mat.name + "_color");
+        add_texture(m, atlas.images[i], atlas.widths[i], atlas.heights[i], mat.name + "_color", TextureClass::kColor, options, cost);
     // The material channels (atlas.h LevelChannels): factors where constant (a rough dielectric
     // without emission where the input has none), textures in the atlas layout where they vary.
     const LevelChannels& ch = atlas.channels;
     mat.pbrMetallicRoughness.metallicFactor = canonical_double(ch.metallic);
     mat.pbrMetallicRoughness.roughnessFactor = canonical_double(ch.roughness);
     if (i < atlas.normal_images.size())
-      mat.normalTexture.index = add_png_texture(m, atlas.normal_images[i], atlas.widths[i], atlas.heights[i], mat.name + "_normal", true);
+      mat.normalTexture.index = add_texture(m, atlas.normal_images[i], atlas.widths[i], atlas.heights[i], mat.name + "_normal", TextureClass::kNormal,
+                                          options, cost);
     if (i < atlas.orm_images.size()) {
       // One image: glTF's metallicRoughnessTexture reads G and B, occlusionTexture R.
-      const int orm = add_png_texture(m, atlas.orm_images[i], atlas.widths[i], atlas.heights[i], mat.name + "_orm", true);
+      const int orm = add_texture(m, atlas.orm_images[i], atlas.widths[i], atlas.heights[i], mat.name + "_orm", TextureClass::kData, options, cost);
       mat.pbrMetallicRoughness.metallicRoughnessTexture.index = orm;
       if (ch.occlusion_texture) mat.occlusionTexture.index = orm;
     }
     mat.emissiveFactor = {canonical_double(ch.emissive[0]), canonical_double(ch.emissive[1]), canonical_double(ch.emissive[2])};
     if (i < atlas.emissive_images.size())
-      mat.emissiveTexture.index = add_png_texture(m, atlas.emissive_images[i], atlas.widths[i], atlas.heights[i], mat.name + "_emissive", true);
+      mat.emissiveTexture.index = add_texture(m, atlas.emissive_images[i], atlas.widths[i], atlas.heights[i], mat.name + "_emissive",
+                                             TextureClass::kEmissive, options, cost);
     mat.alphaMode = options.alpha_mode;
     if (options.alpha_mode == "MASK") mat.alphaCutoff = options.alpha_cutoff;
     // Double-sided: seen from behind (an open surface's inside, a thin part's far side) a quad
@@ -182,6 +224,11 @@ int add_level_materials(tinygltf::Model& m, const Atlas& atlas, const GltfOption
     // neck: 20% holes in three.js single-sided).
     mat.doubleSided = true;
     m.materials.push_back(mat);
+  }
+  if (options.textures == GltfOptions::Textures::kKtx2 && !atlas.images.empty() &&
+      std::find(m.extensionsUsed.begin(), m.extensionsUsed.end(), kBasisuExtension) == m.extensionsUsed.end()) {
+    m.extensionsUsed.push_back(kBasisuExtension);
+    m.extensionsRequired.push_back(kBasisuExtension);
   }
   return first_material;
 }
@@ -222,8 +269,9 @@ void add_level_primitive(tinygltf::Model& m, tinygltf::Mesh& mesh, const Imposto
 
 // Adds a level: its materials, its quads as one mesh and a node holding it; returns the node's
 // index. `prefix` names the level's objects.
-int add_level(tinygltf::Model& m, const ImpostorLevel& level, const GltfOptions& options, const std::string& prefix) {
-  const int first_material = add_level_materials(m, level.atlas, options, prefix);
+int add_level(tinygltf::Model& m, const ImpostorLevel& level, const GltfOptions& options, const std::string& prefix,
+              TextureCost* cost) {
+  const int first_material = add_level_materials(m, level.atlas, options, prefix, cost);
   tinygltf::Mesh mesh;
   mesh.name = "impostor_level_" + std::to_string(level.level);
   for (std::size_t img = 0; img < level.atlas.images.size(); ++img)
@@ -283,10 +331,18 @@ std::vector<std::uint8_t> write_glb(tinygltf::Model& m) {
 
 }  // namespace
 
-std::vector<std::uint8_t> encode_glb(const ImpostorLevel& level, const GltfOptions& options) {
+const char* textures_name(GltfOptions::Textures textures) { return textures == GltfOptions::Textures::kKtx2 ? "ktx2" : "png"; }
+
+GltfOptions::Textures parse_textures(const std::string& name) {
+  if (name == "png") return GltfOptions::Textures::kPng;
+  if (name == "ktx2") return GltfOptions::Textures::kKtx2;
+  throw std::invalid_argument("'" + name + "' is not a texture format (png or ktx2)");
+}
+
+std::vector<std::uint8_t> encode_glb(const ImpostorLevel& level, const GltfOptions& options, TextureCost* cost) {
   tinygltf::Model m = new_model(options);
   tinygltf::Scene scene;
-  scene.nodes.push_back(add_level(m, level, options, "impostor_"));
+  scene.nodes.push_back(add_level(m, level, options, "impostor_", cost));
   m.scenes.push_back(scene);
   m.defaultScene = 0;
   m.extensions[kImpostorExtension] = impostor_extension(level);
@@ -521,7 +577,8 @@ namespace {
 int add_mesh_texture(tinygltf::Model& m, const TriangleMesh& mesh, const TextureRef& r, const std::string& name) {
   if (r.image < 0) return -1;
   const TextureImage& t = mesh.textures[static_cast<std::size_t>(r.image)];
-  const int texture = add_png_texture(m, t.rgba, t.width, t.height, name);
+  // An input asset, PNG as its reader took it (GltfOptions::textures is for impostor levels).
+  const int texture = add_texture(m, t.rgba, t.width, t.height, name, TextureClass::kColor, GltfOptions{}, nullptr);
   const auto code = [](TextureWrap w) {
     return w == TextureWrap::kClampToEdge ? TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE
            : w == TextureWrap::kMirroredRepeat ? TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT : TINYGLTF_TEXTURE_WRAP_REPEAT;

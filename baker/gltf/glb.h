@@ -11,6 +11,7 @@
 
 #include "clustering/clustering.h"
 #include "core/gltf_keys.h"
+#include "gltf/ktx2.h"
 #include "primitives/atlas.h"
 #include "primitives/support.h"
 
@@ -38,6 +39,27 @@ struct GltfOptions {
   std::string alpha_mode = "MASK";
   float alpha_cutoff = 0.2f;  // MASK only; mesh inputs 0.3 (pipeline/bake.h use_surface_edges)
   std::string generator = "quasiflat";
+  // The impostor levels' textures (issue 32, docs/textures.md). PNG: every engine loads it, and
+  // makes its mip levels itself by box filtering (an alpha-tested level loses coverage as it
+  // shrinks). KTX2 (KHR_texture_basisu, then required): Basis Universal with the mip levels written
+  // in, coverage-preserving at alpha_cutoff (primitives/mip_levels.h); engines need a transcoder.
+  enum class Textures { kPng, kKtx2 };
+  Textures textures = Textures::kPng;
+  BasisCodec color_codec = BasisCodec::kEtc1s;   // colour + alpha, emission
+  BasisCodec normal_codec = BasisCodec::kUastc;  // normal maps and occlusion/roughness/metallic
+  int etc1s_quality = 128;
+  int threads = 1;  // the KTX2 encoder's (the bytes do not depend on it)
+};
+const char* textures_name(GltfOptions::Textures textures);         // "png" | "ktx2"
+GltfOptions::Textures parse_textures(const std::string& name);      // throws std::invalid_argument
+
+// What a level's textures cost a user (issue 32): their bytes in the file, and the GPU memory
+// they take once loaded, every mip level included (~4/3 of the base): PNG decoded to RGBA8, 4
+// bytes a texel; KTX2 transcoded to a block format (BC7, ETC2 RGBA or ASTC 4x4), 16 bytes a 4x4
+// block, 1 byte a texel.
+struct TextureCost {
+  std::size_t file_bytes = 0;
+  std::size_t gpu_bytes = 0;
 };
 
 // Assembles a level from its support rectangles and textures (one per non-empty domain, in domain
@@ -48,7 +70,8 @@ ImpostorLevel make_impostor_level(std::size_t level, const std::vector<SupportRe
                                   const AtlasOptions& atlas = {});
 
 // The .glb bytes: identical for identical input (sorted keys, canonical floats, no timestamps).
-std::vector<std::uint8_t> encode_glb(const ImpostorLevel& level, const GltfOptions& options = {});
+// With `cost`, what its textures cost.
+std::vector<std::uint8_t> encode_glb(const ImpostorLevel& level, const GltfOptions& options = {}, TextureCost* cost = nullptr);
 
 // One .glb under MSFT_lod (gltf-notes.md 2.1) from finished .glb files (`parts`, finest or
 // nearest first, each with one root node in its scene: any file the bake writes): the impostor
@@ -61,6 +84,13 @@ std::vector<std::uint8_t> encode_glb(const ImpostorLevel& level, const GltfOptio
 // it cannot combine.
 std::vector<std::uint8_t> combine_lod_glb(const std::vector<const std::vector<std::uint8_t>*>& parts,
                                           const std::vector<double>& screen_coverage, const std::string& name);
+
+// One .glb drawing every part at once (`parts`: finished .glb files as for combine_lod_glb; the
+// tiles of one scan, qf-bake join): a root node NAME whose children are the parts' root nodes,
+// named NAME_0..n, their materials and textures prefixed the same way. Plain glTF, as
+// combine_lod_glb's: the parts' document extensions are left out. Throws std::invalid_argument for
+// a part it cannot combine.
+std::vector<std::uint8_t> join_glb(const std::vector<const std::vector<std::uint8_t>*>& parts, const std::string& name);
 
 // A point impostor (paper section 5): the permuted sample points as one glTF POINTS primitive
 // (POSITION, NORMAL, COLOR_0 when coloured; the order is the permutation, so any prefix is an even

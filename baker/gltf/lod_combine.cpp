@@ -1,5 +1,6 @@
 // One MSFT_lod file from finished .glb files: the impostor levels of --lod-file, or the
-// recommended chain's files (mesh LODs, impostor levels, the point impostor).
+// recommended chain's files (mesh LODs, impostor levels, the point impostor); and one file of
+// several parts drawn together (a scan's tiles, qf-bake join).
 #include "gltf/glb.h"
 
 #include <tiny_gltf.h>
@@ -24,22 +25,23 @@ tinygltf::Model parse_glb(const std::vector<std::uint8_t>& bytes) {
   loader.SetImageLoader(&keep_image_bytes, nullptr);
   std::string err, warn;
   if (!loader.LoadBinaryFromMemory(&m, &err, &warn, bytes.data(), static_cast<unsigned int>(bytes.size())))
-    throw std::invalid_argument("combine_lod_glb: a part does not parse: " + err);
+    throw std::invalid_argument("a part does not parse: " + err);
   if (m.buffers.size() > 1 || !m.skins.empty() || !m.animations.empty() || !m.cameras.empty())
-    throw std::invalid_argument("combine_lod_glb: a part with several buffers, skins, animations or cameras");
-  for (const std::string& e : m.extensionsRequired)
-    throw std::invalid_argument("combine_lod_glb: a part requires " + e);
+    throw std::invalid_argument("a part with several buffers, skins, animations or cameras");
   // Only what append_part remaps: extensions may hold indices it would leave pointing elsewhere.
+  for (const std::string& e : m.extensionsRequired)
+    if (e != kBasisuExtension) throw std::invalid_argument("a part requires " + e);
   for (const std::string& e : m.extensionsUsed)
-    if (e != kImpostorExtension && e != kPointExtension) throw std::invalid_argument("combine_lod_glb: a part uses " + e);
+    if (e != kImpostorExtension && e != kPointExtension && e != kBasisuExtension)
+      throw std::invalid_argument("a part uses " + e);
   for (const tinygltf::Accessor& a : m.accessors)
-    if (a.sparse.isSparse) throw std::invalid_argument("combine_lod_glb: a part with a sparse accessor");
+    if (a.sparse.isSparse) throw std::invalid_argument("a part with a sparse accessor");
   for (const tinygltf::Mesh& mesh : m.meshes)
     for (const tinygltf::Primitive& prim : mesh.primitives)
-      if (!prim.targets.empty()) throw std::invalid_argument("combine_lod_glb: a part with morph targets");
+      if (!prim.targets.empty()) throw std::invalid_argument("a part with morph targets");
   const int scene = m.defaultScene >= 0 ? m.defaultScene : 0;
   if (static_cast<std::size_t>(scene) >= m.scenes.size() || m.scenes[static_cast<std::size_t>(scene)].nodes.size() != 1)
-    throw std::invalid_argument("combine_lod_glb: a part whose scene has not exactly one root node");
+    throw std::invalid_argument("a part whose scene has not exactly one root node");
   return m;
 }
 
@@ -62,7 +64,13 @@ int append_part(tinygltf::Model& m, tinygltf::Model p, const std::string& prefix
   for (tinygltf::Accessor& a : p.accessors) shift(a.bufferView, views), m.accessors.push_back(a);
   for (tinygltf::Image& i : p.images) shift(i.bufferView, views), i.name = prefix + i.name, m.images.push_back(i);
   for (tinygltf::Sampler& s : p.samplers) m.samplers.push_back(s);
-  for (tinygltf::Texture& t : p.textures) shift(t.source, images), shift(t.sampler, samplers), t.name = prefix + t.name, m.textures.push_back(t);
+  for (tinygltf::Texture& t : p.textures) {
+    shift(t.source, images), shift(t.sampler, samplers), t.name = prefix + t.name;
+    // A KTX2 texture (KHR_texture_basisu) names its image in the extension.
+    if (auto ext = t.extensions.find(kBasisuExtension); ext != t.extensions.end())
+      ext->second = Value(Value::Object{{"source", Value(ext->second.Get("source").GetNumberAsInt() + static_cast<int>(images))}});
+    m.textures.push_back(t);
+  }
   for (tinygltf::Material& x : p.materials) {
     shift(x.pbrMetallicRoughness.baseColorTexture.index, textures);
     shift(x.pbrMetallicRoughness.metallicRoughnessTexture.index, textures);
@@ -88,19 +96,54 @@ int append_part(tinygltf::Model& m, tinygltf::Model p, const std::string& prefix
   for (const std::string& e : p.extensionsUsed)
     if (e != kImpostorExtension && e != kPointExtension && std::find(m.extensionsUsed.begin(), m.extensionsUsed.end(), e) == m.extensionsUsed.end())
       m.extensionsUsed.push_back(e);
+  for (const std::string& e : p.extensionsRequired)
+    if (std::find(m.extensionsRequired.begin(), m.extensionsRequired.end(), e) == m.extensionsRequired.end())
+      m.extensionsRequired.push_back(e);
   return p.scenes[static_cast<std::size_t>(p.defaultScene >= 0 ? p.defaultScene : 0)].nodes[0] + static_cast<int>(nodes);
 }
 
+tinygltf::Model empty_model() {
+  tinygltf::Model m;
+  m.asset.version = "2.0";
+  m.asset.generator = "quasiflat";
+  m.buffers.resize(1);
+  return m;
+}
+
+std::vector<std::uint8_t> glb_bytes(tinygltf::Model& m, const char* who) {
+  tinygltf::TinyGLTF writer;
+  std::ostringstream out;
+  if (!writer.WriteGltfSceneToStream(&m, out, /*prettyPrint=*/false, /*writeBinary=*/true))
+    throw std::runtime_error(std::string(who) + ": tinygltf could not write the file");
+  const std::string s = out.str();
+  return std::vector<std::uint8_t>(s.begin(), s.end());
+}
+
 }  // namespace
+
+std::vector<std::uint8_t> join_glb(const std::vector<const std::vector<std::uint8_t>*>& parts, const std::string& name) {
+  if (parts.empty()) throw std::invalid_argument("join_glb: no part");
+  tinygltf::Model m = empty_model();
+  tinygltf::Node root;
+  root.name = name;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    const int node = append_part(m, parse_glb(*parts[i]), name + "_" + std::to_string(i) + "_");
+    m.nodes[static_cast<std::size_t>(node)].name = name + "_" + std::to_string(i);
+    root.children.push_back(node);
+  }
+  m.nodes.push_back(root);
+  tinygltf::Scene scene;
+  scene.nodes.push_back(static_cast<int>(m.nodes.size() - 1));
+  m.scenes.push_back(scene);
+  m.defaultScene = 0;
+  return glb_bytes(m, "join_glb");
+}
 
 std::vector<std::uint8_t> combine_lod_glb(const std::vector<const std::vector<std::uint8_t>*>& parts,
                                           const std::vector<double>& screen_coverage, const std::string& name) {
   if (parts.empty() || screen_coverage.size() != parts.size())
     throw std::invalid_argument("combine_lod_glb: one screen coverage per part, at least one part");
-  tinygltf::Model m;
-  m.asset.version = "2.0";
-  m.asset.generator = "quasiflat";
-  m.buffers.resize(1);
+  tinygltf::Model m = empty_model();
   std::vector<int> roots;
   for (std::size_t i = 0; i < parts.size(); ++i)
     roots.push_back(append_part(m, parse_glb(*parts[i]), name + "_LOD" + std::to_string(i) + "_"));
@@ -123,12 +166,7 @@ std::vector<std::uint8_t> combine_lod_glb(const std::vector<const std::vector<st
   scene.nodes.push_back(roots[0]);
   m.scenes.push_back(scene);
   m.defaultScene = 0;
-  tinygltf::TinyGLTF writer;
-  std::ostringstream out;
-  if (!writer.WriteGltfSceneToStream(&m, out, /*prettyPrint=*/false, /*writeBinary=*/true))
-    throw std::runtime_error("combine_lod_glb: tinygltf could not write the file");
-  const std::string s = out.str();
-  return std::vector<std::uint8_t>(s.begin(), s.end());
+  return glb_bytes(m, "combine_lod_glb");
 }
 
 }  // namespace qf

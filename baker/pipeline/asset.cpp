@@ -12,7 +12,9 @@
 
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/progress.h"
 #include "gltf/glb.h"
+#include "reconstruct/reconstruct.h"
 #include "simplify/simplify.h"
 
 namespace qf {
@@ -20,8 +22,10 @@ namespace qf {
 PointSet load_point_set(const std::string& path, const ReadOptions& read, const SampleOptions& sample,
                         const std::string& command, ReadReport& report, SampleStats* sampled, TriangleMesh* mesh,
                         std::vector<std::uint32_t>* triangles) {
+  progress::step("reading " + path);
   Model model = read_model(path, read, &report);
   if (model.is_mesh) {
+    progress::step("sampling the mesh into points (depth peeling)");
     SampleStats stats;
     PointSet points = sample_mesh(model.mesh, sample, path, &stats, triangles);
     if (sampled) *sampled = stats;
@@ -134,7 +138,7 @@ nlohmann::json simplify_level_files(const TriangleMesh& mesh, const std::vector<
 }
 
 nlohmann::json cluster_level_files(const std::vector<LodMesh>& lods, const std::string& stem, bool draco,
-                                   std::vector<OutputFile>& files) {
+                                   std::vector<OutputFile>& files, double diagonal) {
   nlohmann::json levels = nlohmann::json::array();
   for (std::size_t i = 0; i < lods.size(); ++i) {
     const LodMesh& l = lods[i];
@@ -142,6 +146,7 @@ nlohmann::json cluster_level_files(const std::vector<LodMesh>& lods, const std::
     files.push_back({name, encode_cluster_glb(l)});
     levels.push_back({{"file", name},
                       {"cell_width", canonical_double(l.cell)},
+                      {"max_screen_pixels", static_cast<long long>(kClusterCellPixels * diagonal / l.cell)},
                       {"vertices", l.positions.size()},
                       {"triangles", l.triangles.size()},
                       {"edges", l.edges.size()},
@@ -171,6 +176,8 @@ nlohmann::json level_entry(const BakedLevel& l, const std::string& file) {
           {"atlas_images", l.atlas_images},
           {"atlas_sides", atlas_sides},
           {"bytes", l.glb.size()},
+          {"texture_bytes", l.textures.file_bytes},
+          {"gpu_bytes", l.textures.gpu_bytes},
           {"error", canonical_double(static_cast<float>(l.error))},
           {"relative_error", canonical_double(static_cast<float>(l.relative_error))},
           {"max_screen_pixels", static_cast<long long>(l.max_screen_pixels)}};
@@ -197,8 +204,8 @@ nlohmann::json mesh_lod_outputs(const TriangleMesh& mesh, const AssetOptions& o,
       lods.push_back(cluster_mesh(mesh, grading, co));
     }
     return {{"method", "clustering"},
-            {"levels", cluster_level_files(lods, stem, false, files)},
-            {"lod_rule", "largest cell_width <= X * R, R = 2 D tan(fov/2) / window height, X = 5; "
+            {"levels", cluster_level_files(lods, stem, false, files, mesh.bounds().diagonal())},
+            {"lod_rule", "largest cell_width <= X * R, R = 2 D tan(fov/2) / window height, X = 5 (max_screen_pixels = X D / cell_width); "
                          "thick line width = _THICKNESS / R pixels"}};
   }
   if (o.mesh_lods == AssetOptions::MeshLods::kSimplify && !default_simplify_budgets(mesh).empty()) {
@@ -208,6 +215,30 @@ nlohmann::json mesh_lod_outputs(const TriangleMesh& mesh, const AssetOptions& o,
     return lods;
   }
   return nullptr;
+}
+
+// 2'. Point-set inputs: the peer a scan user would pick, the surface reconstructed
+// (reconstruct/reconstruct.h) and simplified as a mesh input's LODs are (their manifest entry, with
+// the reconstruction's figures; null with other mesh LODs than simplify, or no surface: `warnings`
+// says why).
+nlohmann::json reconstructed_lod_outputs(const PointSet& points, const AssetOptions& o, const std::string& stem,
+                                         std::vector<OutputFile>& files, std::vector<std::string>& warnings) {
+  if (o.mesh_lods != AssetOptions::MeshLods::kSimplify) return nullptr;
+  Reconstruction rec;
+  try {
+    rec = reconstruct_surface(points);
+  } catch (const std::invalid_argument& e) {
+    warnings.push_back(std::string("no mesh LODs: the points could not be reconstructed into a surface (") + e.what() + ")");
+    return nullptr;
+  }
+  if (default_simplify_budgets(rec.mesh).empty()) return nullptr;
+  nlohmann::json lods = simplify_level_files(rec.mesh, default_simplify_budgets(rec.mesh), stem, files, true);
+  lods["method"] = "simplify";
+  lods["lod_rule"] = "coarsest level whose max_screen_pixels >= the object's on-screen size (bounding-box diagonal, pixels)";
+  lods["reconstruction"] = {{"method", "advancing front (CGAL)"},
+                            {"points_used", rec.points_used},
+                            {"triangles", rec.mesh.triangles.size()}};
+  return lods;
 }
 
 // 3. The impostor levels' files (their .glb bytes moved out of `r`) and the manifest around them.
@@ -279,6 +310,7 @@ nlohmann::json asset_report(AssetBake& a, const AssetOptions& o, const std::stri
             {"texel_factor", canonical_double(o.bake.texture.texel_factor)},
             {"texel_density", canonical_double(static_cast<float>(o.bake.texel_density))},
             {"max_texture", o.bake.texture.max_side},
+            {"textures", textures_name(o.bake.gltf.textures)},
             {"lod_file", o.lod_file},
             {"mesh_lods", o.mesh_lods == AssetOptions::MeshLods::kSimplify     ? "simplify"
                           : o.mesh_lods == AssetOptions::MeshLods::kClustering ? "clustering"
@@ -324,19 +356,39 @@ void lod_file_output(AssetBake& a, const AssetOptions& o, const std::string& ste
   a.manifest["lod_file"] = {{"file", name}, {"screen_height", o.lod_screen_height}, {"parts", names}};
 }
 
-// 5a. The files to measure: the impostor levels; with the chain also the mesh LODs and the point
-// impostor (its candidates).
+// 5c (used by 5a). Up to which on-screen size a file is made for (0: any): a level's or mesh
+// LOD's max_screen_pixels; the point impostor's size at its switch distance, nearer than which its
+// points part (it fades to the mesh there).
+double file_max_pixels(const nlohmann::json& manifest, const std::string& file, double diagonal) {
+  std::vector<const nlohmann::json*> lists{&manifest.at("levels")};
+  if (manifest.contains("mesh_lods") && manifest["mesh_lods"].contains("levels")) lists.push_back(&manifest["mesh_lods"]["levels"]);
+  for (const nlohmann::json* entries : lists)
+    for (const nlohmann::json& e : *entries)
+      if (e.at("file") == file) return e.at("max_screen_pixels").get<double>();
+  if (manifest.contains("point_impostor") && manifest["point_impostor"].at("file") == file) {
+    // D H / (2 tan(fov / 2) d) is symmetric in pixels and distance: the pixels at a distance.
+    const nlohmann::json& p = manifest["point_impostor"];
+    return distance_for_pixels(diagonal, p.at("switch_distance").get<double>(), p.at("switch_screen_height").get<double>(),
+                               p.at("switch_fov_degrees").get<double>());
+  }
+  return 0;
+}
+
+// 5a. The files to measure: the impostor levels (at every size: their own figures decide their
+// size); with the chain also the mesh LODs and the point impostor, its other candidates, each
+// drawn only up to the sizes where it may be chosen.
 std::vector<Candidate> measured_candidates(const AssetBake& a, bool chain) {
   std::vector<Candidate> out;
-  auto add = [&](const nlohmann::json& entry, const char* kind) {
+  const double diagonal = a.manifest.at("bounding_box_diagonal").get<double>();
+  auto add = [&](const nlohmann::json& entry, const char* kind, bool sized) {
     const std::string name = entry.at("file").get<std::string>();
     for (const OutputFile& f : a.files)
-      if (f.name == name) out.push_back({name, kind, &f.bytes});
+      if (f.name == name) out.push_back({name, kind, &f.bytes, sized ? file_max_pixels(a.manifest, name, diagonal) : 0.0});
   };
   if (chain && a.manifest.contains("mesh_lods"))
-    for (const nlohmann::json& l : a.manifest["mesh_lods"]["levels"]) add(l, "mesh_lod");
-  for (const nlohmann::json& l : a.manifest.at("levels")) add(l, "impostor_level");
-  if (chain && a.manifest.contains("point_impostor")) add(a.manifest["point_impostor"], "point_impostor");
+    for (const nlohmann::json& l : a.manifest["mesh_lods"]["levels"]) add(l, "mesh_lod", true);
+  for (const nlohmann::json& l : a.manifest.at("levels")) add(l, "impostor_level", false);
+  if (chain && a.manifest.contains("point_impostor")) add(a.manifest["point_impostor"], "point_impostor", true);
   return out;
 }
 
@@ -381,12 +433,6 @@ void apply_screen_sizes(AssetBake& a, const Measurements& m, const HoldBar& bar)
 }
 
 nlohmann::json measuring_entry(const Measurements& m, const HoldBar& bar) {
-  nlohmann::json as_drawn = nlohmann::json::array();
-  for (std::size_t s = 0; s < m.as_drawn.size(); ++s) {
-    nlohmann::json e = scores_entry(m.as_drawn[s]);
-    e["pixels"] = m.sizes[s];
-    as_drawn.push_back(e);
-  }
   return {{"method", "engine"},
           {"sizes", m.sizes},
           {"views", m.views},
@@ -395,26 +441,7 @@ nlohmann::json measuring_entry(const Measurements& m, const HoldBar& bar) {
                         "iou_drop below its IoU there; max_screen_pixels is the largest size of the run that holds around its best (its "
                         "geometric value where that is larger and it holds at the largest size), below every finer level's"},
           {"psnr_drop", canonical_double(static_cast<float>(bar.psnr_drop))},
-          {"iou_drop", canonical_double(static_cast<float>(bar.iou_drop))},
-          {"as_drawn", as_drawn.empty() ? nlohmann::json(nullptr) : as_drawn}};
-}
-
-// 5c. Up to which on-screen size a file is made for (0: any): a level's or mesh LOD's
-// max_screen_pixels; the point impostor's size at its switch distance, nearer than which its
-// points part (it fades to the mesh there).
-double file_max_pixels(const nlohmann::json& manifest, const std::string& file, double diagonal) {
-  std::vector<const nlohmann::json*> lists{&manifest.at("levels")};
-  if (manifest.contains("mesh_lods") && manifest["mesh_lods"].contains("levels")) lists.push_back(&manifest["mesh_lods"]["levels"]);
-  for (const nlohmann::json* entries : lists)
-    for (const nlohmann::json& e : *entries)
-      if (e.at("file") == file) return e.at("max_screen_pixels").get<double>();
-  if (manifest.contains("point_impostor") && manifest["point_impostor"].at("file") == file) {
-    // D H / (2 tan(fov / 2) d) is symmetric in pixels and distance: the pixels at a distance.
-    const nlohmann::json& p = manifest["point_impostor"];
-    return distance_for_pixels(diagonal, p.at("switch_distance").get<double>(), p.at("switch_screen_height").get<double>(),
-                               p.at("switch_fov_degrees").get<double>());
-  }
-  return 0;
+          {"iou_drop", canonical_double(static_cast<float>(bar.iou_drop))}};
 }
 
 void measure_outputs(AssetBake& a, const AssetOptions& o, const std::string& path) {
@@ -423,9 +450,9 @@ void measure_outputs(AssetBake& a, const AssetOptions& o, const std::string& pat
     m = o.measure(path, measured_candidates(a, o.chain));
   } catch (const UsageError& e) {
     // No GL driver: the levels are still good files with their geometric sizes (as the sampler
-    // falls back to the CPU); only an asked-for chain cannot do without the drawing.
-    if (o.chain) throw;
-    a.result.warnings.push_back(std::string("the outputs were not measured, so the levels keep their geometric max_screen_pixels: ") + e.what());
+    // falls back to the CPU), without a chain.
+    a.result.warnings.push_back(std::string("the outputs were not measured, so the levels keep their geometric max_screen_pixels and there is no "
+                                            "recommended chain: ") + e.what());
     return;
   }
   apply_screen_sizes(a, m, o.hold);
@@ -462,13 +489,26 @@ AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::
   }
   // 2-4. The outputs: mesh LODs, impostor levels, the point impostor.
   const auto lods_start = std::chrono::steady_clock::now();
-  nlohmann::json mesh_lods = is_mesh ? mesh_lod_outputs(mesh, o, stem, a.files, !gltf) : nlohmann::json(nullptr);
+  progress::step(is_mesh ? "mesh LODs" : "mesh LODs of the reconstructed surface");
+  std::vector<std::string> lod_warnings;
+  nlohmann::json mesh_lods = is_mesh ? mesh_lod_outputs(mesh, o, stem, a.files, !gltf)
+                                     : reconstructed_lod_outputs(points, o, stem, a.files, lod_warnings);
   const double lods_seconds = seconds_since(lods_start);
   BakeOptions bake_options = o.bake;
   use_surface_edges(bake_options, is_mesh);
   a.result = bake(points, bake_options, path, is_mesh ? &surface : nullptr);
+  if (!is_mesh && !o.mesh_only_given.empty()) {
+    std::string names;
+    for (const std::string& n : o.mesh_only_given) names += (names.empty() ? "" : ", ") + n;
+    a.result.warnings.push_back(names + (o.mesh_only_given.size() > 1 ? " apply" : " applies") +
+                                " to mesh inputs only; this input is a point set: ignored");
+  }
   a.manifest = impostor_outputs(a.result, stem, input_name, a.files);
-  if (is_mesh && o.point_impostor) a.manifest["point_impostor"] = point_impostor_output(points, o, a.sampled.pixel, stem, a.files);
+  if (is_mesh && o.point_impostor) {
+    progress::step("point impostor");
+    a.manifest["point_impostor"] = point_impostor_output(points, o, a.sampled.pixel, stem, a.files);
+  }
+  a.result.warnings.insert(a.result.warnings.end(), lod_warnings.begin(), lod_warnings.end());
   if (!mesh_lods.is_null()) {
     if (mesh_lods.contains("stopped")) a.result.warnings.push_back("mesh LODs: " + mesh_lods["stopped"].get<std::string>());
     a.manifest["mesh_lods"] = std::move(mesh_lods);
@@ -483,11 +523,20 @@ AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::
   // 6. All of them in one file.
   if (o.lod_file) {
     const auto lod_start = std::chrono::steady_clock::now();
+    progress::step("the LOD file");
     lod_file_output(a, o, stem);
     a.result.times.push_back({"lod file", seconds_since(lod_start), 0, 0});
   }
-  // 7. The report.
+  // 7. The report, then the page, which shows it (its time is in the report's stages, as the
+  // page's own: "report page").
   a.report = asset_report(a, o, input_name, a.manifest["levels"]);
+  if (o.report_page) {
+    const auto page_start = std::chrono::steady_clock::now();
+    progress::step("report page");
+    a.page = o.report_page(a, path);
+    a.result.times.push_back({"report page", seconds_since(page_start), 0, 0});
+    a.report["stages"].push_back(stage_entry(a.result.times.back()));
+  }
   return a;
 }
 
@@ -530,7 +579,7 @@ bool listed_files_present(const std::string& folder, const nlohmann::json& manif
 }
 
 void write_asset(const std::string& outdir, const std::vector<OutputFile>& files, nlohmann::json manifest,
-                 const nlohmann::json& report, const std::string& tag) {
+                 const nlohmann::json& report, const std::string& tag, const std::string& page) {
   const std::vector<std::string> before = listed_files(read_asset_manifest(outdir));
   nlohmann::json listed = nlohmann::json::array();
   for (const OutputFile& f : files) listed.push_back({{"name", f.name}, {"bytes", f.bytes.size()}});
@@ -544,6 +593,10 @@ void write_asset(const std::string& outdir, const std::vector<OutputFile>& files
       write_file_atomically(staging + "/report.json", [&](std::ostream& out) { out << report.dump(2) << "\n"; });
       names.push_back("report.json");
     }
+    if (!page.empty()) {
+      write_file_atomically(staging + "/report.html", [&](std::ostream& out) { out << page; });
+      names.push_back("report.html");
+    }
     write_file_atomically(staging + "/manifest.json", [&](std::ostream& out) { out << manifest.dump(2) << "\n"; });
     names.push_back("manifest.json");
   });
@@ -555,6 +608,9 @@ void write_asset(const std::string& outdir, const std::vector<OutputFile>& files
     if (!kept && old.find('/') == std::string::npos && old != "manifest.json" && old != "report.json")
       std::filesystem::remove(outdir + "/" + old, ec);
   }
+  // A bake without a page leaves none of an earlier bake's (it would show other files).
+  std::error_code ec;
+  if (!report.is_null() && page.empty()) std::filesystem::remove(outdir + "/report.html", ec);
 }
 
 }  // namespace qf

@@ -30,6 +30,12 @@ struct OutputFile {
   std::vector<std::uint8_t> bytes;
 };
 
+struct AssetBake;
+// Writes the bake's page for people (report.html) from its files, manifest and warnings, drawing
+// them (tools/report_html.h; qf-bake hands it over, as it does the measuring). Throws the loaders'
+// InputErrors.
+using ReportPage = std::function<std::string(const AssetBake& bake, const std::string& input_path)>;
+
 struct AssetOptions {
   BakeOptions bake;
   ReadOptions read;
@@ -53,15 +59,21 @@ struct AssetOptions {
   MeasureFiles measure;
   HoldBar hold;
   // With `measure`, also the recommended chain (manifest recommended_chain, pipeline/chain.h):
-  // the mesh LODs and the point impostor are measured too.
-  bool chain = false;
+  // the mesh LODs and the point impostor are measured too, each where it may be chosen.
+  bool chain = true;
   ChainRule chain_rule;
+  // The page (report.html) of the bake; empty: none.
+  ReportPage report_page;
+  // The options given that only a mesh input uses ("--ldi", ...): a point-set input warns that
+  // they were ignored, rather than ignoring them without a word.
+  std::vector<std::string> mesh_only_given;
 };
 
 struct AssetBake {
   std::vector<OutputFile> files;  // every output but report.json and manifest.json, in write order
   nlohmann::json manifest;        // what runtimes read; identical for identical input and settings
   nlohmann::json report;          // settings, counts, stage times and memory, warnings
+  std::string page;               // report.html (AssetOptions::report_page); empty when not asked for
   BakeResult result;              // the bake's figures (level .glb bytes moved into `files`)
   SampleStats sampled;            // backend empty for point-set inputs
   ReadReport read;
@@ -98,10 +110,15 @@ nlohmann::json simplify_level_files(const TriangleMesh& mesh, const std::vector<
                                     std::vector<OutputFile>& files, bool smooth = true,
                                     SimplifyMethod method = SimplifyMethod::kCollapse);
 
+// The cluster LODs' switching rule (seed 002): a level serves while its cell is at most this many
+// pixels wide on screen, so an object of diagonal D gets max_screen_pixels = kClusterCellPixels x
+// D / cell_width.
+constexpr double kClusterCellPixels = 5;
+
 // Cluster levels as files STEM_C<i>.glb (and STEM_C<i>.draco.glb with `draco`), appended to
-// `files`; returns their manifest entries.
+// `files`; returns their manifest entries (with max_screen_pixels for an object of `diagonal`).
 nlohmann::json cluster_level_files(const std::vector<LodMesh>& lods, const std::string& stem, bool draco,
-                                   std::vector<OutputFile>& files);
+                                   std::vector<OutputFile>& files, double diagonal);
 
 // The manifest.json in `folder` (null when there is none or it does not parse), and the files it
 // lists under "files" (see write_asset); `present` says whether all of them are in the folder with
@@ -110,12 +127,13 @@ nlohmann::json read_asset_manifest(const std::string& folder);
 std::vector<std::string> listed_files(const nlohmann::json& manifest);
 bool listed_files_present(const std::string& folder, const nlohmann::json& manifest);
 
-// Writes `files`, then `report` (when not null) and `manifest` into `outdir` so that none is ever
-// seen half-written (core/file_io write_folder_atomically; manifest.json last). The manifest gets a
-// "files" list (name and size of every file above); files that the folder's previous manifest
-// listed and the new one does not are removed afterwards, so a rebake with other levels leaves no
-// stale level behind.
+// Writes `files`, then `report` (when not null), `page` (report.html, when not empty) and `manifest`
+// into `outdir` so that none is ever seen half-written (core/file_io write_folder_atomically;
+// manifest.json last). The manifest gets a "files" list (name and size of every file above but the
+// reports); files that the folder's previous manifest listed and the new one does not are removed
+// afterwards, so a rebake with other levels leaves no stale level behind, and so is a previous
+// report.html when a bake writes none.
 void write_asset(const std::string& outdir, const std::vector<OutputFile>& files, nlohmann::json manifest,
-                 const nlohmann::json& report, const std::string& tag = "qf-bake");
+                 const nlohmann::json& report, const std::string& tag = "qf-bake", const std::string& page = "");
 
 }  // namespace qf

@@ -1,6 +1,8 @@
 // The bake recipe.
 #include "pipeline/bake.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <chrono>
 #include <stdexcept>
@@ -9,6 +11,7 @@
 #include "analysis/neighborhoods.h"
 #include "core/error.h"
 #include "core/memory.h"
+#include "core/progress.h"
 
 namespace qf {
 namespace {
@@ -71,6 +74,7 @@ std::vector<Texture> level_textures(const PointSet& points, const std::vector<Ve
   for (std::ptrdiff_t q = 0; q < static_cast<std::ptrdiff_t>(by_size.size()); ++q) {
     const std::size_t k = by_size[static_cast<std::size_t>(q)];
     textures[k] = resample_texture(points.positions, points.colors, normals, points.radii, alpha, d, rects[k], texture, surface);
+    progress::advance();
   }
   return textures;
 }
@@ -194,6 +198,7 @@ BakedLevel bake_level(std::size_t level, const SparseMatrix& psi, std::vector<st
                       const PointSet& points, const std::vector<Vec3f>& normals, const BakeOptions& o, double diagonal,
                       const MeshSurface* surface, Stopwatch& watch) {
   const std::string name = "level " + std::to_string(level);
+  progress::step(name + ": domains and rectangles");
   Domains d = make_domains(psi, o.domains);
   // Merged faces trimmed at their crease no longer overlap but stay neighbours there.
   if (o.merge) d.edges = std::move(merged_edges);
@@ -209,6 +214,7 @@ BakedLevel bake_level(std::size_t level, const SparseMatrix& psi, std::vector<st
   out.max_screen_pixels = out.error > 0 ? std::min(0.5 * diagonal / out.error, 1e9) : 1e9;
   const TextureOptions texture = level_texture_options(o, diagonal, out.max_screen_pixels);
   out.texel = texture.min_texel;
+  progress::step(name + ": textures of " + std::to_string(rects.size()) + " quads", rects.size());
   std::vector<Texture> textures = level_textures(points, normals, alpha, d, rects, texture, surface);
   watch.lap(name + " textures");
   for (const Texture& t : textures) out.texels += static_cast<std::size_t>(t.width) * static_cast<std::size_t>(t.height);
@@ -220,7 +226,10 @@ BakedLevel bake_level(std::size_t level, const SparseMatrix& psi, std::vector<st
   std::vector<Texture>().swap(textures);
   out.atlas_images = static_cast<int>(il.atlas.images.size());
   out.atlas_widths = il.atlas.widths, out.atlas_heights = il.atlas.heights;
-  out.glb = encode_glb(il, o.gltf);
+  progress::step(name + ": atlas and .glb");
+  GltfOptions gltf = o.gltf;
+  gltf.threads = omp_get_max_threads();  // the KTX2 encoder's job pool: levels are encoded one at a time
+  out.glb = encode_glb(il, gltf, &out.textures);
   watch.lap(name + " atlas+glb");
   return out;
 }
@@ -233,6 +242,7 @@ std::vector<BakedLevel> baked_levels(const AmgHierarchy& h, const BakeOptions& o
                                      const std::vector<Vec3f>& normals, double diagonal, const MeshSurface* surface,
                                      Stopwatch& watch) {
   std::vector<BakedLevel> out;
+  progress::step("basis functions");
   if (o.merge && o.levels.empty()) {
     std::vector<MergedLevel> bases = choose_merged_levels(h, o, points.positions, normals);
     watch.lap("basis");
@@ -249,12 +259,14 @@ std::vector<BakedLevel> baked_levels(const AmgHierarchy& h, const BakeOptions& o
     if (!o.merge) {
       watch.lap("level " + std::to_string(l) + " basis");
       out.push_back(bake_level(l, psi, {}, points, normals, o, diagonal, surface, watch));
+      progress::step("basis functions");
       return;
     }
     MergeReport report;
     const SparseMatrix merged = merge_domains(psi, points.positions, normals, o.merge_options, &report);
     watch.lap("level " + std::to_string(l) + " basis");
     out.push_back(bake_level(l, merged, std::move(report.edges), points, normals, o, diagonal, surface, watch));
+    progress::step("basis functions");
   };
   if (wanted(0)) visit(0, basis_at_level(h, 0));
   for_each_basis(h, *std::max_element(levels.begin(), levels.end()), o.basis, visit);
@@ -283,6 +295,7 @@ BakeResult bake(const PointSet& input, const BakeOptions& o, const std::string& 
   // 1. Fail early, with the figures, where the bake would not fit in memory (not an OOM kill).
   check_bake_memory(input.size(), o.analysis, source_name);
   // 2. Complete the point set; a mesh surface's triangles follow its points into Morton order.
+  progress::step("ordering " + std::to_string(input.size()) + " points");
   std::vector<std::uint32_t> order = morton_order(input.positions);
   const PointSet points = completed_points(input, order, r);
   MeshSurface ordered_surface;
@@ -299,8 +312,11 @@ BakeResult bake(const PointSet& input, const BakeOptions& o, const std::string& 
   watch.lap("prepare");
   // 3. Hierarchy (analysis + AMG), cached.
   std::vector<Vec3f> estimated;
-  const AmgHierarchy h = cached_hierarchy(points, o.analysis, o.amg, o.cache_dir, r.cache, &estimated,
-                                          [&](const char* stage) { watch.lap(stage); });
+  progress::step("analysis (neighbourhoods, classifier, stiffness)");
+  const AmgHierarchy h = cached_hierarchy(points, o.analysis, o.amg, o.cache_dir, r.cache, &estimated, [&](const char* stage) {
+    watch.lap(stage);
+    progress::step("AMG coarsening");
+  });
   r.hierarchy_levels = h.level_count();
   r.components = h.components;
   if (h.level_count() < 2)

@@ -138,6 +138,7 @@ struct BakedLevel {
   double texel = 0;  // the smallest texel allowed by the screen size (model units; 0 = no limit)
   std::vector<int> atlas_widths, atlas_heights;  // each atlas image's sides
   std::vector<std::uint8_t> glb;
+  TextureCost textures;  // what its textures cost: bytes in the .glb, GPU memory once loaded
 };
 
 struct StageTime {

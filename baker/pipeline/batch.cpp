@@ -151,7 +151,7 @@ int bake_in_child(const BatchAsset& a, const std::string& key, const BatchOption
     const std::string folder = o.output + "/" + a.name;
     AssetBake b = bake_asset(a.path, a.options, a.input);
     b.manifest["batch_key"] = key;
-    write_asset(folder, b.files, b.manifest, b.report);
+    write_asset(folder, b.files, b.manifest, b.report, "qf-bake", b.page);
     result = {{"points", b.result.points},
               {"cache", b.result.cache},
               {"levels", b.manifest["levels"]},

@@ -39,18 +39,20 @@ std::size_t choose_among(const std::vector<FileScores>& files, std::size_t band,
 }
 
 // The files valid at the band's size and within the byte cap; without one, the valid ones; without
-// those (a band above every file's size), the files made for the largest sizes.
+// those (a band above every file's size), the files made for the largest sizes. Only files drawn
+// at the band's size (Scores::measured) take part.
 std::size_t choose(const Measurements& m, std::size_t band, std::size_t cap, const std::vector<double>& max_pixels, const ChainRule& o) {
   const std::size_t n = m.files.size();
   const auto limit = [&](std::size_t i) { return i < max_pixels.size() && max_pixels[i] > 0 ? kShownAbove * max_pixels[i] : 0.0; };
+  const auto drawn = [&](std::size_t i) { return m.files[i].at_size[band].measured; };
   double largest = 0;
   std::vector<bool> valid(n), capped(n), largest_made(n);
   for (std::size_t i = 0; i < n; ++i) {
-    valid[i] = limit(i) == 0 || m.sizes[band] <= limit(i);
+    valid[i] = drawn(i) && (limit(i) == 0 || m.sizes[band] <= limit(i));
     capped[i] = valid[i] && m.files[i].bytes <= cap;
-    largest = std::max(largest, limit(i));
+    if (drawn(i)) largest = std::max(largest, limit(i));
   }
-  for (std::size_t i = 0; i < n; ++i) largest_made[i] = limit(i) == largest;
+  for (std::size_t i = 0; i < n; ++i) largest_made[i] = drawn(i) && limit(i) == largest;
   for (const std::vector<bool>* allowed : {&capped, &valid, &largest_made}) {
     const std::size_t pick = choose_among(m.files, band, *allowed, o);
     if (pick < n) return pick;
@@ -102,7 +104,7 @@ nlohmann::json recommend_chain(const Measurements& m, double diagonal, const Cha
   nlohmann::json measured = nlohmann::json::array();
   for (const FileScores& c : m.files) {
     nlohmann::json at = nlohmann::json::array();
-    for (const Scores& s : c.at_size) at.push_back(scores_entry(s));
+    for (const Scores& s : c.at_size) at.push_back(s.measured ? scores_entry(s) : nlohmann::json(nullptr));
     nlohmann::json e{{"file", c.file}, {"kind", c.kind}, {"bytes", c.bytes}, {"at_pixels", at}};
     const std::size_t i = measured.size();
     e["max_screen_pixels"] = i < max_pixels.size() && max_pixels[i] > 0 ? nlohmann::json(max_pixels[i]) : nlohmann::json(nullptr);
@@ -110,8 +112,8 @@ nlohmann::json recommend_chain(const Measurements& m, double diagonal, const Cha
   }
   return {{"rule", "per band, nearest first, among files valid at the band's size (at most shown_above x their max_screen_pixels) and "
                    "no larger than the nearer band's: the smallest with PSNR >= min_psnr and IoU >= min_iou (else the highest PSNR - "
-                   "log2(bytes); bar_met false), drawn by the engine method at the band's largest size from `views` directions against "
-                   "the truth (the input drawn once per view at `truth` x the largest size, box-filtered down)"},
+                   "log2(bytes); bar_met false), drawn by the engine method at the band's largest size from `views` directions (a file "
+                   "only at sizes where it is valid, null elsewhere; impostor levels at every size) against the truth (the input drawn once per view at `truth` x the largest size, box-filtered down)"},
           {"sizes", m.sizes},
           {"views", m.views},
           {"truth", m.truth},

@@ -16,6 +16,7 @@ struct Scores {
   double psnr = 0;      // dB over the pixels either image covers (99 when identical)
   double iou = 0;       // silhouette intersection over union (coverage >= 0.5)
   double soft_iou = 0;  // sum min / sum max of fractional coverage
+  bool measured = true; // false: not drawn at this size (it cannot be chosen there; Candidate::max_pixels)
 };
 
 struct FileScores {
@@ -31,14 +32,16 @@ struct Measurements {
   std::vector<int> sizes;
   int views = 0;                 // directions spread over the bounding sphere
   int truth = 0;                 // the truth: the input drawn at truth x the size, box-filtered
-  std::vector<Scores> as_drawn;  // the input itself drawn at each size (what an engine shows of it); may be empty
   std::vector<FileScores> files; // in the order asked for
 };
 
-// A file to measure: its name, kind and bytes (which outlive the call).
+// A file to measure: its name, kind and bytes (which outlive the call), and the largest size it
+// is drawn at: kShownAbove (pipeline/chain.h) x `max_pixels`, the size it is made for, beyond which
+// the chain never shows it (0: every size; an impostor level, whose size these figures decide).
 struct Candidate {
   std::string file, kind;
   const std::vector<std::uint8_t>* bytes = nullptr;
+  double max_pixels = 0;
 };
 
 // Draws `candidates` and the input at `input_path` and scores them; throws UsageError when no GL

@@ -99,7 +99,7 @@ SurfaceColor surface_color(const TriangleMesh& mesh, std::size_t t, const double
       const std::array<Vec2f, 3>& uv = mesh.corner_uvs[t];
       const Vec2f at{static_cast<float>(w[0] * uv[0].x + w[1] * uv[1].x + w[2] * uv[2].x),
                      static_cast<float>(w[0] * uv[0].y + w[1] * uv[1].y + w[2] * uv[2].y)};
-      // Alpha decides nothing but MASK cut-outs (BLEND is kept as opaque surface, README).
+      // Alpha decides nothing but MASK cut-outs (BLEND is kept as opaque surface, docs/formats.md).
       const TextureImage& image = mesh.textures[static_cast<std::size_t>(m->texture)];
       const bool mask = m->alpha_mode == AlphaMode::kMask;
       const std::array<float, 4> texel =

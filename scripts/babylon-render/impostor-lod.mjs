@@ -1,5 +1,5 @@
 // Switching a bake's per-level files with Babylon.js's Mesh.addLODLevel at the manifest's distances
-// (the README shows this file; tests/render/lod_test.sh runs it in headless Chromium).
+// (docs/engines.md shows this file; tests/render/lod_test.sh runs it in headless Chromium).
 import { LoadAssetContainerAsync } from '@babylonjs/core/Loading/sceneLoader.js';
 import '@babylonjs/loaders/glTF';
 
@@ -10,7 +10,7 @@ export async function loadImpostorLOD(baseUrl, scene, camera, screenHeight) {
   const manifest = await (await fetch(baseUrl + 'manifest.json')).json();
   // Pixels per world unit at distance 1: an object of diagonal D at distance d spans D * z0 / d px.
   const z0 = screenHeight / (2 * Math.tan(camera.fov / 2));
-  // The recommended chain when the bake measured one (qf-bake --chain: nearest first, each file
+  // The recommended chain (every bake but --no-chain or --no-measure: nearest first, each file
   // shown while the object spans at most max_pixels, null = any size); else the impostor levels,
   // finest first, each shown up to its max_screen_pixels (where its measured look holds).
   const steps = manifest.recommended_chain

@@ -1,4 +1,4 @@
-// Runs impostor-lod.mjs (the README's Babylon.js LOD example) in headless Chromium on a bake folder
+// Runs impostor-lod.mjs (the Babylon.js LOD example of docs/engines.md) in headless Chromium on a bake folder
 // and prints, as JSON, the level Babylon draws (0 = finest) with the camera at each distance from
 // the object's centre (fov 60, a 512 x 512 viewport): the mesh its LOD selection picked while
 // rendering a frame there (onLODLevelSelection).

@@ -1,4 +1,4 @@
-// Runs impostor-lod.mjs (the README's THREE.LOD example) in headless Chromium on a bake folder and
+// Runs impostor-lod.mjs (the THREE.LOD example of docs/engines.md) in headless Chromium on a bake folder and
 // prints, as JSON, the level THREE.LOD shows (0 = finest) with the camera at each distance from the
 // object's centre (fov 60, a 512 x 512 viewport), after drawing a frame there.
 // usage: node lod-check.mjs BAKE_DIR DISTANCE,DISTANCE... [BAKE_DIR DISTANCE,...]... (one line of JSON each)

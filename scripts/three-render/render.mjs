@@ -12,9 +12,14 @@ const pageScript = `
 import * as THREE from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 import { DRACOLoader } from 'three/addons/loaders/DRACOLoader.js';
+import { KTX2Loader } from 'three/addons/loaders/KTX2Loader.js';
 import { captureViews, collectWarnings } from 'web/capture.mjs';
 // Draco-compressed files (cluster --draco): the decoder three.js ships, fetched from /three/.
 const draco = new DRACOLoader().setDecoderPath('/three/examples/jsm/libs/draco/gltf/');
+// KTX2 textures (bake --textures ktx2, KHR_texture_basisu): three.js's Basis transcoder, from /three/,
+// transcoding to what the GPU supports (detectSupport: SwiftShader's formats here); the files' own
+// mip levels are used as they are.
+const ktx2 = new KTX2Loader().setTranscoderPath('/three/examples/jsm/libs/basis/');
 window.qfRender = async (url, cams) => {
   const first = cams.views[0];
   const canvas = document.createElement('canvas');
@@ -22,7 +27,8 @@ window.qfRender = async (url, cams) => {
   const renderer = new THREE.WebGLRenderer({ canvas, antialias: false, alpha: false, preserveDrawingBuffer: true });
   renderer.setPixelRatio(1);
   renderer.setSize(first.width, first.height, false);
-  const { result: gltf, warnings } = await collectWarnings(() => new GLTFLoader().setDRACOLoader(draco).loadAsync(url));
+  ktx2.detectSupport(renderer);
+  const { result: gltf, warnings } = await collectWarnings(() => new GLTFLoader().setDRACOLoader(draco).setKTX2Loader(ktx2).loadAsync(url));
   const scene = new THREE.Scene();
   scene.add(gltf.scene);
   const sun = new THREE.DirectionalLight(0xffffff, cams.lights.directional);

@@ -81,7 +81,7 @@ export async function renderMain(label, chromium, page) {
   process.exit(failed ? 1 : 0);
 }
 
-// The command line both engines' lod-check.mjs share: run the engine's README LOD example on bake
+// The command line both engines' lod-check.mjs share: run the engine's LOD example (docs/engines.md) on bake
 // folders (one browser for all) and print, per folder, a line of JSON: the level it shows (0 =
 // finest) with the camera at each distance from the object's centre. The page must define
 // window.qfLevels(baseUrl, distances) -> [level, ...]; folder i is served at /files/i/.

@@ -86,6 +86,10 @@ listing "$work/sharded" | cmp -s - "$work/full.sums" && ok || bad "shards 1..3/3
 [[ $rc -eq 0 && $(field "$work/merged.json" '(r["totals"]["baked"], [a["index"] for a in r["assets"]], r["missing_shards"])') == "(6, [0, 1, 2, 3, 4, 5], [])" ]] && ok ||
   bad "merge-reports joins the shards (exit $rc)"
 validate "$work/merged.json" "$schemas/batch-report.schema.json"
+# the joined report's page beside it: a row per asset, each linking its page (docs/reports.md)
+[[ $(grep -c '<tr data-name=' "$work/merged.html") -eq $(field "$work/merged.json" 'len(r["assets"])') &&
+   $(grep -c 'report.html">' "$work/merged.html") -eq $(field "$work/merged.json" 'len(r["assets"])') ]] && ok ||
+  bad "merge-reports' page: a linked row per asset"
 "$bake" merge-reports "$work"/sharded/batch-report-{1,3}-of-3.json -o "$work/merged2.json" 2>"$work/err5"; rc=$?
 [[ $rc -eq 1 ]] && grep -q "missing shards: \[2\]" "$work/err5" && ok || bad "merge-reports names a missing shard (exit $rc)"
 "$bake" merge-reports "$work"/sharded/batch-report-1-of-3.json "$work"/sharded/batch-report-1-of-3.json -o "$work/m3.json" 2>"$work/err6"; rc=$?

@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
-# The recommended chain (qf-bake bake --chain, pipeline/chain.h): every candidate of a bake measured
-# against the input, per band the smallest file valid there (at most 2 x its max_screen_pixels)
+# The recommended chain (made by every bake unless --no-chain, pipeline/chain.h): every candidate of
+# a bake measured against the input where it is valid (impostor levels at every size), per band the
+# smallest file valid there (at most 2 x its max_screen_pixels)
 # that reaches the quality bar (else the best trade of PSNR against bytes),
-# switch distances for a 1080-px screen at 60 degrees, the same bytes on a rebake; a batch asset's
-# "chain" setting means the same; with --lod-file the combined file holds the chain's files.
+# switch distances for a 1080-px screen at 60 degrees, the same bytes on a rebake; a batch asset
+# gets the same chain, and none with the setting "no-chain"; with --lod-file the combined file
+# holds the chain's files.
 # usage: chain_test.sh QF_BAKE QF_RENDER
 set -u
 bake=$1 render=$2
@@ -26,16 +28,21 @@ if "point_impostor" in m: want.append(m["point_impostor"]["file"])
 measured = {e["file"]: e for e in c["measured"]}
 if sorted(measured) != sorted(want): sys.exit(f"measured {sorted(measured)}, the bake made {sorted(want)}")
 sizes = c["sizes"]
+def within_limit(e, k):  # at most shown_above x its own max_screen_pixels
+    return e["max_screen_pixels"] is None or sizes[k] <= c["shown_above"] * e["max_screen_pixels"]
 for e in measured.values():
     if e["bytes"] != files[e["file"]] or len(e["at_pixels"]) != len(sizes): sys.exit(f"bad measurement {e}")
-def valid(e, k):  # shown at most shown_above x its own max_screen_pixels
-    return e["max_screen_pixels"] is None or sizes[k] <= c["shown_above"] * e["max_screen_pixels"]
+    # Drawn exactly where it may be chosen: impostor levels everywhere, the others up to their limit.
+    drawn = [x is not None for x in e["at_pixels"]]
+    if drawn != [e["kind"] == "impostor_level" or within_limit(e, k) for k in range(len(sizes))]: sys.exit(f"drawn at the wrong sizes: {e}")
+def valid(e, k): return e["at_pixels"][k] is not None and within_limit(e, k)
 def ok(e, k): return e["at_pixels"][k]["psnr"] >= c["min_psnr"] and e["at_pixels"][k]["iou"] >= c["min_iou"]
 def limit(e): return 0 if e["max_screen_pixels"] is None else c["shown_above"] * e["max_screen_pixels"]
-largest = max(limit(e) for e in c["measured"])
 def pick(k, cap):  # among valid files of at most cap bytes (the nearer band's choice), else valid ones, else the files made for the largest sizes
-    for within in ([e for e in c["measured"] if valid(e, k) and e["bytes"] <= cap], [e for e in c["measured"] if valid(e, k)],
-                   [e for e in c["measured"] if limit(e) == largest]):
+    drawn = [e for e in c["measured"] if e["at_pixels"][k] is not None]
+    largest = max(limit(e) for e in drawn)
+    for within in ([e for e in drawn if valid(e, k) and e["bytes"] <= cap], [e for e in drawn if valid(e, k)],
+                   [e for e in drawn if limit(e) == largest]):
         if not within: continue
         good = [e for e in within if ok(e, k)]
         if good: return min(good, key=lambda e: e["bytes"])
@@ -66,7 +73,7 @@ PY
 }
 
 # 1. A mesh: mesh LODs, impostor levels and the point impostor are all candidates.
-"$bake" "$work/sphere.ply" -o "$work/mesh" --ldi 256 --chain --measure-views 3 -q || fail "mesh bake with --chain"
+"$bake" "$work/sphere.ply" -o "$work/mesh" --ldi 256 --measure-views 3 -q || fail "mesh bake"
 kinds=$(python3 -c "import json,sys; print(sorted({e['kind'] for e in json.load(open(sys.argv[1]))['recommended_chain']['measured']}))" "$work/mesh/manifest.json")
 [[ "$kinds" == "['impostor_level', 'mesh_lod', 'point_impostor']" ]] || fail "mesh candidates: $kinds"
 out=$(check "$work/mesh/manifest.json") || fail "mesh chain: $out"
@@ -75,7 +82,7 @@ echo "mesh chain: $out"
 # With --lod-file, STEM_lods.glb holds the chain's files as its LODs: each drawn alone (--lod i)
 # gives the same picture as the file itself.
 # (The sphere's chain is an impostor level near, then its finest mesh LOD.)
-"$bake" "$work/sphere.ply" -o "$work/lod" --ldi 256 --chain --measure-views 3 --lod-file -q || fail "--chain --lod-file"
+"$bake" "$work/sphere.ply" -o "$work/lod" --ldi 256 --measure-views 3 --lod-file -q || fail "--lod-file"
 mapfile -t parts < <(python3 -c "import json,sys; [print(p) for p in json.load(open(sys.argv[1]))['lod_file']['parts']]" "$work/lod/manifest.json")
 chain=$(python3 -c "import json,sys; print(' '.join(e['file'] for e in json.load(open(sys.argv[1]))['recommended_chain']['chain']))" "$work/lod/manifest.json")
 [[ "${parts[*]}" == "$chain" ]] || fail "lod_file parts ${parts[*]}, the chain is $chain"
@@ -101,29 +108,34 @@ echo "lod file: ${parts[*]}"
 # 2. A point set: the impostor levels alone. The bar decides: at 99 dB (an identical picture) nothing
 # reaches it and each band takes its best trade; at 15 dB the smallest level that reaches it (and
 # IoU 0.9) serves the far bands.
-"$bake" "$work/torus.ply" -o "$work/points" --chain --measure-views 3 -q || fail "point-set bake with --chain"
+"$bake" "$work/torus.ply" -o "$work/points" --measure-views 3 -q || fail "point-set bake"
 out=$(check "$work/points/manifest.json") || fail "point-set chain: $out"
 echo "point-set chain: $out"
-"$bake" "$work/torus.ply" -o "$work/strict" --chain --measure-views 3 --chain-psnr 99 -q || fail "--chain-psnr 99"
+"$bake" "$work/torus.ply" -o "$work/strict" --measure-views 3 --chain-psnr 99 -q || fail "--chain-psnr 99"
 out=$(check "$work/strict/manifest.json") || fail "strict chain: $out"
 echo "at 99 dB: $out"
-"$bake" "$work/torus.ply" -o "$work/lax" --chain --measure-views 3 --chain-psnr 15 -q || fail "--chain-psnr 15"
+"$bake" "$work/torus.ply" -o "$work/lax" --measure-views 3 --chain-psnr 15 -q || fail "--chain-psnr 15"
 out=$(check "$work/lax/manifest.json") || fail "lax chain: $out"
 echo "at 15 dB: $out"
 python3 -c "import json,sys; a, b = (json.load(open(f))['recommended_chain']['chain'] for f in sys.argv[1:]); sys.exit(a == b)" \
   "$work/strict/manifest.json" "$work/lax/manifest.json" || fail "the quality bar changed nothing"
 
-# 3. Same input and settings, same bytes; without --chain no chain.
-"$bake" "$work/torus.ply" -o "$work/points2" --chain --measure-views 3 -q || fail "rebake"
+# 3. Same input and settings, same bytes (at 1 and 2 threads); --no-chain: no chain, the same
+# levels and sizes.
+"$bake" "$work/torus.ply" -o "$work/points2" --measure-views 3 -j 1 -q || fail "rebake"
 cmp "$work/points/manifest.json" "$work/points2/manifest.json" || fail "a rebake's chain differs"
-"$bake" "$work/torus.ply" -o "$work/plain" -q || fail "bake without --chain"
-grep -q recommended_chain "$work/plain/manifest.json" && fail "a chain without --chain"
+"$bake" "$work/torus.ply" -o "$work/plain" --measure-views 3 --no-chain -q || fail "bake with --no-chain"
+grep -q recommended_chain "$work/plain/manifest.json" && fail "a chain with --no-chain"
+python3 -c "import json,sys; a, b = (json.load(open(f))['levels'] for f in sys.argv[1:]); sys.exit(a != b)" \
+  "$work/points/manifest.json" "$work/plain/manifest.json" || fail "--no-chain changed the levels"
+"$bake" "$work/torus.ply" -o "$work/x" --no-chain --chain-psnr 20 -q 2>/dev/null; [[ $? == 2 ]] || fail "--no-chain --chain-psnr not refused"
 
-# 4. In a batch, the setting "chain" measures it too, with the same result.
+# 4. A batch asset gets the same chain; the setting "no-chain" leaves it out.
 cat > "$work/batch.json" <<JSON
-{"defaults": {"chain": true, "measure-views": 3}, "assets": ["$work/torus.ply"]}
+{"defaults": {"measure-views": 3}, "assets": ["$work/torus.ply", {"input": "$work/torus.ply", "name": "plain", "settings": {"no-chain": true}}]}
 JSON
-"$bake" batch "$work/batch.json" -o "$work/batch" -q || fail "batch with chain"
+"$bake" batch "$work/batch.json" -o "$work/batch" -q || fail "batch"
 python3 -c "import json,sys; a, b = (json.load(open(f))['recommended_chain'] for f in sys.argv[1:]); sys.exit(a != b)" \
   "$work/points/manifest.json" "$work/batch/torus/manifest.json" || fail "the batch's chain differs from the bake's"
+grep -q recommended_chain "$work/batch/plain/manifest.json" && fail "a batch asset with no-chain has a chain"
 echo "chain: all checks passed"

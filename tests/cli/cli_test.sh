@@ -23,7 +23,7 @@ expect 0 "--version" -- "$bake" --version
 grep -q '^qf-bake [0-9]' "$work/out" && ok || bad "--version prints 'qf-bake X.Y.Z'"
 expect 0 "--help" -- "$bake" --help
 cp "$work/out" "$work/overview"
-for cmd in info convert generate billboard analyze decompose bake cluster simplify batch merge-reports; do
+for cmd in info convert generate billboard analyze decompose bake cluster simplify batch merge-reports tile join; do
   grep -q "^  $cmd " "$work/overview" && ok || bad "--help lists $cmd"
   expect 0 "$cmd --help" -- "$bake" "$cmd" --help
   grep -q "usage: qf-bake $cmd" "$work/out" && ok || bad "$cmd --help shows usage"
@@ -187,7 +187,9 @@ expect 2 "decompose level and primitives" -- "$bake" decompose "$work/oct.ply" -
 # --- bake (the main job): .glb per level, manifest, report; deterministic; nothing half-written ---
 expect 0 "bake" -- "$bake" "$work/oct.ply" -o "$work/out1" --primitives 200,20
 ls "$work/out1"/oct_L*.glb >/dev/null 2>&1 && [[ -f "$work/out1/manifest.json" && -f "$work/out1/report.json" ]] && ok || bad "bake outputs: $(ls "$work/out1")"
-[[ -z "$(ls -A "$work/out1" | grep -v -E '^oct_L[0-9]+\.glb$|^manifest\.json$|^report\.json$')" ]] && ok || bad "bake left other files: $(ls -A "$work/out1")"
+[[ -z "$(ls -A "$work/out1" | grep -v -E '^oct_[LS][0-9]+\.glb$|^manifest\.json$|^report\.(json|html)$')" ]] && ok || bad "bake left other files: $(ls -A "$work/out1")"
+# a point set's mesh LODs: its surface reconstructed, then simplified; the manifest says so
+ls "$work/out1"/oct_S*.glb >/dev/null 2>&1 && grep -q '"advancing front (CGAL)"' "$work/out1/manifest.json" && ok || bad "a point set's reconstruction LODs: $(ls "$work/out1")"
 expect 0 "bake again, 1 thread" -- "$bake" bake "$work/oct.ply" -o "$work/out2" --primitives 200,20 --threads 1 -q
 for f in "$work/out1"/*.glb "$work/out1/manifest.json"; do
   cmp -s "$f" "$work/out2/$(basename "$f")" && ok || bad "bake output $(basename "$f") differs between runs"
@@ -201,6 +203,34 @@ for l in m["levels"]:
     assert l["primitives"] > 0 and l["texels"] > 0 and l["error"] > 0 and l["max_screen_pixels"] > 0
 assert m["levels"][0]["primitives"] > m["levels"][1]["primitives"]
 PY
+# KTX2 textures (issue 32): every texture a KHR_texture_basisu KTX2 image, the extension required;
+# the manifest's GPU bytes a quarter of the PNG levels' (1 byte a texel instead of 4), texture bytes
+# within the file's; the same bytes at 1 thread; its options refused without it.
+expect 0 "bake --textures ktx2" -- "$bake" "$work/oct.ply" -o "$work/ktx1" --primitives 200,20 --textures ktx2 --no-measure -q
+expect 0 "bake --textures ktx2, 1 thread" -- "$bake" "$work/oct.ply" -o "$work/ktx2" --primitives 200,20 --textures ktx2 --no-measure --threads 1 -q
+for f in "$work/ktx1"/*.glb; do
+  cmp -s "$f" "$work/ktx2/$(basename "$f")" && ok || bad "KTX2 output $(basename "$f") differs at 1 thread"
+done
+/usr/bin/python3 - "$work/out1/manifest.json" "$work/ktx1/manifest.json" "$work/ktx1/report.json" <<'PY' 2>"$work/err" && ok || bad "KTX2 bake: $(tail -2 "$work/err")"
+import json, os, struct, sys
+png, ktx = (json.load(open(f)) for f in sys.argv[1:3])
+assert json.load(open(sys.argv[3]))["settings"]["textures"] == "ktx2"
+for p, k in zip(png["levels"], ktx["levels"]):
+    # A quarter, plus the whole 4x4 blocks of the levels under 4 texels a side.
+    assert p["atlas_sides"] == k["atlas_sides"] and p["gpu_bytes"] <= 4 * k["gpu_bytes"] <= 1.001 * p["gpu_bytes"], (p, k)
+    assert 0 < k["texture_bytes"] < k["bytes"] and 0 < p["texture_bytes"] < p["bytes"]
+    data = open(os.path.join(os.path.dirname(sys.argv[2]), k["file"]), "rb").read()
+    doc = json.loads(data[20:20 + struct.unpack_from("<I", data, 12)[0]])
+    assert doc["extensionsRequired"] == ["KHR_texture_basisu"]
+    for t in doc["textures"]:
+        assert "source" not in t and doc["images"][t["extensions"]["KHR_texture_basisu"]["source"]]["mimeType"] == "image/ktx2"
+PY
+expect 2 "--ktx2-color needs --textures ktx2" -- "$bake" "$work/oct.ply" -o "$work/ktx_x" --ktx2-color uastc -q
+expect 2 "--textures takes png or ktx2" -- "$bake" "$work/oct.ply" -o "$work/ktx_x" --textures jpeg -q
+[[ ! -e "$work/ktx_x" ]] && ok || bad "a refused --textures left $work/ktx_x"
+"$bake" bake --help >"$work/out"
+grep -A2 -- "--textures png|ktx2" "$work/out" | grep -q "(default: png)" && ok || bad "bake --help gives --textures' default"
+
 # Texels sized for the screen (--texel-density, default 1): each level's texel is at least one screen
 # pixel where it is drawn largest, so it holds at most (4 x max_screen_pixels)^2 texels; the manifest
 # gives texel, atlas sides and bytes. --texel alone fixes the texel at every level instead.
@@ -242,6 +272,19 @@ PY
 # a mesh input: sampled, then baked; the report carries the sampling
 expect 0 "generate a finer mesh" -- "$bake" generate sphere --mesh --subdivisions 8 -o "$work/ball_mesh.ply" -q
 expect 0 "bake a mesh" -- "$bake" "$work/ball_mesh.ply" -o "$work/meshbake" --primitives 50 --ldi 64 -q
+[[ ! -s "$work/err" ]] && ok || bad "bake -q prints nothing: $(head -c 300 "$work/err")"
+# without -q, a log (not a terminal) gets a progress line every QF_PROGRESS_SECONDS, then the summary
+QF_PROGRESS_SECONDS=0.05 expect 0 "bake with progress" -- "$bake" "$work/ball_mesh.ply" -o "$work/meshbake_p" --primitives 50 --ldi 64 --no-chain
+grep -qE '^qf-bake bake: [0-9]+ s, (sampling|analysis|level [0-9]+: textures of [0-9]+ quads [0-9]+/[0-9]+)' "$work/err" && ok || bad "bake shows its progress: $(head -c 300 "$work/err")"
+grep -q $'\r' "$work/err" && bad "progress in a log has no carriage returns" || ok
+grep -q "^qf-bake: .* -> " "$work/err" && ok || bad "bake prints its summary after the progress"
+# mesh-only options on a point set: said, not silently ignored
+expect 0 "generate points" -- "$bake" generate octahedron --points 4000 -o "$work/octp.ply" -q
+expect 0 "bake points with mesh options" -- "$bake" "$work/octp.ply" -o "$work/octp" --ldi 64 --no-points --primitives 30 --no-measure
+grep -q "warning: --ldi, --no-points apply to mesh inputs only; this input is a point set: ignored" "$work/err" && ok || bad "mesh-only options on a point set warned: $(head -c 300 "$work/err")"
+grep -q "mesh inputs only" "$work/octp/report.json" && ok || bad "the report keeps the mesh-only options' warning"
+QF_PROGRESS_SECONDS=soon expect 2 "QF_PROGRESS_SECONDS malformed" -- "$bake" "$work/ball_mesh.ply" -o "$work/meshbake_bad" -q
+grep -q "QF_PROGRESS_SECONDS" "$work/err" && [[ ! -e "$work/meshbake_bad" ]] && ok || bad "malformed QF_PROGRESS_SECONDS named, nothing written"
 /usr/bin/python3 -c 'import json,sys; s=json.load(open(sys.argv[1]))["sampling"]; assert s["ldi_size"]==64 and s["backend"]=="cpu" and sum(s["points_per_axis"])>1000' \
   "$work/meshbake/report.json" 2>"$work/err" && ok || bad "bake report sampling: $(tail -1 "$work/err")"
 /usr/bin/python3 - "$work/meshbake" <<'PY' 2>"$work/err" && ok || bad "mesh bake outputs: $(tail -1 "$work/err")"
@@ -308,8 +351,8 @@ grep -q '"file": "oct_lods.glb"' "$work/lod1/manifest.json" && ok || bad "the ma
 expect 0 "bake without normals" -- "$bake" "$work/bare.xyz" -o "$work/nb1" --primitives 100 -q
 expect 0 "bake without normals, cached" -- "$bake" "$work/bare.xyz" -o "$work/nb2" --primitives 100
 grep -q "cache: hit" "$work/err" && ok || bad "second bake of bare.xyz hits the cache"
-cmp -s "$(ls "$work"/nb1/*.glb)" "$(ls "$work"/nb2/*.glb)" && ok || bad "cache hit and miss bake different bytes"
-grep -aq '"normalTexture"' "$(ls "$work"/nb1/*.glb)" && ok || bad "no normal map for a set without normals"
+for f in "$work"/nb1/*.glb; do cmp -s "$f" "$work/nb2/$(basename "$f")" || bad "cache hit and miss bake different bytes: $(basename "$f")"; done; ok
+grep -aq '"normalTexture"' "$(ls "$work"/nb1/*_L*.glb)" && ok || bad "no normal map for a set without normals"
 printf "0 0 0\n1 0 0\n0 1 0\n" >"$work/tiny.xyz"
 expect 1 "bake too few points" -- "$bake" "$work/tiny.xyz" -o "$work/out3"
 grep -q "bake.too_small" "$work/err" && ok || bad "tiny input names its error"

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The README's farm examples, run. Without a cluster: the README shows scripts/slurm/*.sbatch as they
+# The farm examples of docs/farm.md, run. Without a cluster: the page shows scripts/slurm/*.sbatch as they
 # are; its Kubernetes indexed Job turns JOB_COMPLETION_INDEX 0..N-1 into --shard 1/N..N/N (the YAML
 # parsed, its args expanded as the kubelet does, qf-bake's --dry-run taking each shard once). Then a
 # one-node Slurm cluster started here (munged, slurmctld, slurmd in a scratch folder; stopped on every
@@ -53,12 +53,12 @@ skip() {  # the checks so far count; skip only if they passed
   exit 77
 }
 
-# --- 1. the README shows the job scripts as they are ---
+# --- 1. docs/farm.md shows the job scripts as they are ---
 for f in bake-array.sbatch merge-reports.sbatch; do
-  /usr/bin/python3 -c 'import sys, textwrap
-readme, script = open(sys.argv[1]).read(), open(sys.argv[2]).read()
-sys.exit(0 if "```sh\n" + textwrap.indent(script, "  ") + "  ```" in readme else 1)' "$src/README.md" "$slurm_dir/$f" &&
-    ok || bad "README.md does not show scripts/slurm/$f verbatim (indented 2, in a sh block)"
+  /usr/bin/python3 -c 'import sys
+page, script = open(sys.argv[1]).read(), open(sys.argv[2]).read()
+sys.exit(0 if "```sh\n" + script + "```" in page else 1)' "$src/docs/farm.md" "$slurm_dir/$f" &&
+    ok || bad "docs/farm.md does not show scripts/slurm/$f verbatim (in a sh block)"
 done
 # a task resubmitted alone without QF_SHARDS refuses to guess N
 SLURM_ARRAY_TASK_ID=2 SLURM_ARRAY_TASK_MIN=2 SLURM_ARRAY_TASK_MAX=2 SLURM_ARRAY_TASK_COUNT=1 \
@@ -68,10 +68,10 @@ SLURM_ARRAY_TASK_ID=2 SLURM_ARRAY_TASK_MIN=2 SLURM_ARRAY_TASK_MAX=2 SLURM_ARRAY_
 # --- 2. the Kubernetes indexed Job: index 0..N-1 (0-based) -> --shard 1/N..N/N (1-based) ---
 mkdir -p "$work/stub" "$work/k8s"
 printf '#!/bin/sh\nprintf "%%s\\n" "$@" >"$QF_STUB_ARGS"\n' >"$work/stub/qf-bake"; chmod +x "$work/stub/qf-bake"
-/usr/bin/python3 - "$src/README.md" "$work/stub" "$work/k8s" >"$work/k8s/shards" 2>"$work/k8s/err" <<'PY'
+/usr/bin/python3 - "$src/docs/farm.md" "$work/stub" "$work/k8s" >"$work/k8s/shards" 2>"$work/k8s/err" <<'PY'
 import os, re, subprocess, sys, textwrap, yaml
-readme, stub, out = sys.argv[1:4]
-blocks = [textwrap.dedent(body) for _, body in re.findall(r"^( *)```yaml\n(.*?)^\1```", open(readme).read(), re.S | re.M)]
+page, stub, out = sys.argv[1:4]
+blocks = [textwrap.dedent(body) for _, body in re.findall(r"^( *)```yaml\n(.*?)^\1```", open(page).read(), re.S | re.M)]
 docs = [d for b in blocks if "JOB_COMPLETION_INDEX" in b for d in yaml.safe_load_all(b)]
 job = next(d for d in docs if d.get("kind") == "Job" and d["spec"].get("completionMode") == "Indexed")
 n, c = job["spec"]["completions"], job["spec"]["template"]["spec"]["containers"][0]
@@ -92,7 +92,7 @@ PY
 rc=$?
 n=$(wc -l <"$work/k8s/shards")
 [[ $rc -eq 0 && $n -ge 2 && $(tr '\n' ' ' <"$work/k8s/shards") == "$(for i in $(seq "$n"); do printf '%s ' "$i/$n"; done)" ]] && ok ||
-  bad "the README's indexed Job gives shards $(tr '\n' ' ' <"$work/k8s/shards")(exit $rc: $(tail -3 "$work/k8s/err"))"
+  bad "the indexed Job of docs/farm.md gives shards $(tr '\n' ' ' <"$work/k8s/shards")(exit $rc: $(tail -3 "$work/k8s/err"))"
 # qf-bake takes each of those shards: every asset of a manifest in exactly one of them
 "$bake" generate octahedron -n 200 -o "$work/k8s/p.ply" -q
 list=$(for i in $(seq 25); do printf '{"input": "p.ply", "name": "a%02d"},' "$i"; done)
@@ -196,7 +196,7 @@ names="['oni', 'kitten', 'sphere_20k', 'elephant']"
 listing "$work/ref" >"$work/ref.sums"
 [[ $(grep -c manifest.json "$work/ref.sums") == 4 ]] && ok || bad "the reference has 4 assets"
 
-# --- 5. the array job as the README submits it, and the merge after it ---
+# --- 5. the array job as docs/farm.md submits it, and the merge after it ---
 export PATH=$(cd "$(dirname "$bake")" && pwd):$PATH             # qf-bake on the nodes' PATH (sbatch passes the environment on)
 cd "$work/logs"                                  # slurm-%A_%a.out land here
 start=$SECONDS

@@ -29,6 +29,19 @@ for f in files:
     data = open(f, "rb").read()
     length = struct.unpack_from("<I", data, 12)[0]
     doc = json.loads(data[20:20 + length])
+    if "_ktx2" in f:
+        # KTX2 textures (KHR_texture_basisu) without fallback: required, every texture names a
+        # KTX2 image (identifier checked) in the extension alone, mip levels written in.
+        bin0 = 20 + length + 8
+        for t in doc["textures"]:
+            img = doc["images"][t.get("extensions", {}).get("KHR_texture_basisu", {}).get("source", -1)]
+            view = doc["bufferViews"][img["bufferView"]]
+            head = data[bin0 + view.get("byteOffset", 0):bin0 + view.get("byteOffset", 0) + 48]
+            if "source" in t or img.get("mimeType") != "image/ktx2" or head[:12] != b"\xabKTX 20\xbb\r\n\x1a\n" \
+                    or struct.unpack_from("<I", head, 40)[0] < 2:
+                print(f, "KTX2 texture wrong"); bad = 1
+        if "KHR_texture_basisu" not in doc.get("extensionsRequired", []) or "KHR_texture_basisu" not in doc["extensionsUsed"]:
+            print(f, "KHR_texture_basisu not required"); bad = 1
     if f.endswith("_lods.glb"):
         # Every level under MSFT_lod: only the finest node in the scene, the others as its ids,
         # one coverage per level, decreasing; no QF extension (a runtime reads the level files).
@@ -36,7 +49,7 @@ for f in files:
         ids = root["extensions"]["MSFT_lod"]["ids"]
         cov = root["extras"]["MSFT_screencoverage"]
         if len(doc["scenes"][0]["nodes"]) != 1 or not ids or len(cov) != len(ids) + 1 or cov != sorted(cov, reverse=True) \
-                or "extensions" in doc or doc["extensionsUsed"] != ["MSFT_lod"]:
+                or "extensions" in doc or set(doc["extensionsUsed"]) != {"MSFT_lod"} | ({"KHR_texture_basisu"} if "_ktx2" in f else set()):
             print(f, "MSFT_lod structure wrong"); bad = 1
         continue
     if f.endswith("_cluster_draco.glb"):

@@ -47,6 +47,12 @@ int main(int argc, char** argv) {
       const ImpostorLevel c = make_level(p, h, level_by_primitives(h, 30), false);
       const std::vector<std::uint8_t> ga = encode_glb(a), gb = encode_glb(b), gc = encode_glb(c);
       write_bytes_atomically(dir + "/torus_lods.glb", combine_lod_glb({&ga, &gb, &gc}, {0.25, 0.1, 0}, "impostor"));
+      // KTX2 textures (KHR_texture_basisu, issue 32): a level, and levels under MSFT_lod.
+      GltfOptions k;
+      k.textures = GltfOptions::Textures::kKtx2;
+      const std::vector<std::uint8_t> ka = encode_glb(a, k), kc = encode_glb(c, k);
+      write_bytes_atomically(dir + "/torus_ktx2.glb", ka);
+      write_bytes_atomically(dir + "/torus_ktx2_lods.glb", combine_lod_glb({&ka, &kc}, {0.1, 0}, "impostor"));
     }
   }
   // A point impostor of a sampled mesh (COLOR_0 as 16-bit linear RGBA, mode POINTS).
@@ -88,5 +94,10 @@ int main(int argc, char** argv) {
   const AssetBake plate = bake_asset(dir + "/plate_asset.glb", ao, "plate_asset.glb");
   if (plate.files.empty()) return std::fprintf(stderr, "the plate's bake wrote no level\n"), 1;
   write_bytes_atomically(dir + "/plate_level.glb", plate.files.front().bytes);
+  // ... and in KTX2: its ORM (linear) and emissive (sRGB) textures too.
+  ao.bake.gltf.textures = GltfOptions::Textures::kKtx2;
+  const AssetBake plate_ktx2 = bake_asset(dir + "/plate_asset.glb", ao, "plate_asset.glb");
+  if (plate_ktx2.files.empty()) return std::fprintf(stderr, "the plate's KTX2 bake wrote no level\n"), 1;
+  write_bytes_atomically(dir + "/plate_level_ktx2.glb", plate_ktx2.files.front().bytes);
   return 0;
 }

@@ -39,11 +39,15 @@ fail() { echo "FAIL: $*"; exit 1; }
 "$bake" cluster "$work/sphere.ply" -o "$work/cluster" --cells 0.6 --draco -q || fail "cluster sphere"
 "$bake" generate bush --leaves 600 --seed 2 -o "$work/bush.glb" -q || fail "generate bush"
 "$bake" "$work/bush.glb" -o "$work/bush" --primitives 100 --ldi 128 --mesh-lods none --no-measure -q || fail "bake bush"
+# three.js also draws the bush's level with KTX2 textures (KTX2Loader; Babylon.js fetches its KTX2
+# decoder from a CDN, so it is not asked to): within 0.5 dB of the PNG level's PSNR (issue 32).
+[[ $engine == three ]] && { "$bake" "$work/bush.glb" -o "$work/bushk" --primitives 100 --ldi 128 --mesh-lods none --no-measure --textures ktx2 -q ||
+  fail "bake bush ktx2"; }
 "$bake" generate plate -o "$work/plate.glb" -q || fail "generate plate"
 "$bake" "$work/plate.glb" -o "$work/plate" --primitives 30 --ldi 96 --mesh-lods none --no-measure -q || fail "bake plate"
 "$bake" generate torus -o "$work/torus.ply" -q || fail "generate torus"
 "$bake" "$work/torus.ply" -o "$work/torus" --lod-file --no-measure -q || fail "bake torus"
-"$bake" "$work/torus.ply" -o "$work/chain" --lod-file --chain --measure-views 2 -q || fail "bake torus chain"
+"$bake" "$work/torus.ply" -o "$work/chain" --lod-file --measure-views 2 -q || fail "bake torus chain"
 finest=$(python3 -c 'import json, sys; print(max(json.load(open(sys.argv[1]))["levels"], key=lambda l: l["primitives"])["file"])' "$work/torus/manifest.json")
 chain0=$(python3 -c 'import json, sys; print(json.load(open(sys.argv[1]))["recommended_chain"]["chain"][0]["file"])' "$work/chain/manifest.json")
 # REFERENCE|FILE the engine loads|the file the engine method draws for it (default: the same)|the
@@ -59,6 +63,8 @@ cases=("$src/samples/octahedron.ply|$(ls "$work"/oct/octahedron_L*.glb | head -n
        "$work/plate.glb|$(ls "$work"/plate/plate_L*.glb | head -n 1)"
        "$work/torus.ply|$work/torus/torus_lods.glb|$work/torus/$finest|impostor_LOD0"
        "$work/torus.ply|$work/chain/torus_lods.glb|$work/chain/$chain0|chain_LOD0")
+bush_png=6
+[[ $engine == three ]] && cases+=("$work/bush.glb|$(ls "$work"/bushk/bush_L*.glb | head -n 1)") && bush_ktx2=$((${#cases[@]} - 1))
 
 # The cameras frame the reference: one eval per reference writes them.
 declare -A cams
@@ -90,7 +96,12 @@ load = json.load(open(sys.argv[2]))
 name, file, shown, node = sys.argv[3:7]
 e, x, a = r["engine"], r["external"], r["engine_vs_external"]
 dp, di = abs(e["psnr"] - x["psnr"]), abs(e["iou"] - x["iou"])
-problems = [] if dp <= 1.0 and di <= 0.005 and a["psnr"] >= 25 and a["iou"] >= 0.99 else ["renders differ"]
+# A KTX2 level (issue 32): three.js transcodes it to the GPU's block format (BC7 in SwiftShader),
+# qf-render to RGBA8; BC7's alpha from ETC1S differs by a few levels, which flips the thin leaves'
+# pixels at the cutoff (qf-render vs three.js 24 dB, IoU 0.95 on the bush; 29 dB, 0.986 with UASTC
+# colour): both renders still score alike against the reference, which is what is held.
+pair = "bushk/" in file or (a["psnr"] >= 25 and a["iou"] >= 0.99)
+problems = [] if dp <= 1.0 and di <= 0.005 and pair else ["renders differ"]
 if load["warnings"]: problems.append(f"loader says: {load['warnings']}")
 if not load["drawn"]: problems.append("nothing drawn")
 # A combined file: only its finest level drawn, and no other level kept in the scene to switch to.
@@ -102,5 +113,15 @@ print(f"{'FAIL' if problems else 'ok  '} {file}{f' (shows {shown})' if shown els
 sys.exit(1 if problems else 0)
 PY
 done
+if [[ -n "${bush_ktx2:-}" ]]; then
+  python3 - "$work/eval_$bush_png.json" "$work/eval_$bush_ktx2.json" <<'PY' || status=1
+import json, sys
+png, ktx2 = (json.load(open(f))["mean"]["external"] for f in sys.argv[1:3])
+d = ktx2["psnr"] - png["psnr"]
+ok = abs(d) <= 0.5
+print(f"{'ok  ' if ok else 'FAIL'} three.js KTX2 level {ktx2['psnr']:.3f} dB IoU {ktx2['iou']:.4f} vs its PNG level {png['psnr']:.3f} dB IoU {png['iou']:.4f} ({d:+.3f} dB)")
+sys.exit(0 if ok else 1)
+PY
+fi
 [[ $status == 0 ]] && echo "engine method agrees with $name on ${#cases[@]} files"
 exit $status

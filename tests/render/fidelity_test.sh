@@ -11,7 +11,7 @@ dir=${QF_MODELS:-$HOME/.cache/quasiflat/models}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 "$bake" convert "$dir/bunny00.off" "$work/bunny00.xyz" --vertices -q || { echo "FAIL: convert"; exit 1; }
-"$bake" "$work/bunny00.xyz" -o "$work/out" --primitives 300 --cache "$work/cache" -q || { echo "FAIL: bake"; exit 1; }
+"$bake" "$work/bunny00.xyz" -o "$work/out" --primitives 300 --no-mesh-lods --cache "$work/cache" -q || { echo "FAIL: bake"; exit 1; }
 "$render" eval "$dir/bunny00.off" "$work"/out/*.glb -o "$work/eval.json" || { echo "FAIL: eval"; exit 1; }
 python3 - "$work/eval.json" <<'PY'
 import json, sys

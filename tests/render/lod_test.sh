@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
-# The README's LOD examples switch a bake's per-level files at the manifest's distances: ENGINE
+# The LOD examples of docs/engines.md switch a bake's per-level files at the manifest's distances: ENGINE
 # three: THREE.LOD (scripts/three-render/impostor-lod.mjs); babylon: Babylon.js's Mesh.addLODLevel
-# (scripts/babylon-render/impostor-lod.mjs); each shown in the README verbatim. Run in headless
+# (scripts/babylon-render/impostor-lod.mjs); each shown in docs/engines.md verbatim. Run in headless
 # Chromium on a baked torus, with the camera just inside and just outside every switch distance
 # (D z0 / max_screen_pixels, z0 = 512 / (2 tan 30 deg)), the engine draws the level the manifest
-# says; with the recommended chain (--chain), its files at its max_pixels.
+# says; with the recommended chain (the default), its files at its max_pixels.
 # usage: lod_test.sh ENGINE QF_BAKE SOURCE_DIR
 set -u
 engine=$1 bake=$2 src=$3
@@ -18,17 +18,17 @@ case $engine in
   *) fail "unknown engine $engine" ;;
 esac
 [[ -f "$dir/node_modules/$package/package.json" ]] || fail "$package not installed: run scripts/install-deps.sh"
-python3 - "$src/README.md" "$dir/impostor-lod.mjs" <<'PY' || fail "the README does not show scripts/$engine-render/impostor-lod.mjs verbatim"
-import sys  # shown in a list item of the README: indented by two spaces
-code = "\n".join("  " + l if l else "" for l in open(sys.argv[2]).read().strip().split("\n"))
+python3 - "$src/docs/engines.md" "$dir/impostor-lod.mjs" <<'PY' || fail "docs/engines.md does not show scripts/$engine-render/impostor-lod.mjs verbatim"
+import sys  # a js block of its own
+code = "```js\n" + open(sys.argv[2]).read().strip() + "\n```"
 sys.exit(0 if code in open(sys.argv[1]).read() else 1)
 PY
 "$bake" generate torus -o "$work/torus.ply" -q || fail "generate"
-# Plain: the impostor levels. --chain: the recommended chain's files at its max_pixels.
+# Plain (--no-chain): the impostor levels. Chain: the recommended chain's files at its max_pixels.
 hows=(plain chain) args=()
 declare -A distances expected
 for how in "${hows[@]}"; do
-  opts=(); [[ $how == chain ]] && opts=(--chain --measure-views 2)
+  opts=(--no-chain); [[ $how == chain ]] && opts=(--measure-views 2)
   "$bake" "$work/torus.ply" -o "$work/$how" "${opts[@]}" -q || fail "bake ($how)"
   read -r "distances[$how]" "expected[$how]" < <(python3 - "$work/$how/manifest.json" <<'PY'
 import json, math, sys

@@ -101,9 +101,10 @@ else
   echo "xvfb-run missing (scripts/install-deps.sh installs it): window test not run"; bad "no xvfb-run"
 fi
 
-# 5b. A combined LOD file shows exactly one level: the one its screen coverages pick, or --lod N;
+# 5b. A combined LOD file (of the impostor levels: --no-chain) shows exactly one level: the one its
+#     screen coverages pick, or --lod N;
 #     its nodes carry the _LOD0.._LODn names engines group as LODs.
-"$bake" "$root/samples/octahedron.ply" -o "$work/lodf" --lod-file --cache "$work/cache" -q || bad "bake --lod-file"
+"$bake" "$root/samples/octahedron.ply" -o "$work/lodf" --lod-file --no-chain --cache "$work/cache" -q || bad "bake --lod-file"
 lods="$work/lodf/octahedron_lods.glb"
 levels=$(python3 -c 'import json,sys; print(" ".join(str(l["primitives"]) for l in json.load(open(sys.argv[1]))["levels"]))' "$work/lodf/manifest.json")
 for n in 0 1 2 3; do

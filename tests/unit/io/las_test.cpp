@@ -261,8 +261,11 @@ TEST(LasMalformed, LayeredChunkSizes) {
 TEST(LasMalformed, TruncationsAndBitFlipsNeverCrash) {
   // Prefixes, and bytes flipped, of small LAS and LAZ files: read or refused with an InputError,
   // never a crash or another exception (ASan/UBSan in the sanitizer pass). Every byte of the
-  // header, VLRs and chunk table offset; every 7th (cuts) or 5th (flips) byte of the points, as
-  // each LAZ decode builds laz-perf's models afresh (~1-3 ms a chunk).
+  // header, VLRs and chunk table offset (but the two free-text fields, system identifier and
+  // generating software, bytes 26-89, which nothing reads), flipped in its lowest bit or whole
+  // (alternately); every 7th (cuts) or 5th (flips) byte of the points, as each LAZ decode builds
+  // laz-perf's models afresh (~1-3 ms a chunk; ~25 under ASan: the test took 193 s there with
+  // both flips of every byte).
   for (const auto& [format, laz, minor] : {std::tuple{3, false, 2}, {3, true, 2}, {1, true, 2}, {7, true, 4}, {8, true, 4}, {6, false, 4}}) {
     LasWriteOptions o;
     o.format = format, o.compress = laz, o.minor = minor, o.chunk_size = 16;
@@ -270,22 +273,23 @@ TEST(LasMalformed, TruncationsAndBitFlipsNeverCrash) {
     std::uint32_t point_offset;
     std::memcpy(&point_offset, &good[96], 4);
     const std::size_t head = point_offset + 8;
+    const auto text = [](std::size_t i) { return i >= 26 && i < 90; };
     for (std::size_t n = 0; n < good.size(); n += n < head ? 1 : 7) {
+      if (text(n)) continue;
       try {
         decode(good.substr(0, n), "cut.las");
       } catch (const InputError&) {
       }
     }
-    for (std::size_t i = 0; i < good.size(); i += i < head ? 1 : 5)
-      for (unsigned char mask : {0x01, 0xFF}) {
-        if (i >= head && mask == 0x01) continue;
-        std::string b = good;
-        b[i] = static_cast<char>(b[i] ^ mask);
-        try {
-          decode(b, "flip.laz");
-        } catch (const InputError&) {
-        }
+    for (std::size_t i = 0; i < good.size(); i += i < head ? 1 : 5) {
+      if (text(i)) continue;
+      std::string b = good;
+      b[i] = static_cast<char>(b[i] ^ (i < head && i % 2 == 0 ? 0x01 : 0xFF));
+      try {
+        decode(b, "flip.laz");
+      } catch (const InputError&) {
       }
+    }
   }
 }
 

@@ -81,6 +81,26 @@ TEST(Chain, TakesTheSmallestFileThatReachesTheBarPerBand) {
   EXPECT_EQ(s["chain"].back()["file"], "small.glb");  // 35 - 10 > 36 - 12
 }
 
+// The bake draws a mesh LOD or the point impostor only where it may be chosen (Scores::measured
+// false elsewhere): such a file never serves a band it was not drawn at, even where it would be
+// the files "made for the largest sizes"; the manifest lists it as null there.
+TEST(Chain, AFileNotDrawnAtABandIsNotChosenThere) {
+  Measurements m = two_files();
+  m.files[0].at_size[0].measured = false;  // big.glb (made for 16 px) not drawn at 64 px
+  const std::vector<double> max_pixels{16, 0};
+  const nlohmann::json c = recommend_chain(m, 1.0, {}, max_pixels);
+  EXPECT_EQ(c["chain"][0]["file"], "small.glb");
+  EXPECT_TRUE(c["measured"][0]["at_pixels"][0].is_null());
+  EXPECT_FALSE(c["measured"][0]["at_pixels"][1].is_null());
+  // Both made for 8 px (valid to 16), big.glb drawn only at 16 px: above, the files made for the
+  // largest sizes are those drawn there, the level alone.
+  m.files[0].at_size[1].measured = false;
+  const std::vector<double> both_small{8, 8};
+  const nlohmann::json d = recommend_chain(m, 1.0, {}, both_small);
+  ASSERT_EQ(d["chain"].size(), 1u);
+  EXPECT_EQ(d["chain"][0]["file"], "small.glb");
+}
+
 TEST(Chain, SwitchDistanceIsWhereTheObjectSpansThePixels) {
   // D x H / (2 tan(fov / 2) x pixels): 1 x 1080 / (2 tan 30 deg x 32).
   EXPECT_NEAR(distance_for_pixels(1.0, 32, 1080, 60), 1080 / (2 * std::tan(3.14159265358979 / 6) * 32), 1e-9);

@@ -1,0 +1,82 @@
+// The only file that includes CGAL's reconstruction headers.
+#include "reconstruct/reconstruct.h"
+
+#include <CGAL/Advancing_front_surface_reconstruction.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Random.h>
+
+#include <algorithm>
+#include <array>
+#include <iterator>
+#include <stdexcept>
+#include <vector>
+
+namespace qf {
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+
+// 1. The points to use: all, or every k-th of the Morton order (an even spread over the set, as
+// the order walks the set cell by cell).
+std::vector<std::uint32_t> spread_subsample(const PointSet& points, std::size_t max_points) {
+  std::vector<std::uint32_t> order = morton_order(points.positions);
+  if (order.size() <= max_points || max_points == 0) return order;
+  std::vector<std::uint32_t> kept;
+  kept.reserve(max_points);
+  const double step = double(order.size()) / double(max_points);
+  for (std::size_t i = 0; i < max_points; ++i) kept.push_back(order[static_cast<std::size_t>(double(i) * step)]);
+  return kept;
+}
+
+}  // namespace
+
+Reconstruction reconstruct_surface(const PointSet& points, const ReconstructOptions& o) {
+  Reconstruction r;
+  const std::vector<std::uint32_t> used = spread_subsample(points, o.max_points);
+  if (used.size() < 4) throw std::invalid_argument("a reconstruction needs at least 4 points");
+  // 2. Advancing front over the 3D Delaunay triangulation of the points (CGAL's defaults: radius
+  // ratio bound 5, beta 0.52): facets as triples of indices into `cgal_points`.
+  // Each point nudged by a hash of its index, 1e-7 of the diagonal at most: the front's queue
+  // orders candidates of equal radius by their memory address, so a symmetric set (a generated
+  // torus: many equal radii) gave different meshes as the heap was laid out differently (1 or 2
+  // threads, a batch's -j). Nudged, radii tie only by chance; the mesh keeps the exact positions.
+  const double nudge = 1e-7 * points.bounds().diagonal();
+  std::vector<Kernel::Point_3> cgal_points;
+  cgal_points.reserve(used.size());
+  for (std::uint32_t i : used) {
+    const Vec3f& p = points.positions[i];
+    std::uint64_t h = (std::uint64_t{i} + 1) * 0x9E3779B97F4A7C15ull;
+    double d[3];
+    for (double& c : d) {
+      h ^= h >> 29, h *= 0xBF58476D1CE4E5B9ull, h ^= h >> 32;
+      c = (double(h >> 11) / double(1ull << 53) - 0.5) * nudge;
+    }
+    cgal_points.emplace_back(p.x + d[0], p.y + d[1], p.z + d[2]);
+  }
+  std::vector<std::array<std::size_t, 3>> facets;
+  // The triangulation's insertion order is shuffled by CGAL's default random generator, which is
+  // seeded from the clock: a fixed seed makes the same points give the same mesh on every run.
+  CGAL::get_default_random() = CGAL::Random(0);
+  CGAL::advancing_front_surface_reconstruction(cgal_points.begin(), cgal_points.end(), std::back_inserter(facets));
+  if (facets.empty()) throw std::invalid_argument("the points form no surface to reconstruct");
+  // 3. The mesh: the used points as vertices, their colours carried.
+  r.points_used = used.size();
+  r.mesh.positions.reserve(used.size());
+  for (std::uint32_t i : used) r.mesh.positions.push_back(points.positions[i]);
+  if (points.has_colors()) {
+    r.mesh.colors.reserve(used.size());
+    for (std::uint32_t i : used) r.mesh.colors.push_back(points.colors[i]);
+  }
+  // In a canonical order (each triangle from its smallest index, orientation kept; then sorted):
+  // the front emits its facets in an order that follows memory addresses.
+  r.mesh.triangles.reserve(facets.size());
+  for (const auto& f : facets) {
+    Triangle t{static_cast<std::uint32_t>(f[0]), static_cast<std::uint32_t>(f[1]), static_cast<std::uint32_t>(f[2])};
+    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
+    r.mesh.triangles.push_back(t);
+  }
+  std::sort(r.mesh.triangles.begin(), r.mesh.triangles.end());
+  return r;
+}
+
+}  // namespace qf

@@ -1,0 +1,57 @@
+// KTX2 transcoding to RGBA8 (see ktx2_image.h).
+#include "runtime_gl/ktx2_image.h"
+
+#include <transcoder/basisu_transcoder.h>
+
+#include <cstring>
+#include <mutex>
+
+#include "core/error.h"
+
+namespace qf::render {
+namespace {
+
+constexpr std::uint32_t kMaxSide = 16384;
+constexpr std::uint8_t kIdentifier[12] = {0xAB, 0x4B, 0x54, 0x58, 0x20, 0x32, 0x30, 0xBB, 0x0D, 0x0A, 0x1A, 0x0A};
+
+[[noreturn]] void bad(const std::string& path, const std::string& what) { throw InputError("render.gltf.image", path, "", what); }
+
+}  // namespace
+
+bool is_ktx2(const std::uint8_t* bytes, std::size_t size) {
+  return size >= sizeof(kIdentifier) && std::memcmp(bytes, kIdentifier, sizeof(kIdentifier)) == 0;
+}
+
+Image decode_ktx2(const std::uint8_t* bytes, std::size_t size, const std::string& path) {
+  static std::once_flag init;
+  std::call_once(init, [] { basist::basisu_transcoder_init(); });
+  if (size > 0xFFFFFFFFu) bad(path, "a KTX2 image over 4 GB");
+  basist::ktx2_transcoder t;
+  if (!t.init(bytes, static_cast<std::uint32_t>(size))) bad(path, "a KTX2 image that is not a Basis Universal texture (ETC1S or UASTC)");
+  if (t.get_faces() != 1 || t.get_layers() > 1) bad(path, "a KTX2 image that is a cube map or an array, not a 2D texture");
+  if (t.get_levels() < 1 || t.get_levels() > 16) bad(path, "a KTX2 image with " + std::to_string(t.get_levels()) + " mip levels (1 to 16 expected)");
+  // The header's size is what the RGBA8 buffers are sized by: a garbage header asked for 128 GB
+  // (glb fuzz target). 16384 texels a side is the largest texture GL drivers take (the baker's
+  // atlases stop at 4096).
+  if (t.get_width() < 1 || t.get_height() < 1 || t.get_width() > kMaxSide || t.get_height() > kMaxSide)
+    bad(path, "a KTX2 image of " + std::to_string(t.get_width()) + " x " + std::to_string(t.get_height()) +
+                  " texels (1 to " + std::to_string(kMaxSide) + " a side expected)");
+  if (!t.start_transcoding()) bad(path, "a KTX2 image whose Basis data does not decode");
+  Image out;
+  for (std::uint32_t level = 0; level < t.get_levels(); ++level) {
+    basist::ktx2_image_level_info info;
+    if (!t.get_image_level_info(info, level, 0, 0)) bad(path, "a KTX2 image whose mip level " + std::to_string(level) + " is missing");
+    Image img;
+    img.width = static_cast<int>(info.m_orig_width);
+    img.height = static_cast<int>(info.m_orig_height);
+    img.rgba.resize(static_cast<std::size_t>(img.width) * static_cast<std::size_t>(img.height) * 4);
+    if (!t.transcode_image_level(level, 0, 0, img.rgba.data(), info.m_orig_width * info.m_orig_height,
+                                 basist::transcoder_texture_format::cTFRGBA32, 0, info.m_orig_width, info.m_orig_height))
+      bad(path, "a KTX2 image whose mip level " + std::to_string(level) + " does not transcode");
+    if (level == 0) out = std::move(img);
+    else out.mips.push_back(std::move(img));
+  }
+  return out;
+}
+
+}  // namespace qf::render
