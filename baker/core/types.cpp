@@ -115,12 +115,12 @@ std::vector<Vec3f> TriangleMesh::smooth_normals() const {
       s = s + n;
     }
   }
-  std::vector<Vec3f> normals(positions.size(), Vec3f{0, 0, 1});
-  for (std::size_t v = 0; v < normals.size(); ++v) {
+  std::vector<Vec3f> smooth(positions.size(), Vec3f{0, 0, 1});
+  for (std::size_t v = 0; v < smooth.size(); ++v) {
     const auto it = at.find(key(positions[v]));
-    if (it != at.end() && dot(it->second, it->second) > 0) normals[v] = normalized(it->second);
+    if (it != at.end() && dot(it->second, it->second) > 0) smooth[v] = normalized(it->second);
   }
-  return normals;
+  return smooth;
 }
 
 template <class T>
