@@ -163,11 +163,18 @@ tinygltf::Model new_model(const GltfOptions& options) {
   return m;
 }
 
-// A uint32 index accessor of `idx`; returns its index.
+// An index accessor of `idx`, uint16 where every index fits (below 65535, which the spec leaves to
+// primitive restart: half the bytes for every level and most LODs), else uint32; returns its index.
 int add_indices(tinygltf::Model& m, const std::vector<std::uint32_t>& idx) {
   tinygltf::Accessor ia;
-  ia.bufferView = add_view(m, idx.data(), idx.size() * sizeof(std::uint32_t), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-  ia.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+  if (std::all_of(idx.begin(), idx.end(), [](std::uint32_t i) { return i < 65535; })) {
+    const std::vector<std::uint16_t> narrow(idx.begin(), idx.end());
+    ia.bufferView = add_view(m, narrow.data(), narrow.size() * sizeof(std::uint16_t), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    ia.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+  } else {
+    ia.bufferView = add_view(m, idx.data(), idx.size() * sizeof(std::uint32_t), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+    ia.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+  }
   ia.count = idx.size();
   ia.type = TINYGLTF_TYPE_SCALAR;
   m.accessors.push_back(ia);
@@ -236,6 +243,9 @@ int add_level_materials(tinygltf::Model& m, const Atlas& atlas, const GltfOption
 // The quads of atlas image `img` as one primitive (none when it has no quads).
 void add_level_primitive(tinygltf::Model& m, tinygltf::Mesh& mesh, const ImpostorLevel& level, std::size_t img, int material) {
   const Atlas& atlas = level.atlas;
+  // TANGENT is written although a flat quad's derived frame would equal it (64 of a quad's 216
+  // bytes): without it the glTF-Validator warns that a runtime-generated tangent space may be
+  // non-portable (MESH_PRIMITIVE_GENERATED_TANGENT_SPACE).
   std::vector<float> pos, nrm, tan, uv;
   std::vector<std::uint32_t> idx;
   for (std::size_t k = 0; k < level.quads.size(); ++k) {

@@ -45,6 +45,8 @@ TEST(Glb, QuadsMaterialsAndExtension) {
   EXPECT_EQ(prim.mode, TINYGLTF_MODE_TRIANGLES);
   EXPECT_EQ(m.accessors[static_cast<std::size_t>(prim.attributes.at("POSITION"))].count, 4u * 8u);
   EXPECT_EQ(m.accessors[static_cast<std::size_t>(prim.indices)].count, 6u * 8u);
+  // Indices as uint16 (a level has a few thousand vertices at most).
+  EXPECT_EQ(m.accessors[static_cast<std::size_t>(prim.indices)].componentType, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
   for (const char* attr : {"NORMAL", "TANGENT", "TEXCOORD_0"}) EXPECT_TRUE(prim.attributes.count(attr)) << attr;
   // Colour and normal atlases, embedded as PNG.
   const tinygltf::Material& mat = m.materials[static_cast<std::size_t>(prim.material)];
@@ -74,6 +76,31 @@ TEST(Glb, QuadsMaterialsAndExtension) {
   ImpostorLevel sharp = level;
   sharp.alpha_exponent = 2;
   EXPECT_DOUBLE_EQ(load(encode_glb(sharp)).extensions.at(kImpostorExtension).Get("alphaExponent").GetNumberAsDouble(), 2.0);
+}
+
+// A strip of `quads` unit squares (4 vertices each, unshared), so its vertex count is 4 x quads.
+TriangleMesh square_strip(std::uint32_t quads) {
+  TriangleMesh mesh;
+  for (std::uint32_t k = 0; k < quads; ++k) {
+    const auto base = static_cast<std::uint32_t>(mesh.positions.size());
+    const float x = static_cast<float>(k);
+    mesh.positions.insert(mesh.positions.end(), {{x, 0, 0}, {x + 1, 0, 0}, {x + 1, 1, 0}, {x, 1, 0}});
+    mesh.triangles.push_back({base, base + 1, base + 2});
+    mesh.triangles.push_back({base, base + 2, base + 3});
+  }
+  return mesh;
+}
+
+// Indices are uint16 while every vertex index is below 65535 (the restart value), uint32 above,
+// and read back as written either way.
+TEST(Glb, IndexWidthFollowsTheVertexCount) {
+  for (const std::uint32_t quads : {16383u, 16384u}) {  // 65532 and 65536 vertices
+    const TriangleMesh mesh = square_strip(quads);
+    const tinygltf::Model m = load(encode_mesh_glb(mesh, false));
+    const tinygltf::Accessor& a = m.accessors.at(static_cast<std::size_t>(m.meshes.at(0).primitives.at(0).indices));
+    EXPECT_EQ(a.componentType, quads == 16383u ? TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT : TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT) << quads;
+    EXPECT_EQ(a.count, mesh.triangles.size() * 3);
+  }
 }
 
 }  // namespace
