@@ -12,39 +12,17 @@ namespace {
 
 using namespace gltf;
 
-// A vertex attribute as floats, `components` per vertex: FLOAT, or normalized UNSIGNED_BYTE /
-// UNSIGNED_SHORT (glTF 2.0 3.7.2.1 allows these for COLOR_n and TEXCOORD_n). VEC3 colours get
-// alpha 1 when `components` is 4.
+// A vertex attribute as floats, `components` per vertex: FLOAT, or integers as glTF 2.0 3.7.2.1
+// (normalized colours and texture coordinates) and KHR_mesh_quantization allow them (AccessorReader
+// reads both). VEC3 colours get alpha 1 when `components` is 4.
 std::vector<float> attribute_floats(const AccessorReader& read, int index, int components) {
   const tinygltf::Accessor& a = read.accessor(index);
-  const int have = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(a.type));
-  if (a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT && have == components) return read.floats(index, components);
-  const int size = a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ? 1 : a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ? 2 : 0;
-  const bool colour_rgb = components == 4 && have == 3;
-  if (!(have == components || colour_rgb) || (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && (size == 0 || !a.normalized)))
-    fail(read.path, "accessor", "accessor " + std::to_string(index) + ": expected " + std::to_string(components) +
-                                    " float or normalized unsigned components");
-  const std::size_t elem = static_cast<std::size_t>(have) * (size ? static_cast<std::size_t>(size) : 4);
-  std::size_t stride = 0;
-  const unsigned char* p = read.base(a, elem, stride);
+  if (!(components == 4 && tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(a.type)) == 3))
+    return read.floats(index, components);
+  const std::vector<float> rgb = read.floats(index, 3);
   std::vector<float> out;
-  out.reserve(a.count * static_cast<std::size_t>(components));
-  for (std::size_t i = 0; i < a.count; ++i) {
-    for (int c = 0; c < have; ++c) {
-      const unsigned char* q = p + i * stride + static_cast<std::size_t>(c) * (size ? static_cast<std::size_t>(size) : 4);
-      float v = 0;
-      if (size == 1) v = *q / 255.0f;
-      else if (size == 2) {
-        std::uint16_t u = 0;
-        std::memcpy(&u, q, 2);
-        v = u / 65535.0f;
-      } else {
-        std::memcpy(&v, q, 4);
-      }
-      out.push_back(v);
-    }
-    if (colour_rgb) out.push_back(1.0f);
-  }
+  out.reserve(rgb.size() / 3 * 4);
+  for (std::size_t i = 0; i + 2 < rgb.size(); i += 3) out.insert(out.end(), {rgb[i], rgb[i + 1], rgb[i + 2], 1.0f});
   return out;
 }
 

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/gltf_component.h"
 #include "core/gltf_keys.h"
 #include "runtime_gl/engine_scene.h"
 #include "runtime_gl/ktx2_image.h"
@@ -52,15 +53,18 @@ struct AccessorReader {
     return b.data.data() + v.byteOffset + a.byteOffset;
   }
 
+  // Floats, or integers as KHR_mesh_quantization allows them (normalized or not), as floats.
   std::vector<float> floats(int index, int components) const {
     const tinygltf::Accessor& a = accessor(index);
-    if (a.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT || tinygltf::GetNumComponentsInType(a.type) != components)
-      fail(path, "accessor", "expected a float accessor with " + std::to_string(components) + " components");
+    const int size = gltf_component::size_of(a.componentType);
+    if (size == 0 || tinygltf::GetNumComponentsInType(a.type) != components)
+      fail(path, "accessor", "expected a float or integer accessor with " + std::to_string(components) + " components");
     std::size_t stride = 0;
-    const unsigned char* p = base(a, sizeof(float) * static_cast<std::size_t>(components), stride);
-    std::vector<float> out(a.count * static_cast<std::size_t>(components));
+    const auto n = static_cast<std::size_t>(components), csize = static_cast<std::size_t>(size);
+    const unsigned char* p = base(a, csize * n, stride);
+    std::vector<float> out(a.count * n);
     for (std::size_t i = 0; i < a.count; ++i)
-      std::memcpy(&out[i * static_cast<std::size_t>(components)], p + i * stride, sizeof(float) * static_cast<std::size_t>(components));
+      for (std::size_t c = 0; c < n; ++c) out[i * n + c] = gltf_component::read(p + i * stride + c * csize, a.componentType, a.normalized);
     return out;
   }
 

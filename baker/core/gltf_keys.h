@@ -18,6 +18,8 @@ constexpr const char* kThicknessAttribute = "_THICKNESS";
 // A combined LOD file: MSFT_lod on the root node, its lower LODs' screen coverages in its extras.
 constexpr const char* kLodExtension = "MSFT_lod";
 constexpr const char* kScreenCoverageExtra = "MSFT_screencoverage";
+// Impostor levels store normals, tangents and texture coordinates as normalized integers.
+constexpr const char* kQuantizationExtension = "KHR_mesh_quantization";
 // A texture whose image is KTX2 (Basis Universal): its extension names the image (issue 32).
 constexpr const char* kBasisuExtension = "KHR_texture_basisu";
 

@@ -12,6 +12,7 @@
 #include <tuple>
 
 #include "core/color.h"
+#include "core/gltf_component.h"
 #include "gltf/draco.h"
 #include "gltf/png.h"
 #include "primitives/mip_levels.h"
@@ -52,6 +53,21 @@ int add_floats(tinygltf::Model& m, const std::vector<float>& v, int components, 
       a.maxValues[c] = std::max(a.maxValues[c], canonical_double(v[i]));
     }
   }
+  m.accessors.push_back(a);
+  return static_cast<int>(m.accessors.size() - 1);
+}
+
+// A normalized integer VECn accessor over `bytes` (KHR_mesh_quantization), `count` elements of
+// `stride` bytes each (padded to 4 bytes, as vertex attributes must be aligned).
+int add_normalized(tinygltf::Model& m, const void* bytes, std::size_t count, int component_type, int type, int stride) {
+  tinygltf::Accessor a;
+  a.bufferView = add_view(m, bytes, count * static_cast<std::size_t>(stride), TINYGLTF_TARGET_ARRAY_BUFFER);
+  const int element = gltf_component::size_of(component_type) * tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(type));
+  if (element != stride) m.bufferViews.back().byteStride = static_cast<std::size_t>(stride);
+  a.componentType = component_type;
+  a.normalized = true;
+  a.count = count;
+  a.type = type;
   m.accessors.push_back(a);
   return static_cast<int>(m.accessors.size() - 1);
 }
@@ -243,10 +259,14 @@ int add_level_materials(tinygltf::Model& m, const Atlas& atlas, const GltfOption
 // The quads of atlas image `img` as one primitive (none when it has no quads).
 void add_level_primitive(tinygltf::Model& m, tinygltf::Mesh& mesh, const ImpostorLevel& level, std::size_t img, int material) {
   const Atlas& atlas = level.atlas;
-  // TANGENT is written although a flat quad's derived frame would equal it (64 of a quad's 216
-  // bytes): without it the glTF-Validator warns that a runtime-generated tangent space may be
-  // non-portable (MESH_PRIMITIVE_GENERATED_TANGENT_SPACE).
-  std::vector<float> pos, nrm, tan, uv;
+  // Normals, tangents and texture coordinates quantized (KHR_mesh_quantization): normal and tangent
+  // as normalized bytes (within 0.5 degrees; the extension keeps the exact normal for the blend
+  // order), UVs as normalized shorts (1/16 texel in a 4096 atlas); 120 bytes a quad instead of
+  // 216 with floats. TANGENT stays although a flat quad's derived frame would equal it: without it
+  // the glTF-Validator warns that a runtime-generated tangent space may be non-portable.
+  std::vector<float> pos;
+  std::vector<std::int8_t> nrm, tan;
+  std::vector<std::uint16_t> uv;
   std::vector<std::uint32_t> idx;
   for (std::size_t k = 0; k < level.quads.size(); ++k) {
     if (atlas.tiles[k].atlas != img) continue;
@@ -259,9 +279,10 @@ void add_level_primitive(tinygltf::Model& m, tinygltf::Mesh& mesh, const Imposto
     for (int c = 0; c < 4; ++c) {
       const Vec3f p = q.center + q.axis_u * (su[c] * level.half_u[k]) + q.axis_v * (sv[c] * level.half_v[k]);
       pos.insert(pos.end(), {p.x, p.y, p.z});
-      nrm.insert(nrm.end(), {q.normal.x, q.normal.y, q.normal.z});
-      tan.insert(tan.end(), {q.axis_u.x, q.axis_u.y, q.axis_u.z, 1.0f});  // bitangent = normal x tangent = axis_v
-      uv.insert(uv.end(), {su[c] < 0 ? t.u0 : t.u1, sv[c] < 0 ? t.v1 : t.v0});
+      using gltf_component::snorm8;
+      nrm.insert(nrm.end(), {snorm8(q.normal.x), snorm8(q.normal.y), snorm8(q.normal.z), 0});  // padded to 4 bytes
+      tan.insert(tan.end(), {snorm8(q.axis_u.x), snorm8(q.axis_u.y), snorm8(q.axis_u.z), 127});  // bitangent = normal x tangent = axis_v
+      uv.insert(uv.end(), {gltf_component::unorm16(su[c] < 0 ? t.u0 : t.u1), gltf_component::unorm16(sv[c] < 0 ? t.v1 : t.v0)});
     }
     idx.insert(idx.end(), {base, base + 1, base + 2, base, base + 2, base + 3});
   }
@@ -270,9 +291,10 @@ void add_level_primitive(tinygltf::Model& m, tinygltf::Mesh& mesh, const Imposto
   prim.mode = TINYGLTF_MODE_TRIANGLES;
   prim.material = material;
   prim.attributes["POSITION"] = add_floats(m, pos, 3, TINYGLTF_TYPE_VEC3, true);
-  prim.attributes["NORMAL"] = add_floats(m, nrm, 3, TINYGLTF_TYPE_VEC3, false);
-  prim.attributes["TANGENT"] = add_floats(m, tan, 4, TINYGLTF_TYPE_VEC4, false);
-  prim.attributes["TEXCOORD_0"] = add_floats(m, uv, 2, TINYGLTF_TYPE_VEC2, false);
+  const std::size_t vertices = pos.size() / 3;
+  prim.attributes["NORMAL"] = add_normalized(m, nrm.data(), vertices, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_TYPE_VEC3, 4);
+  prim.attributes["TANGENT"] = add_normalized(m, tan.data(), vertices, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_TYPE_VEC4, 4);
+  prim.attributes["TEXCOORD_0"] = add_normalized(m, uv.data(), vertices, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, TINYGLTF_TYPE_VEC2, 4);
   prim.indices = add_indices(m, idx);
   mesh.primitives.push_back(prim);
 }
@@ -282,6 +304,10 @@ void add_level_primitive(tinygltf::Model& m, tinygltf::Mesh& mesh, const Imposto
 int add_level(tinygltf::Model& m, const ImpostorLevel& level, const GltfOptions& options, const std::string& prefix,
               TextureCost* cost) {
   const int first_material = add_level_materials(m, level.atlas, options, prefix, cost);
+  if (!level.quads.empty()) {
+    m.extensionsUsed.push_back(kQuantizationExtension);
+    m.extensionsRequired.push_back(kQuantizationExtension);
+  }
   tinygltf::Mesh mesh;
   mesh.name = "impostor_level_" + std::to_string(level.level);
   for (std::size_t img = 0; img < level.atlas.images.size(); ++img)

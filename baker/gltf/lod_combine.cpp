@@ -29,11 +29,11 @@ tinygltf::Model parse_glb(const std::vector<std::uint8_t>& bytes) {
   if (m.buffers.size() > 1 || !m.skins.empty() || !m.animations.empty() || !m.cameras.empty())
     throw std::invalid_argument("a part with several buffers, skins, animations or cameras");
   // Only what append_part remaps: extensions may hold indices it would leave pointing elsewhere.
+  const auto copied = [](const std::string& e) { return e == kBasisuExtension || e == kQuantizationExtension; };
   for (const std::string& e : m.extensionsRequired)
-    if (e != kBasisuExtension) throw std::invalid_argument("a part requires " + e);
+    if (!copied(e)) throw std::invalid_argument("a part requires " + e);
   for (const std::string& e : m.extensionsUsed)
-    if (e != kImpostorExtension && e != kPointExtension && e != kBasisuExtension)
-      throw std::invalid_argument("a part uses " + e);
+    if (e != kImpostorExtension && e != kPointExtension && !copied(e)) throw std::invalid_argument("a part uses " + e);
   for (const tinygltf::Accessor& a : m.accessors)
     if (a.sparse.isSparse) throw std::invalid_argument("a part with a sparse accessor");
   for (const tinygltf::Mesh& mesh : m.meshes)

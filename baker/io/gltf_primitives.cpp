@@ -9,6 +9,7 @@
 #include <map>
 
 #include "core/error.h"
+#include "core/gltf_component.h"
 #include "gltf/draco.h"
 
 namespace qf::io {
@@ -40,7 +41,7 @@ class Accessors {
     for (std::size_t i = 0; i < a.count; ++i)
       for (int c = 0; c < components; ++c)
         out[i * static_cast<std::size_t>(components) + static_cast<std::size_t>(c)] =
-            component(base + i * stride + static_cast<std::size_t>(c * csize), a.componentType, a.normalized);
+            gltf_component::read(base + i * stride + static_cast<std::size_t>(c * csize), a.componentType, a.normalized);
     return out;
   }
 
@@ -100,18 +101,6 @@ class Accessors {
       fail(path_, "accessor_bounds", where, "the accessor (" + std::to_string(a.count) + " elements) reaches past its bufferView (" +
                                                 std::to_string(v.byteLength) + " bytes)");
     return m_.buffers[static_cast<std::size_t>(v.buffer)].data.data() + v.byteOffset + a.byteOffset;
-  }
-
-  static float component(const unsigned char* p, int type, bool normalized) {
-    switch (type) {
-      case TINYGLTF_COMPONENT_TYPE_FLOAT: { float f; std::memcpy(&f, p, 4); return f; }
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? *p / 255.0f : *p;
-      case TINYGLTF_COMPONENT_TYPE_BYTE: { const auto s = static_cast<std::int8_t>(*p); return normalized ? std::max(s / 127.0f, -1.0f) : s; }
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { std::uint16_t s; std::memcpy(&s, p, 2); return normalized ? s / 65535.0f : s; }
-      case TINYGLTF_COMPONENT_TYPE_SHORT: { std::int16_t s; std::memcpy(&s, p, 2); return normalized ? std::max(s / 32767.0f, -1.0f) : s; }
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { std::uint32_t s; std::memcpy(&s, p, 4); return static_cast<float>(s); }
-      default: return 0;
-    }
   }
 
   const tinygltf::Model& m_;

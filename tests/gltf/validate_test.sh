@@ -49,7 +49,8 @@ for f in files:
         ids = root["extensions"]["MSFT_lod"]["ids"]
         cov = root["extras"]["MSFT_screencoverage"]
         if len(doc["scenes"][0]["nodes"]) != 1 or not ids or len(cov) != len(ids) + 1 or cov != sorted(cov, reverse=True) \
-                or "extensions" in doc or set(doc["extensionsUsed"]) != {"MSFT_lod"} | ({"KHR_texture_basisu"} if "_ktx2" in f else set()):
+                or "extensions" in doc or set(doc["extensionsUsed"]) - {"KHR_mesh_quantization"} != {"MSFT_lod"} | ({"KHR_texture_basisu"} if "_ktx2" in f else set()) \
+                or ("KHR_mesh_quantization" in doc["extensionsUsed"]) != ("KHR_mesh_quantization" in doc.get("extensionsRequired", [])):
             print(f, "MSFT_lod structure wrong"); bad = 1
         continue
     if f.endswith("_cluster_draco.glb"):
@@ -96,6 +97,8 @@ for f in files:
         errors.append("array lengths do not match quadCount")
     if "QF_impostor_level" in doc.get("extensionsRequired", []):
         errors.append("listed in extensionsRequired")
+    if n and "KHR_mesh_quantization" not in doc.get("extensionsRequired", []):
+        errors.append("quantized attributes without KHR_mesh_quantization required")
     for e in errors:
         print(f, "extension:", getattr(e, "message", e)); bad = 1
 for f in sorted(glob.glob(os.path.join(schema_dir, "examples", "*.json"))):

@@ -45,9 +45,27 @@ TEST(Glb, QuadsMaterialsAndExtension) {
   EXPECT_EQ(prim.mode, TINYGLTF_MODE_TRIANGLES);
   EXPECT_EQ(m.accessors[static_cast<std::size_t>(prim.attributes.at("POSITION"))].count, 4u * 8u);
   EXPECT_EQ(m.accessors[static_cast<std::size_t>(prim.indices)].count, 6u * 8u);
-  // Indices as uint16 (a level has a few thousand vertices at most).
+  // Indices as uint16 (a level has a few thousand vertices at most); normal, tangent and UVs
+  // quantized (KHR_mesh_quantization), each vertex's within half a step of the float.
   EXPECT_EQ(m.accessors[static_cast<std::size_t>(prim.indices)].componentType, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
-  for (const char* attr : {"NORMAL", "TANGENT", "TEXCOORD_0"}) EXPECT_TRUE(prim.attributes.count(attr)) << attr;
+  const int types[] = {TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT};
+  const char* names[] = {"NORMAL", "TANGENT", "TEXCOORD_0"};
+  for (int i = 0; i < 3; ++i) {
+    ASSERT_TRUE(prim.attributes.count(names[i])) << names[i];
+    const tinygltf::Accessor& a = m.accessors[static_cast<std::size_t>(prim.attributes.at(names[i]))];
+    EXPECT_EQ(a.componentType, types[i]) << names[i];
+    EXPECT_TRUE(a.normalized) << names[i];
+  }
+  const tinygltf::Accessor& na = m.accessors[static_cast<std::size_t>(prim.attributes.at("NORMAL"))];
+  const tinygltf::BufferView& nv = m.bufferViews[static_cast<std::size_t>(na.bufferView)];
+  EXPECT_EQ(nv.byteStride, 4u);  // 3 bytes padded: vertex attributes are 4-byte aligned
+  const auto* n0 = reinterpret_cast<const std::int8_t*>(m.buffers[0].data.data() + nv.byteOffset);
+  std::size_t first = 0;  // primitive 0 holds the quads of atlas image 0, in order
+  while (level.atlas.tiles[first].atlas != 0) ++first;
+  const Vec3f want = level.quads[first].normal;
+  EXPECT_NEAR(n0[0] / 127.0f, want.x, 0.5f / 127);
+  EXPECT_NEAR(n0[1] / 127.0f, want.y, 0.5f / 127);
+  EXPECT_NEAR(n0[2] / 127.0f, want.z, 0.5f / 127);
   // Colour and normal atlases, embedded as PNG.
   const tinygltf::Material& mat = m.materials[static_cast<std::size_t>(prim.material)];
   EXPECT_EQ(mat.alphaMode, "MASK");
@@ -59,8 +77,8 @@ TEST(Glb, QuadsMaterialsAndExtension) {
   EXPECT_EQ(img.width, level.atlas.widths[0]);
   EXPECT_EQ(img.height, level.atlas.heights[0]);
   // The extension: optional, with one entry per quad and the octahedron's 12 edges (24 half-edges).
-  ASSERT_EQ(m.extensionsUsed, std::vector<std::string>{kImpostorExtension});
-  EXPECT_TRUE(m.extensionsRequired.empty());
+  ASSERT_EQ(m.extensionsUsed, (std::vector<std::string>{kQuantizationExtension, kImpostorExtension}));
+  EXPECT_EQ(m.extensionsRequired, std::vector<std::string>{kQuantizationExtension});
   const tinygltf::Value& ext = m.extensions.at(kImpostorExtension);
   EXPECT_EQ(ext.Get("quadCount").GetNumberAsInt(), 8);
   EXPECT_EQ(ext.Get("blend").Get<std::string>(), "additive_sorted_lock_by_depth");
