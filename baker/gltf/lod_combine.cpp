@@ -30,9 +30,9 @@ tinygltf::Model parse_glb(const std::vector<std::uint8_t>& bytes) {
     throw std::invalid_argument("a part with several buffers, skins, animations or cameras");
   // Only what append_part remaps: extensions may hold indices it would leave pointing elsewhere.
   for (const std::string& e : m.extensionsRequired)
-    if (e != kBasisuExtension) throw std::invalid_argument("a part requires " + e);
+    if (e != kBasisuExtension && e != kWebpExtension) throw std::invalid_argument("a part requires " + e);
   for (const std::string& e : m.extensionsUsed)
-    if (e != kImpostorExtension && e != kPointExtension && e != kBasisuExtension)
+    if (e != kImpostorExtension && e != kPointExtension && e != kBasisuExtension && e != kWebpExtension)
       throw std::invalid_argument("a part uses " + e);
   for (const tinygltf::Accessor& a : m.accessors)
     if (a.sparse.isSparse) throw std::invalid_argument("a part with a sparse accessor");
@@ -66,9 +66,10 @@ int append_part(tinygltf::Model& m, tinygltf::Model p, const std::string& prefix
   for (tinygltf::Sampler& s : p.samplers) m.samplers.push_back(s);
   for (tinygltf::Texture& t : p.textures) {
     shift(t.source, images), shift(t.sampler, samplers), t.name = prefix + t.name;
-    // A KTX2 texture (KHR_texture_basisu) names its image in the extension.
-    if (auto ext = t.extensions.find(kBasisuExtension); ext != t.extensions.end())
-      ext->second = Value(Value::Object{{"source", Value(ext->second.Get("source").GetNumberAsInt() + static_cast<int>(images))}});
+    // A KTX2 or WebP texture (KHR_texture_basisu, EXT_texture_webp) names its image in the extension.
+    for (const char* name : {kBasisuExtension, kWebpExtension})
+      if (auto ext = t.extensions.find(name); ext != t.extensions.end())
+        ext->second = Value(Value::Object{{"source", Value(ext->second.Get("source").GetNumberAsInt() + static_cast<int>(images))}});
     m.textures.push_back(t);
   }
   for (tinygltf::Material& x : p.materials) {
