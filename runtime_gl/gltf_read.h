@@ -17,6 +17,7 @@
 #include "core/gltf_keys.h"
 #include "runtime_gl/engine_scene.h"
 #include "runtime_gl/ktx2_image.h"
+#include "runtime_gl/webp_image.h"
 #include "runtime_gl/scene.h"
 
 namespace qf::render {
@@ -108,12 +109,14 @@ std::vector<T> number_array(const tinygltf::Value& ext, const char* key, const s
   return out;
 }
 
-// A KTX2 image's bytes as the loader kept them (loader.cpp: tinygltf does not decode KTX2), so
-// to_image transcodes them.
+// A KTX2 or WebP image's bytes as the loader kept them (loader.cpp: tinygltf decodes neither), so
+// to_image transcodes or decodes them.
 constexpr const char* kKtx2Mime = "image/ktx2";
+constexpr const char* kWebpMime = "image/webp";
 
 inline Image to_image(const tinygltf::Image& img, const std::string& path) {
   if (img.mimeType == kKtx2Mime && img.width < 0) return decode_ktx2(img.image.data(), img.image.size(), path);
+  if (img.mimeType == kWebpMime && img.width < 0) return decode_webp(img.image.data(), img.image.size(), path);
   if (img.bits != 8 || (img.component != 3 && img.component != 4) || img.width <= 0 || img.height <= 0)
     fail(path, "image", "image '" + img.name + "' is not an 8-bit RGB or RGBA image");
   Image out;
@@ -127,15 +130,23 @@ inline Image to_image(const tinygltf::Image& img, const std::string& path) {
   return out;
 }
 
-// The image a texture shows: its source, else its KHR_texture_basisu image (a KTX2-only texture
-// names its image in the extension alone); -1 for none.
-inline int texture_source(const tinygltf::Texture& t) {
-  if (t.source >= 0) return t.source;
-  const auto ext = t.extensions.find(kBasisuExtension);
+// The image of a texture's extension `name` ({"source": index}); -1 for none.
+inline int extension_source(const tinygltf::Texture& t, const char* name) {
+  const auto ext = t.extensions.find(name);
   if (ext == t.extensions.end() || !ext->second.IsObject() || !ext->second.Has("source")) return -1;
   const tinygltf::Value& s = ext->second.Get("source");
   const double d = s.IsNumber() ? s.GetNumberAsDouble() : -1;
   return d >= 0 && d < 1e9 && d == static_cast<double>(static_cast<int>(d)) ? static_cast<int>(d) : -1;
+}
+
+// The image a texture shows, as an engine that reads both extensions picks it: its
+// KHR_texture_basisu or EXT_texture_webp image (a KTX2- or WebP-only texture names its image in the
+// extension alone; with a fallback, the extension's image is the one shown), else its source; -1
+// for none.
+inline int texture_source(const tinygltf::Texture& t) {
+  for (const char* name : {kBasisuExtension, kWebpExtension})
+    if (const int s = extension_source(t, name); s >= 0) return s;
+  return t.source;
 }
 
 }  // namespace gltf

@@ -54,6 +54,14 @@ bool load_image_checked(tinygltf::Image* image, const int index, std::string* er
     image->width = image->height = -1;
     return true;
   }
+  // WebP (EXT_texture_webp): kept as bytes too, decoded by to_image (stb_image does not read WebP),
+  // so that a malformed image is refused naming the file.
+  if (bytes && size > 0 && is_webp(bytes, static_cast<std::size_t>(size))) {
+    image->image.assign(bytes, bytes + size);
+    image->mimeType = gltf::kWebpMime;
+    image->width = image->height = -1;
+    return true;
+  }
   return tinygltf::LoadImageData(image, index, err, warn, width, height, bytes, size, nullptr);
 }
 

@@ -28,7 +28,7 @@
 # growth exponents from 1M to 10M (scripts/big_table.py). Needs ~12 GB and ~15 minutes; not part
 # of "all" (CI does not run it).
 # las: LAS/LAZ reading (issue 35): 10M points of formats 3 and 7, LAS and LAZ: seconds, points/s, peak RSS.
-# textures: PNG against KTX2 textures (issue 32, scripts/textures_table.py) on bunny00's vertices and
+# textures: PNG against KTX2 and WebP textures (issue 32, scripts/textures_table.py) on bunny00's vertices and
 # a 1M-point torus: per level bytes, GPU bytes, PSNR / IoU at its own size, holes at 1/4 and 1/8 of it
 # with mipmaps; per set bytes and bake seconds.
 # usage: scripts/bench.sh [io|las|analysis|amg|render|bake|sample|cluster|batch|fidelity|chain|scans|textures|big]...   (default: all but big)

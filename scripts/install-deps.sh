@@ -10,6 +10,7 @@ packages=(
   libtinygltf-dev nlohmann-json3-dev libstb-dev   # glTF writer/loader (+ its JSON and image deps)
   libdraco-dev                                    # Draco mesh/point compression
   libzstd-dev                                     # zstd for Basis Universal (third_party/basis_universal): UASTC KTX2
+  libwebp-dev                                     # WebP textures (EXT_texture_webp): encoder (gltf/webp.cpp), decoder (runtime_gl/webp_image.cpp)
   libopenimageio-dev openimageio-tools            # image I/O and image algorithms
   libopenexr-dev                                  # EXR difference images
   libeigen3-dev                                   # sparse matrices, eigen-solvers

@@ -41,12 +41,16 @@ CommandSpec bake_spec() {
                                            "texel size at every level (as --texel-density 0)"},
                     {"max-texture", 0, "N", "1024", "largest texture side of one primitive, texels"},
                     {"margin", 0, "M", "0", "extra rectangle margin, in mean point radii"},
-                    {"textures", 0, "png|ktx2", "png", "the levels' textures: png (every engine loads them; the engine makes the mip levels,\n"
-                                                     "by box filtering) or ktx2 (Basis Universal, KHR_texture_basisu, required: ~1/4 of the\n"
-                                                     "GPU memory, coverage-preserving mip levels in the file; three.js needs its KTX2Loader)"},
+                    {"textures", 0, "png|ktx2|webp", "png", "the levels' textures: png (every engine loads them; the engine makes the mip levels,\n"
+                                                          "by box filtering), ktx2 (Basis Universal, KHR_texture_basisu, required: ~1/4 of the\n"
+                                                          "GPU memory, coverage-preserving mip levels in the file; three.js needs its KTX2Loader)\n"
+                                                          "or webp (EXT_texture_webp, required: fewer file bytes, the GPU memory and mip levels\n"
+                                                          "of png; three.js and Babylon.js load it, Blender 3.4 does not)"},
                     {"ktx2-color", 0, "etc1s|uastc", "etc1s", "--textures ktx2: the Basis codec of colour (+ alpha) and emission textures"},
                     {"ktx2-normal", 0, "etc1s|uastc", "uastc", "--textures ktx2: the Basis codec of normal maps and occlusion/roughness/metallic"},
                     {"ktx2-quality", 0, "Q", "128", "--textures ktx2: ETC1S quality, 1..255 (codebook sizes; more is larger and sharper)"},
+                    {"webp-color", 0, "Q|lossless", "80", "--textures webp: colour (+ alpha, kept exact) and emission: lossy at quality Q (1..100) or lossless"},
+                    {"webp-normal", 0, "Q|lossless", "90", "--textures webp: normal maps: lossy at quality Q (1..100) or lossless"},
                     {"lod-file", 0, "", "", "also write STEM_lods.glb: every level in one file under MSFT_lod (finest in the scene,\n"
                                              "the others as its lower LODs, switched by MSFT_screencoverage)"},
                     {"lod-screen-height", 0, "PX", "1080", "screen height the MSFT_screencoverage values and the chain's switch distances assume"},
@@ -85,6 +89,24 @@ CommandSpec bake_spec() {
   return spec;
 }
 
+namespace {
+
+// --webp-color / --webp-normal: "lossless" or a lossy quality 1..100; the rest of `fallback` (exact
+// alpha, effort) stays as measured.
+WebpOptions read_webp_setting(const OptionValues& args, const std::string& name, WebpOptions fallback) {
+  if (!args.has(name)) return fallback;
+  if (args.get(name) == "lossless") {
+    fallback.lossless = true;
+    fallback.quality = 75;  // libwebp's default effort
+    return fallback;
+  }
+  fallback.lossless = false;
+  fallback.quality = static_cast<int>(args.get_int(name, fallback.quality, 1, 100));
+  return fallback;
+}
+
+}  // namespace
+
 AssetOptions read_asset_options(const OptionValues& args) {
   AssetOptions a;
   BakeOptions& o = a.bake;
@@ -99,12 +121,16 @@ AssetOptions read_asset_options(const OptionValues& args) {
   o.texel_density = args.get_double("texel-density", args.has("texel") ? 0.0 : o.texel_density, 0.0, 1000.0);
   o.texture.max_side = static_cast<int>(args.get_int("max-texture", o.texture.max_side, 4, 4096 - 8));
   o.support.margin = static_cast<float>(args.get_double("margin", o.support.margin, 0.0, 100.0));
-  o.gltf.textures = parse_textures(args.get_choice("textures", {"png", "ktx2"}, textures_name(o.gltf.textures)));
+  o.gltf.textures = parse_textures(args.get_choice("textures", {"png", "ktx2", "webp"}, textures_name(o.gltf.textures)));
   o.gltf.color_codec = parse_basis_codec(args.get_choice("ktx2-color", {"etc1s", "uastc"}, basis_codec_name(o.gltf.color_codec)));
   o.gltf.normal_codec = parse_basis_codec(args.get_choice("ktx2-normal", {"etc1s", "uastc"}, basis_codec_name(o.gltf.normal_codec)));
   o.gltf.etc1s_quality = static_cast<int>(args.get_int("ktx2-quality", o.gltf.etc1s_quality, 1, 255));
   if (o.gltf.textures != GltfOptions::Textures::kKtx2 && (args.has("ktx2-color") || args.has("ktx2-normal") || args.has("ktx2-quality")))
     throw UsageError("--ktx2-color, --ktx2-normal and --ktx2-quality need --textures ktx2");
+  o.gltf.webp_color = read_webp_setting(args, "webp-color", o.gltf.webp_color);
+  o.gltf.webp_normal = read_webp_setting(args, "webp-normal", o.gltf.webp_normal);
+  if (o.gltf.textures != GltfOptions::Textures::kWebp && (args.has("webp-color") || args.has("webp-normal")))
+    throw UsageError("--webp-color and --webp-normal need --textures webp");
   if (args.has("levels") && args.has("primitives")) throw UsageError("give --levels or --primitives, not both");
   if (args.has("levels")) {
     o.levels = args.get_int_list("levels", std::numeric_limits<long long>::min(), std::numeric_limits<long long>::max());

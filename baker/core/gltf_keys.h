@@ -22,5 +22,7 @@ constexpr const char* kScreenCoverageExtra = "MSFT_screencoverage";
 constexpr const char* kQuantizationExtension = "KHR_mesh_quantization";
 // A texture whose image is KTX2 (Basis Universal): its extension names the image (issue 32).
 constexpr const char* kBasisuExtension = "KHR_texture_basisu";
+// A texture whose image is WebP: its extension names the image (issue 32).
+constexpr const char* kWebpExtension = "EXT_texture_webp";
 
 }  // namespace qf

@@ -86,13 +86,17 @@ Value int_array(const std::vector<std::uint32_t>& v) {
 // What a texture holds: how its mip levels are made and how it is encoded.
 enum class TextureClass { kColor, kNormal, kData, kEmissive };
 
+std::vector<std::uint8_t> rgb_of(const std::vector<std::uint8_t>& rgba) {
+  std::vector<std::uint8_t> rgb(rgba.size() / 4 * 3);
+  for (std::size_t k = 0; k < rgba.size() / 4; ++k) std::copy_n(&rgba[4 * k], 3, &rgb[3 * k]);
+  return rgb;
+}
+
 // `rgb_only` (PNG): the alpha channel is left out (normal maps, whose alpha is unused and 255: 12%
 // fewer bytes for the bunny's finest normal atlas).
 std::vector<std::uint8_t> png_bytes(const std::vector<std::uint8_t>& rgba, int w, int h, bool rgb_only) {
   if (!rgb_only) return encode_png(rgba.data(), w, h, 4);
-  std::vector<std::uint8_t> rgb(rgba.size() / 4 * 3);
-  for (std::size_t k = 0; k < rgba.size() / 4; ++k) std::copy_n(&rgba[4 * k], 3, &rgb[3 * k]);
-  return encode_png(rgb.data(), w, h, 3);
+  return encode_png(rgb_of(rgba).data(), w, h, 3);
 }
 
 // KTX2: the coverage-preserving chain (colour, at the MASK cutoff) or the plain one, encoded with
@@ -113,28 +117,43 @@ std::vector<std::uint8_t> ktx2_bytes(const std::vector<std::uint8_t>& rgba, int 
   return encode_ktx2(mip_levels(TextureImage{w, h, rgba}, mip), k);
 }
 
+// WebP: the class's settings; colour keeps its alpha, the others are RGB as in the PNG path.
+// Occlusion/roughness/metallic are data: lossless, whatever the normal maps' setting.
+std::vector<std::uint8_t> webp_bytes(const std::vector<std::uint8_t>& rgba, int w, int h, TextureClass cls,
+                                     const GltfOptions& options) {
+  WebpOptions o = cls == TextureClass::kNormal ? options.webp_normal : options.webp_color;
+  if (cls == TextureClass::kData) o = WebpOptions{}, o.lossless = true;
+  if (cls == TextureClass::kColor) return encode_webp(rgba.data(), w, h, 4, o);
+  return encode_webp(rgb_of(rgba).data(), w, h, 3, o);
+}
+
 // Adds an image and a texture of it in the options' format; returns the texture's index.
 int add_texture(tinygltf::Model& m, const std::vector<std::uint8_t>& rgba, int w, int h, const std::string& name,
                 TextureClass cls, const GltfOptions& options, TextureCost* cost) {
-  const bool ktx2 = options.textures == GltfOptions::Textures::kKtx2;
-  const std::vector<std::uint8_t> bytes = ktx2 ? ktx2_bytes(rgba, w, h, cls, options) : png_bytes(rgba, w, h, cls != TextureClass::kColor);
+  const bool ktx2 = options.textures == GltfOptions::Textures::kKtx2, webp = options.textures == GltfOptions::Textures::kWebp;
+  const std::vector<std::uint8_t> bytes = ktx2   ? ktx2_bytes(rgba, w, h, cls, options)
+                                          : webp ? webp_bytes(rgba, w, h, cls, options)
+                                                 : png_bytes(rgba, w, h, cls != TextureClass::kColor);
   tinygltf::Image img;
   img.name = name;
-  img.mimeType = ktx2 ? "image/ktx2" : "image/png";
+  img.mimeType = ktx2 ? "image/ktx2" : webp ? "image/webp" : "image/png";
   img.bufferView = add_view(m, bytes.data(), bytes.size(), 0);
   m.images.push_back(img);
   tinygltf::Texture t;
   const int source = static_cast<int>(m.images.size() - 1);
-  // KHR_texture_basisu without a fallback: the texture names its KTX2 image in the extension
-  // alone, and the extension is required (the extension's spec).
+  // KHR_texture_basisu and EXT_texture_webp without a fallback: the texture names its image in the
+  // extension alone, and the extension is required (the extensions' specs). A PNG fallback would
+  // cost its bytes on top (docs/textures.md): WebP's only gain is bytes.
   if (ktx2) t.extensions[kBasisuExtension] = Value(Value::Object{{"source", Value(source)}});
+  else if (webp) t.extensions[kWebpExtension] = Value(Value::Object{{"source", Value(source)}});
   else t.source = source;
   t.sampler = 0;
   m.textures.push_back(t);
   if (cost) {
     cost->file_bytes += bytes.size();
-    // Every mip level down to 1x1: RGBA8 texels, or 4x4 blocks of 16 bytes (a level under 4 texels
-    // a side still takes a whole block).
+    // Every mip level down to 1x1: RGBA8 texels (PNG and WebP decode to them, and the engine makes
+    // the levels), or 4x4 blocks of 16 bytes (KTX2; a level under 4 texels a side still takes a
+    // whole block).
     for (std::size_t lw = static_cast<std::size_t>(w), lh = static_cast<std::size_t>(h);; lw = std::max<std::size_t>(1, lw / 2), lh = std::max<std::size_t>(1, lh / 2)) {
       cost->gpu_bytes += ktx2 ? 16 * ((lw + 3) / 4) * ((lh + 3) / 4) : 4 * lw * lh;
       if (lw == 1 && lh == 1) break;
@@ -248,10 +267,12 @@ int add_level_materials(tinygltf::Model& m, const Atlas& atlas, const GltfOption
     mat.doubleSided = true;
     m.materials.push_back(mat);
   }
-  if (options.textures == GltfOptions::Textures::kKtx2 && !atlas.images.empty() &&
-      std::find(m.extensionsUsed.begin(), m.extensionsUsed.end(), kBasisuExtension) == m.extensionsUsed.end()) {
-    m.extensionsUsed.push_back(kBasisuExtension);
-    m.extensionsRequired.push_back(kBasisuExtension);
+  const char* ext = options.textures == GltfOptions::Textures::kKtx2   ? kBasisuExtension
+                    : options.textures == GltfOptions::Textures::kWebp ? kWebpExtension
+                                                                       : nullptr;
+  if (ext && !atlas.images.empty() && std::find(m.extensionsUsed.begin(), m.extensionsUsed.end(), ext) == m.extensionsUsed.end()) {
+    m.extensionsUsed.push_back(ext);
+    m.extensionsRequired.push_back(ext);
   }
   return first_material;
 }
@@ -367,12 +388,15 @@ std::vector<std::uint8_t> write_glb(tinygltf::Model& m) {
 
 }  // namespace
 
-const char* textures_name(GltfOptions::Textures textures) { return textures == GltfOptions::Textures::kKtx2 ? "ktx2" : "png"; }
+const char* textures_name(GltfOptions::Textures textures) {
+  return textures == GltfOptions::Textures::kKtx2 ? "ktx2" : textures == GltfOptions::Textures::kWebp ? "webp" : "png";
+}
 
 GltfOptions::Textures parse_textures(const std::string& name) {
   if (name == "png") return GltfOptions::Textures::kPng;
   if (name == "ktx2") return GltfOptions::Textures::kKtx2;
-  throw std::invalid_argument("'" + name + "' is not a texture format (png or ktx2)");
+  if (name == "webp") return GltfOptions::Textures::kWebp;
+  throw std::invalid_argument("'" + name + "' is not a texture format (png, ktx2 or webp)");
 }
 
 std::vector<std::uint8_t> encode_glb(const ImpostorLevel& level, const GltfOptions& options, TextureCost* cost) {

@@ -12,6 +12,7 @@
 #include "clustering/clustering.h"
 #include "core/gltf_keys.h"
 #include "gltf/ktx2.h"
+#include "gltf/webp.h"
 #include "primitives/atlas.h"
 #include "primitives/support.h"
 
@@ -43,14 +44,20 @@ struct GltfOptions {
   // makes its mip levels itself by box filtering (an alpha-tested level loses coverage as it
   // shrinks). KTX2 (KHR_texture_basisu, then required): Basis Universal with the mip levels written
   // in, coverage-preserving at alpha_cutoff (primitives/mip_levels.h); engines need a transcoder.
-  enum class Textures { kPng, kKtx2 };
+  // WebP (EXT_texture_webp, then required): fewer file bytes than PNG, no mip levels, the same GPU
+  // memory (decoded to RGBA8); three.js and Babylon.js load it without setup.
+  enum class Textures { kPng, kKtx2, kWebp };
   Textures textures = Textures::kPng;
   BasisCodec color_codec = BasisCodec::kEtc1s;   // colour + alpha, emission
   BasisCodec normal_codec = BasisCodec::kUastc;  // normal maps and occlusion/roughness/metallic
   int etc1s_quality = 128;
   int threads = 1;  // the KTX2 encoder's (the bytes do not depend on it)
+  // WebP settings by texture class (docs/textures.md, "WebP settings, by measurement"): colour +
+  // alpha and emission; normal maps. Occlusion/roughness/metallic data is always lossless.
+  WebpOptions webp_color = default_webp_color();
+  WebpOptions webp_normal = default_webp_normal();
 };
-const char* textures_name(GltfOptions::Textures textures);         // "png" | "ktx2"
+const char* textures_name(GltfOptions::Textures textures);         // "png" | "ktx2" | "webp"
 GltfOptions::Textures parse_textures(const std::string& name);      // throws std::invalid_argument
 
 // What a level's textures cost a user (issue 32): their bytes in the file, and the GPU memory

@@ -29,7 +29,7 @@ tinygltf::Model parse_glb(const std::vector<std::uint8_t>& bytes) {
   if (m.buffers.size() > 1 || !m.skins.empty() || !m.animations.empty() || !m.cameras.empty())
     throw std::invalid_argument("a part with several buffers, skins, animations or cameras");
   // Only what append_part remaps: extensions may hold indices it would leave pointing elsewhere.
-  const auto copied = [](const std::string& e) { return e == kBasisuExtension || e == kQuantizationExtension; };
+  const auto copied = [](const std::string& e) { return e == kBasisuExtension || e == kWebpExtension || e == kQuantizationExtension; };
   for (const std::string& e : m.extensionsRequired)
     if (!copied(e)) throw std::invalid_argument("a part requires " + e);
   for (const std::string& e : m.extensionsUsed)
@@ -66,9 +66,10 @@ int append_part(tinygltf::Model& m, tinygltf::Model p, const std::string& prefix
   for (tinygltf::Sampler& s : p.samplers) m.samplers.push_back(s);
   for (tinygltf::Texture& t : p.textures) {
     shift(t.source, images), shift(t.sampler, samplers), t.name = prefix + t.name;
-    // A KTX2 texture (KHR_texture_basisu) names its image in the extension.
-    if (auto ext = t.extensions.find(kBasisuExtension); ext != t.extensions.end())
-      ext->second = Value(Value::Object{{"source", Value(ext->second.Get("source").GetNumberAsInt() + static_cast<int>(images))}});
+    // A KTX2 or WebP texture (KHR_texture_basisu, EXT_texture_webp) names its image in the extension.
+    for (const char* name : {kBasisuExtension, kWebpExtension})
+      if (auto ext = t.extensions.find(name); ext != t.extensions.end())
+        ext->second = Value(Value::Object{{"source", Value(ext->second.Get("source").GetNumberAsInt() + static_cast<int>(images))}});
     m.textures.push_back(t);
   }
   for (tinygltf::Material& x : p.materials) {

@@ -25,7 +25,20 @@ const readJson = (p) => JSON.parse(fs.readFileSync(p, 'utf8'));
 async function figures(page, selector) {
   return page.$$eval(selector, (els) => els.map((e) => ({ ...e.dataset, text: e.textContent })));
 }
-// The texels of a .glb's images, read from their headers (PNG IHDR; KTX2 level 0).
+// A WebP image's width x height from its first chunk: VP8X (the extended header: 24-bit sizes less
+// one), VP8L (lossless: 14-bit sizes less one after the 0x2f signature) or VP8 (lossy: the key
+// frame's 14-bit sizes); null for another chunk.
+function webpTexels(data) {
+  const chunk = data.subarray(12, 16).toString('latin1');
+  if (chunk === 'VP8X') return (data.readUIntLE(24, 3) + 1) * (data.readUIntLE(27, 3) + 1);
+  if (chunk === 'VP8L') {
+    const bits = data.readUInt32LE(21);
+    return ((bits & 0x3fff) + 1) * (((bits >>> 14) & 0x3fff) + 1);
+  }
+  if (chunk === 'VP8 ') return (data.readUInt16LE(26) & 0x3fff) * (data.readUInt16LE(28) & 0x3fff);
+  return null;
+}
+// The texels of a .glb's images, read from their headers (PNG IHDR; KTX2 level 0; WebP).
 function glbTexels(file) {
   const b = fs.readFileSync(file);
   const jsonLength = b.readUInt32LE(12);
@@ -37,7 +50,9 @@ function glbTexels(file) {
     const data = bin.subarray(view.byteOffset || 0, (view.byteOffset || 0) + view.byteLength);
     if (data.readUInt32BE(0) === 0x89504e47) texels += data.readUInt32BE(16) * data.readUInt32BE(20);
     else if (data.subarray(1, 7).toString('latin1') === 'KTX 20') texels += data.readUInt32LE(20) * data.readUInt32LE(24);
-    else problems.push(`${file}: an image neither PNG nor KTX2`);
+    else if (data.subarray(0, 4).toString('latin1') === 'RIFF' && data.subarray(8, 12).toString('latin1') === 'WEBP' && webpTexels(data) !== null)
+      texels += webpTexels(data);
+    else problems.push(`${file}: an image neither PNG, KTX2 nor WebP`);
   }
   return texels;
 }

@@ -226,10 +226,14 @@ for p, k in zip(png["levels"], ktx["levels"]):
         assert "source" not in t and doc["images"][t["extensions"]["KHR_texture_basisu"]["source"]]["mimeType"] == "image/ktx2"
 PY
 expect 2 "--ktx2-color needs --textures ktx2" -- "$bake" "$work/oct.ply" -o "$work/ktx_x" --ktx2-color uastc -q
-expect 2 "--textures takes png or ktx2" -- "$bake" "$work/oct.ply" -o "$work/ktx_x" --textures jpeg -q
+expect 2 "--textures takes png, ktx2 or webp" -- "$bake" "$work/oct.ply" -o "$work/ktx_x" --textures jpeg -q
+# WebP (the webp test checks its bakes): its options need it, and take lossless or a quality 1..100.
+expect 2 "--webp-color needs --textures webp" -- "$bake" "$work/oct.ply" -o "$work/ktx_x" --webp-color 80 -q
+expect 2 "--webp-normal takes lossless or 1..100" -- "$bake" "$work/oct.ply" -o "$work/ktx_x" --textures webp --webp-normal 101 -q
 [[ ! -e "$work/ktx_x" ]] && ok || bad "a refused --textures left $work/ktx_x"
 "$bake" bake --help >"$work/out"
-grep -A2 -- "--textures png|ktx2" "$work/out" | grep -q "(default: png)" && ok || bad "bake --help gives --textures' default"
+grep -A5 -- "--textures png|ktx2|webp" "$work/out" | grep -q "(default: png)" && ok || bad "bake --help gives --textures' default"
+grep -A1 -- "--webp-normal Q|lossless" "$work/out" | grep -q "(default: " && ok || bad "bake --help gives --webp-normal's default"
 
 # Texels sized for the screen (--texel-density, default 1): each level's texel is at least one screen
 # pixel where it is drawn largest, so it holds at most (4 x max_screen_pixels)^2 texels; the manifest

@@ -8,7 +8,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 "$writer" "$work" || exit 1
 files=("$work"/*.glb)
-[[ ${#files[@]} -ge 12 ]] || { echo "expected 12 .glb files, got ${#files[@]}"; exit 1; }
+[[ ${#files[@]} -ge 19 ]] || { echo "expected 19 .glb files, got ${#files[@]}"; exit 1; }
 node "$validator/validate.js" "${files[@]}"
 status=$?
 # The extension block of every file, and the schema's examples, against the extension's schema.
@@ -42,6 +42,18 @@ for f in files:
                 print(f, "KTX2 texture wrong"); bad = 1
         if "KHR_texture_basisu" not in doc.get("extensionsRequired", []) or "KHR_texture_basisu" not in doc["extensionsUsed"]:
             print(f, "KHR_texture_basisu not required"); bad = 1
+    if "_webp" in f:
+        # WebP textures (EXT_texture_webp) without fallback: required, every texture names a WebP
+        # image (RIFF....WEBP) in the extension alone.
+        bin0 = 20 + length + 8
+        for t in doc["textures"]:
+            img = doc["images"][t.get("extensions", {}).get("EXT_texture_webp", {}).get("source", -1)]
+            view = doc["bufferViews"][img["bufferView"]]
+            head = data[bin0 + view.get("byteOffset", 0):bin0 + view.get("byteOffset", 0) + 12]
+            if "source" in t or img.get("mimeType") != "image/webp" or head[:4] != b"RIFF" or head[8:12] != b"WEBP":
+                print(f, "WebP texture wrong"); bad = 1
+        if doc.get("extensionsRequired") != ["EXT_texture_webp"] or "EXT_texture_webp" not in doc["extensionsUsed"]:
+            print(f, "EXT_texture_webp not required"); bad = 1
     if f.endswith("_lods.glb"):
         # Every level under MSFT_lod: only the finest node in the scene, the others as its ids,
         # one coverage per level, decreasing; no QF extension (a runtime reads the level files).
@@ -50,6 +62,7 @@ for f in files:
         cov = root["extras"]["MSFT_screencoverage"]
         if len(doc["scenes"][0]["nodes"]) != 1 or not ids or len(cov) != len(ids) + 1 or cov != sorted(cov, reverse=True) \
                 or "extensions" in doc or set(doc["extensionsUsed"]) - {"KHR_mesh_quantization"} != {"MSFT_lod"} | ({"KHR_texture_basisu"} if "_ktx2" in f else set()) \
+                | ({"EXT_texture_webp"} if "_webp" in f else set()) \
                 or ("KHR_mesh_quantization" in doc["extensionsUsed"]) != ("KHR_mesh_quantization" in doc.get("extensionsRequired", [])):
             print(f, "MSFT_lod structure wrong"); bad = 1
         continue

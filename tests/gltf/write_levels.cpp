@@ -53,6 +53,12 @@ int main(int argc, char** argv) {
       const std::vector<std::uint8_t> ka = encode_glb(a, k), kc = encode_glb(c, k);
       write_bytes_atomically(dir + "/torus_ktx2.glb", ka);
       write_bytes_atomically(dir + "/torus_ktx2_lods.glb", combine_lod_glb({&ka, &kc}, {0.1, 0}, "impostor"));
+      // WebP textures (EXT_texture_webp, issue 32): a level, and levels under MSFT_lod.
+      GltfOptions w;
+      w.textures = GltfOptions::Textures::kWebp;
+      const std::vector<std::uint8_t> wa = encode_glb(a, w), wc = encode_glb(c, w);
+      write_bytes_atomically(dir + "/torus_webp.glb", wa);
+      write_bytes_atomically(dir + "/torus_webp_lods.glb", combine_lod_glb({&wa, &wc}, {0.1, 0}, "impostor"));
     }
   }
   // A point impostor of a sampled mesh (COLOR_0 as 16-bit linear RGBA, mode POINTS).
@@ -99,5 +105,10 @@ int main(int argc, char** argv) {
   const AssetBake plate_ktx2 = bake_asset(dir + "/plate_asset.glb", ao, "plate_asset.glb");
   if (plate_ktx2.files.empty()) return std::fprintf(stderr, "the plate's KTX2 bake wrote no level\n"), 1;
   write_bytes_atomically(dir + "/plate_level_ktx2.glb", plate_ktx2.files.front().bytes);
+  // ... and in WebP: ORM lossless, emission as colour.
+  ao.bake.gltf.textures = GltfOptions::Textures::kWebp;
+  const AssetBake plate_webp = bake_asset(dir + "/plate_asset.glb", ao, "plate_asset.glb");
+  if (plate_webp.files.empty()) return std::fprintf(stderr, "the plate's WebP bake wrote no level\n"), 1;
+  write_bytes_atomically(dir + "/plate_level_webp.glb", plate_webp.files.front().bytes);
   return 0;
 }

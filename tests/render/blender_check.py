@@ -5,8 +5,9 @@
 #   blender -b --factory-startup --python-exit-code 1 -P blender_check.py -- render FILE.glb CAMERAS.json OUTDIR eevee|cycles SAMPLES
 #
 # import: CASES.json is a list of {"file", "expect", "nodes"}: expect "imports" (the file must import
-# with no error or warning, and every fact below must hold), or "ktx2" / "draco" (Blender 3.4 cannot
-# decode KHR_texture_basisu, and Debian ships no Draco decoder for it: the import must either be
+# with no error or warning, and every fact below must hold), or "ktx2" / "webp" / "draco" (Blender 3.4
+# cannot decode KHR_texture_basisu, its importer does not know EXT_texture_webp, and Debian ships no
+# Draco decoder for it: the import must either be
 # refused with an error that names what is missing, or succeed and pass the same checks); "nodes":
 # node names that must arrive exactly (the `_LODn` names of a combined file), or absent.
 # Every fact is read from the .glb itself (its JSON chunk), so what is checked is what the file says.
@@ -190,7 +191,7 @@ def check_import(case, problems, facts):
     expect = case.get("expect", "imports")
     if error is not None:
         # The refusals Blender 3.4 is known for must name what is missing; anything else is a failure.
-        named = {"ktx2": "KHR_texture_basisu", "draco": "draco"}.get(expect)
+        named = {"ktx2": "KHR_texture_basisu", "webp": "EXT_texture_webp", "draco": "draco"}.get(expect)
         if named and named.lower() in error.lower():
             facts.add(f"refused, with: {error}")
             return "refused"

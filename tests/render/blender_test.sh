@@ -8,9 +8,11 @@
 # under the node's name (the `_LODn` suffixes), the triangle and point counts, MASK as blend_method
 # CLIP at the file's alphaCutoff, doubleSided as backface culling off, the base colour texture on the
 # Principled BSDF's Base Color (its alpha on Alpha), the normal texture through a Normal Map node,
-# COLOR_0 as a colour attribute, node extras as custom properties. The KTX2 level (KHR_texture_basisu)
-# and the Draco copy of the clustering LOD must be refused with an error naming what Blender 3.4
-# lacks (or import and pass the same checks, should a later Blender decode them).
+# COLOR_0 as a colour attribute, node extras as custom properties. The KTX2 level (KHR_texture_basisu),
+# the WebP level (EXT_texture_webp: Blender 3.4's importer does not list it, so a file that requires
+# it is refused, though Blender itself reads WebP images) and the Draco copy of the clustering LOD
+# must be refused with an error naming what Blender 3.4 lacks (or import and pass the same checks,
+# should a later Blender decode them).
 # Render: EEVEE draws the sphere's finest level from `qf-render eval`'s 8 cameras at 128 px with the
 # engine method's lights; `qf-render eval --external` scores it: within 1 dB PSNR and 0.005 IoU of the
 # engine method against the reference (the web engines' bound), and against the engine method's own
@@ -36,6 +38,8 @@ run_blender() { env -u DISPLAY "$blender" -b --factory-startup --python-exit-cod
   fail "bake sphere (levels)"
 "$bake" "$work/sphere.ply" -o "$work/ktx2" --primitives 30 --ldi 96 --mesh-lods none --no-measure --textures ktx2 -q ||
   fail "bake sphere (ktx2)"
+"$bake" "$work/sphere.ply" -o "$work/webp" --primitives 30 --ldi 96 --mesh-lods none --no-measure --textures webp -q ||
+  fail "bake sphere (webp)"
 "$bake" cluster "$work/sphere.ply" -o "$work/cluster" --cells 0.6 --draco -q || fail "cluster sphere"
 
 # The cases: every .glb the bakes wrote; the combined files with the node names their manifest implies.
@@ -51,13 +55,13 @@ for path in sorted(glob.glob(os.path.join(work, "*", "*.glb"))):
     if name.endswith("_lods.glb"):
         prefix = "chain" if bake == "chain" else "impostor"
         case["nodes"] = [f"{prefix}_LOD{i}" for i in range(len(parts(bake)))]
-    if bake == "ktx2" and "_L" in name:
-        case["expect"] = "ktx2"
+    if bake in ("ktx2", "webp") and "_L" in name:
+        case["expect"] = bake
     if name.endswith(".draco.glb"):
         case["expect"] = "draco"
     cases.append(case)
 kinds = {"impostor level": "_L", "mesh LOD": "_S", "point impostor": "_points", "clustering LOD": "_C0.glb",
-         "levels' _lods.glb": "levels/", "chain's _lods.glb": "chain/sphere_lods", "KTX2 level": "ktx2/sphere_L",
+         "levels' _lods.glb": "levels/", "chain's _lods.glb": "chain/sphere_lods", "KTX2 level": "ktx2/sphere_L", "WebP level": "webp/sphere_L",
          "Draco": ".draco.glb"}
 missing = [k for k, s in kinds.items() if not any(s in c["file"] for c in cases)]
 if missing:

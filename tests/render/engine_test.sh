@@ -10,7 +10,7 @@
 # mesh, whose alpha is encoded; both ramped at their edges (pipeline/bake.h use_surface_edges); the
 # simplified mesh LOD, a vertex-clustering LOD with thick lines, the same compressed with Draco and
 # the point impostor of the sphere; an impostor level of a generated bush, foliage whose quads are
-# drawn from its alpha-masked leaves; the material plate and its level, whose roughness, metallic
+# drawn from its alpha-masked leaves (also with WebP textures, and in three.js with KTX2 ones); the material plate and its level, whose roughness, metallic
 # and emission vary (metallicRoughness, ORM and emissive textures); a torus's combined STEM_lods.glb (MSFT_lod) of its levels and
 # that of its recommended chain. Neither engine switches MSFT_lod levels by screen coverage: each
 # shows one level of a combined file, and the test holds it to that level's own file and checks
@@ -43,6 +43,9 @@ fail() { echo "FAIL: $*"; exit 1; }
 # decoder from a CDN, so it is not asked to): within 0.5 dB of the PNG level's PSNR (issue 32).
 [[ $engine == three ]] && { "$bake" "$work/bush.glb" -o "$work/bushk" --primitives 100 --ldi 128 --mesh-lods none --no-measure --textures ktx2 -q ||
   fail "bake bush ktx2"; }
+# Both engines draw it with WebP textures (EXT_texture_webp, decoded by the browser without setup):
+# within 0.5 dB of the PNG level's PSNR too (issue 32).
+"$bake" "$work/bush.glb" -o "$work/bushw" --primitives 100 --ldi 128 --mesh-lods none --no-measure --textures webp -q || fail "bake bush webp"
 "$bake" generate plate -o "$work/plate.glb" -q || fail "generate plate"
 "$bake" "$work/plate.glb" -o "$work/plate" --primitives 30 --ldi 96 --mesh-lods none --no-measure -q || fail "bake plate"
 "$bake" generate torus -o "$work/torus.ply" -q || fail "generate torus"
@@ -65,6 +68,7 @@ cases=("$src/samples/octahedron.ply|$(ls "$work"/oct/octahedron_L*.glb | head -n
        "$work/torus.ply|$work/chain/torus_lods.glb|$work/chain/$chain0|chain_LOD0")
 bush_png=6
 [[ $engine == three ]] && cases+=("$work/bush.glb|$(ls "$work"/bushk/bush_L*.glb | head -n 1)") && bush_ktx2=$((${#cases[@]} - 1))
+cases+=("$work/bush.glb|$(ls "$work"/bushw/bush_L*.glb | head -n 1)") && bush_webp=$((${#cases[@]} - 1))
 
 # The cameras frame the reference: one eval per reference writes them.
 declare -A cams
@@ -113,15 +117,19 @@ print(f"{'FAIL' if problems else 'ok  '} {file}{f' (shows {shown})' if shown els
 sys.exit(1 if problems else 0)
 PY
 done
-if [[ -n "${bush_ktx2:-}" ]]; then
-  python3 - "$work/eval_$bush_png.json" "$work/eval_$bush_ktx2.json" <<'PY' || status=1
+# The compressed levels as the engine draws them, against its PNG level: within 0.5 dB.
+for kind in ktx2 webp; do
+  var=bush_$kind
+  [[ -n "${!var:-}" ]] || continue
+  python3 - "$work/eval_$bush_png.json" "$work/eval_${!var}.json" "$name" "$kind" <<'PY' || status=1
 import json, sys
-png, ktx2 = (json.load(open(f))["mean"]["external"] for f in sys.argv[1:3])
-d = ktx2["psnr"] - png["psnr"]
+png, other = (json.load(open(f))["mean"]["external"] for f in sys.argv[1:3])
+name, kind = sys.argv[3:5]
+d = other["psnr"] - png["psnr"]
 ok = abs(d) <= 0.5
-print(f"{'ok  ' if ok else 'FAIL'} three.js KTX2 level {ktx2['psnr']:.3f} dB IoU {ktx2['iou']:.4f} vs its PNG level {png['psnr']:.3f} dB IoU {png['iou']:.4f} ({d:+.3f} dB)")
+print(f"{'ok  ' if ok else 'FAIL'} {name} {kind.upper()} level {other['psnr']:.3f} dB IoU {other['iou']:.4f} vs its PNG level {png['psnr']:.3f} dB IoU {png['iou']:.4f} ({d:+.3f} dB)")
 sys.exit(0 if ok else 1)
 PY
-fi
+done
 [[ $status == 0 ]] && echo "engine method agrees with $name on ${#cases[@]} files"
 exit $status

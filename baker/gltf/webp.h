@@ -1,0 +1,42 @@
+// WebP images (EXT_texture_webp, issue 32): a level's atlas images in fewer file bytes than PNG.
+// A WebP image carries no mip levels and decodes to RGBA8 like a PNG, so it changes what a user
+// downloads, not the GPU memory. libwebp's encoder lives in webp.cpp alone.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace qf {
+
+struct WebpOptions {
+  // Lossless (VP8L) or lossy (VP8, YUV 4:2:0) for the colour channels.
+  bool lossless = false;
+  // Lossy: 0..100, the quantiser (more is larger and closer). Lossless: the effort of the search
+  // (0..100, more is smaller and slower; the decoded texels are exact whatever it is).
+  int quality = 90;
+  // Lossy with alpha: 100 keeps the alpha plane exact (compressed losslessly), which an alpha-tested
+  // texture needs: its cutoff turns alpha differences into coverage differences.
+  int alpha_quality = 100;
+  // Keep the RGB under alpha 0 as given. Off, the encoder flattens it (lossy) or zeroes it
+  // (lossless) to save bytes, and bilinear filtering then mixes that into the visible texels.
+  bool exact = true;
+  // Lossy: the sharp (iterative) RGB to YUV conversion, which keeps colour edges that 4:2:0
+  // subsampling would smear; slower.
+  bool sharp_yuv = false;
+  // Lossless: near-lossless preprocessing, 0..100 (100 = off; less changes texels by more).
+  int near_lossless = 100;
+  int method = 4;  // 0..6: encoder effort (speed against size)
+};
+
+// The settings the bake uses by default (measured on bunny00's default set, docs/textures.md).
+WebpOptions default_webp_color();   // colour + alpha, emission
+WebpOptions default_webp_normal();  // normal maps
+
+// The WebP bytes of an image of `channels` (3: RGB, 4: RGBA) 8-bit channels, `w` x `h` texels, rows
+// top to bottom. An RGB image is written without alpha. Same pixels and options, same bytes (one
+// thread: libwebp's output does not depend on it, and the levels are encoded one at a time).
+// Throws std::invalid_argument for a size WebP cannot hold (over 16383 a side) and
+// std::runtime_error when the encoder fails.
+std::vector<std::uint8_t> encode_webp(const std::uint8_t* pixels, int w, int h, int channels, const WebpOptions& options);
+
+}  // namespace qf
