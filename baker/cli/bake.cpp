@@ -14,6 +14,7 @@
 #include "cli/commands.h"
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/memory.h"
 #include "core/progress.h"
 #include "pipeline/asset.h"
 #include "tools/measure.h"
@@ -77,6 +78,12 @@ CommandSpec bake_spec() {
                                                   "the input beside every output drawn by the engine method at its own on-screen size and at\n"
                                                   "256 px, per file bytes, texels, GPU bytes and measured error, the chain as bands, the\n"
                                                   "warnings; without a GL driver it has no images and says so)"},
+                    {"max-memory", 0, "SIZE", "the memory available", "the memory the bake may take (bytes, or 512M, 4G: powers of 1024). A point set\n"
+                                                                         "whose estimated need (384 MB + (440 + 8 k) bytes a point) is larger bakes out of core:\n"
+                                                                         "decomposed on a subsample that fits, its textures resampled from every point, read\n"
+                                                                         "back in tiles from a scratch file in $TMPDIR (removed at the end, on Ctrl-C and on\n"
+                                                                         "SIGTERM); manifest out_of_core, report memory. A mesh past it is refused (bake.memory).\n"
+                                                                         "Default: MemAvailable, the cgroup's limit, QF_MEMORY_LIMIT, the least of them"},
                     drop_nonfinite_option(),
                     {"quiet", 'q', "", "", "no progress and no summary on stderr (progress: on a terminal one line, redrawn;\n"
                                            "otherwise a line every 5 s or QF_PROGRESS_SECONDS: the step running and its count)"}},
@@ -114,6 +121,15 @@ AssetOptions read_asset_options(const OptionValues& args) {
       o.primitives.push_back(static_cast<std::size_t>(n));
   }
   o.cache_dir = read_cache_dir(args);
+  if (args.has("max-memory")) {
+    const std::string v = args.get("max-memory");
+    try {
+      o.max_memory = parse_byte_size(v);
+    } catch (const std::invalid_argument&) {
+      throw UsageError("--max-memory: expected a size in bytes, or with K, M, G or T (powers of 1024), e.g. 4G; got '" + v + "'");
+    }
+    if (o.max_memory == 0) throw UsageError("--max-memory: a bake needs more than 0 bytes; got '" + v + "'");
+  }
   a.lod_file = args.flag("lod-file");
   a.lod_screen_height = args.get_double("lod-screen-height", a.lod_screen_height, 1.0, 100000.0);
   a.read.drop_nonfinite = args.flag("drop-nonfinite");
