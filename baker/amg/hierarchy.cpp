@@ -213,29 +213,43 @@ SparseMatrix interpolation(const SparseMatrix& a, const Graph& s, std::vector<st
   return p;
 }
 
-// Steps 2-5 with theta bisected until the ratio lands in the target range (amg-notes 4.4).
-SparseMatrix coarsen(const SparseMatrix& a, const AmgOptions& o, double& theta_used) {
+// Steps 2-5 with theta bisected until the ratio lands in the target range (amg-notes 4.4), or,
+// with `aim` > 0, until the coarse size is nearest `aim` (AmgOptions::target_sizes; within 0.5%
+// ends the search).
+SparseMatrix coarsen(const SparseMatrix& a, const AmgOptions& o, double& theta_used, std::size_t aim) {
   const auto n = static_cast<std::size_t>(a.rows());
   double lo = 0.01, hi = 0.99, theta = theta_used;
   SparseMatrix best;
   double best_miss = INFINITY;
-  for (int t = 0; t < std::max(1, o.ratio_tries); ++t) {
+  const int tries = aim ? std::max(o.ratio_tries, kAimTries) : std::max(1, o.ratio_tries);
+  for (int t = 0; t < tries; ++t) {
     const Graph s = strength(a, theta);
     const Graph st = transpose(s, n);
     std::vector<std::int8_t> state = rs_first_pass(s, st, n);
     rs_second_pass(s, n, state);
     SparseMatrix p = interpolation(a, s, state);
     const double ratio = p.cols() ? double(n) / double(p.cols()) : INFINITY;
-    const double miss = ratio < o.target_ratio_min ? o.target_ratio_min - ratio
+    const double miss = aim ? std::fabs(double(p.cols()) - double(aim)) / double(aim)
+                        : ratio < o.target_ratio_min ? o.target_ratio_min - ratio
                         : ratio > o.target_ratio_max ? ratio - o.target_ratio_max : 0.0;
+    const bool too_coarse = aim ? std::size_t(p.cols()) < aim : ratio > o.target_ratio_max;
     if (miss < best_miss) best_miss = miss, best = std::move(p), theta_used = theta;
-    if (miss == 0) break;
+    if (aim ? miss <= 0.005 : miss == 0) break;
     // A higher theta keeps fewer strong couplings, so more points become C: the ratio falls.
-    if (ratio > o.target_ratio_max) lo = theta;
+    if (too_coarse) lo = theta;
     else hi = theta;
     theta = 0.5 * (lo + hi);
   }
   return best;
+}
+
+// The target size the next level aims at from a level of `fine` functions: the largest of
+// o.target_sizes with fine in [1.5, 4] x it (0 = none).
+std::size_t aimed_size(const AmgOptions& o, std::size_t fine) {
+  std::size_t aim = 0;
+  for (std::size_t t : o.target_sizes)
+    if (t > 0 && double(fine) >= 1.5 * double(t) && double(fine) <= 4.0 * double(t)) aim = std::max(aim, t);
+  return aim;
 }
 
 // Breadth-first order of the matrix graph, component by component from the lowest index;
@@ -308,7 +322,10 @@ AmgHierarchy build_levels(const SparseMatrix& a0, SparseMatrix* release, const A
   while (static_cast<int>(h.levels.size()) < options.max_levels && h.levels.back().size > options.stop_size) {
     // Start from the threshold that suited the level above: neighbouring levels behave alike.
     const auto t0 = std::chrono::steady_clock::now();
-    SparseMatrix p = coarsen(a, options, theta);
+    const double theta_before = theta;
+    const std::size_t aim = aimed_size(options, h.levels.back().size);
+    SparseMatrix p = coarsen(a, options, theta, aim);
+    if (aim) theta = theta_before;  // an aimed level's threshold is no guide to the next
     const auto t1 = std::chrono::steady_clock::now();
     const std::size_t fine = static_cast<std::size_t>(a.rows()), coarse = static_cast<std::size_t>(p.cols());
     const double ratio = coarse ? double(fine) / double(coarse) : 0.0;

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -33,6 +34,9 @@ CommandSpec bake_spec() {
                    {output_option("OUTDIR", "output folder (created if needed); required"),
                     {"primitives", 'n', "N,N,...", "1000,300,100,30", "bake the levels nearest these numbers of primitives"},
                     {"levels", 0, "K,K,...", "", "instead: these level numbers (0 = points, negative = from the coarsest)"},
+                    {"aim-primitives", 0, "", "", "coarsen the AMG hierarchy so that levels land on the --primitives counts (within\n"
+                                                  "~1%) instead of the nearest level of its own (a factor 2-3 apart): an out-of-core bake\n"
+                                                  "and the in-memory one then get the same numbers of quads"},
                     {"tau", 0, "T", "0.05", "domain threshold"},
                     {"strict", 0, "", "", "strict domains: each point only in its strongest function's domain (thesis 2.5):\n"
                                           "alpha 1 on its own points' splats, no overlap between quads"},
@@ -119,6 +123,12 @@ AssetOptions read_asset_options(const OptionValues& args) {
     o.primitives.clear();
     for (long long n : args.get_int_list("primitives", 1, std::numeric_limits<long long>::max()))
       o.primitives.push_back(static_cast<std::size_t>(n));
+  }
+  if (args.flag("aim-primitives")) {
+    if (args.has("levels")) throw UsageError("--aim-primitives aims the levels at --primitives; it does not go with --levels");
+    o.amg.target_sizes = o.primitives;
+    std::sort(o.amg.target_sizes.rbegin(), o.amg.target_sizes.rend());
+    o.amg.target_sizes.erase(std::unique(o.amg.target_sizes.begin(), o.amg.target_sizes.end()), o.amg.target_sizes.end());
   }
   o.cache_dir = read_cache_dir(args);
   if (args.has("max-memory")) {

@@ -330,6 +330,7 @@ nlohmann::json asset_report(AssetBake& a, const AssetOptions& o, const std::stri
             {"tau", o.bake.domains.tau},
             {"strict", o.bake.domains.strict},
             {"merge", o.bake.merge},
+            {"aim_primitives", !o.bake.amg.target_sizes.empty()},
             {"texel_factor", canonical_double(o.bake.texture.texel_factor)},
             {"texel_density", canonical_double(static_cast<float>(o.bake.texel_density))},
             {"max_texture", o.bake.texture.max_side},
