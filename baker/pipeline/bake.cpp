@@ -221,8 +221,9 @@ PointSet completed_points(const PointSet& input, const std::vector<std::uint32_t
 // A level's textures from its basis on the bake's points, its domains and rectangles: the
 // out-of-core bake resamples them from every point on disk (streamed_textures) instead of from
 // the subsample the level was decomposed on.
+// It may remake the rectangles (from every point), which the level's quads then take.
 using LevelTexturer = std::function<std::vector<Texture>(const SparseMatrix& psi, const Domains& d,
-                                                         const std::vector<SupportRect>& rects, const TextureOptions& texture)>;
+                                                         std::vector<SupportRect>& rects, const TextureOptions& texture)>;
 
 // 4b. One level from its basis `psi` (with --merge, merged, and its neighbour edges): domains,
 // rectangles, textures (`texturer`'s when given), atlas, glb.
@@ -234,7 +235,7 @@ BakedLevel bake_level(std::size_t level, const SparseMatrix& psi, std::vector<st
   Domains d = make_domains(psi, o.domains);
   // Merged faces trimmed at their crease no longer overlap but stay neighbours there.
   if (o.merge) d.edges = std::move(merged_edges);
-  const std::vector<SupportRect> rects = support_rectangles(points.positions, normals, points.radii, psi, d, o.support);
+  std::vector<SupportRect> rects = support_rectangles(points.positions, normals, points.radii, psi, d, o.support);
   SparseMatrix alpha = texturer ? SparseMatrix() : domain_partition(psi, d);  // what the rendered sum adds up
   watch.lap(name + " domains");
   BakedLevel out;
@@ -398,10 +399,11 @@ void bake_out_of_core(const PointSet& input, PointSet* owned, const BakeOptions&
   }
   watch.lap("link");
   // 4. Every chosen level, decomposed on the subsample, textured from every point.
-  const LevelTexturer streamed = [&](const SparseMatrix& psi, const Domains& d, const std::vector<SupportRect>& rects,
+  const LevelTexturer streamed = [&](const SparseMatrix& psi, const Domains& d, std::vector<SupportRect>& rects,
                                      const TextureOptions& texture) {
     std::size_t batches = 0;
-    std::vector<Texture> t = streamed_textures(s, normals, psi, d, rects, o.domains, texture, r.memory.batch_points, &batches);
+    std::vector<Texture> t =
+        streamed_textures(s, normals, psi, d, rects, o.domains, o.support, texture, r.memory.batch_points, &batches);
     r.batches = std::max(r.batches, batches);
     return t;
   };

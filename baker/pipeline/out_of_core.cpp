@@ -279,13 +279,13 @@ struct QuadPoints {
   std::vector<Vec3f> positions, normals;
   std::vector<float> radii;
   std::vector<Rgb8> colors;
-  std::vector<double> alpha;
+  std::vector<double> alpha, psi;  // its alpha (domain_partition's) and its function's value
 };
 
-// One point's membership: quad (index into rects) and alpha.
+// One point's membership: quad (index into rects), alpha and the function's value.
 struct Member {
   std::uint32_t point, quad;
-  double alpha;
+  double alpha, psi;
 };
 
 // The memberships of one point from its links: Psi_full(x) = sum_q w_q Psi_sub(link_q), then the
@@ -312,7 +312,7 @@ void point_members(const SparseMatrix& psi, const std::uint32_t* idx, const floa
     for (std::size_t e = 1; e < row.size(); ++e)
       if (row[e].second > row[best].second) best = e;
     if (quad_of[static_cast<std::size_t>(row[best].first)] >= 0)
-      out.push_back({point, static_cast<std::uint32_t>(quad_of[static_cast<std::size_t>(row[best].first)]), 1.0});
+      out.push_back({point, static_cast<std::uint32_t>(quad_of[static_cast<std::size_t>(row[best].first)]), 1.0, row[best].second});
     return;
   }
   double sum = 0;
@@ -321,7 +321,7 @@ void point_members(const SparseMatrix& psi, const std::uint32_t* idx, const floa
   if (!(sum > 0)) return;
   for (const auto& [f, v] : row)
     if (v > o.tau && quad_of[static_cast<std::size_t>(f)] >= 0)
-      out.push_back({point, static_cast<std::uint32_t>(quad_of[static_cast<std::size_t>(f)]), v / sum});
+      out.push_back({point, static_cast<std::uint32_t>(quad_of[static_cast<std::size_t>(f)]), v / sum, v});
 }
 
 // Per quad, the box its full-density points can come from: the subsample points where its function
@@ -400,6 +400,7 @@ void gather_batch(const StreamedPoints& s, const std::vector<Vec3f>& sub_normals
         const float* w = &d.link_weight[i * kLinks];
         p.positions.push_back(d.positions[i]);
         p.alpha.push_back(m.alpha);
+        p.psi.push_back(m.psi);
         if (s.colors) p.colors.push_back(d.colors[i]);
         // A radius of its own, else its links' (at the full density); a normal of its own, else
         // its links' (the subsample's estimated normals, oriented alike), renormalised.
@@ -422,8 +423,9 @@ void gather_batch(const StreamedPoints& s, const std::vector<Vec3f>& sub_normals
 }  // namespace
 
 std::vector<Texture> streamed_textures(const StreamedPoints& s, const std::vector<Vec3f>& sub_normals, const SparseMatrix& psi,
-                                       const Domains& d, const std::vector<SupportRect>& rects, const DomainOptions& domains,
-                                       const TextureOptions& texture, std::size_t batch_points, std::size_t* batch_count) {
+                                       const Domains& d, std::vector<SupportRect>& rects, const DomainOptions& domains,
+                                       const SupportOptions& support, const TextureOptions& texture, std::size_t batch_points,
+                                       std::size_t* batch_count) {
   std::vector<std::int32_t> quad_of(static_cast<std::size_t>(psi.cols()), -1);  // function -> rectangle
   for (std::size_t q = 0; q < rects.size(); ++q) quad_of[rects[q].domain] = static_cast<std::int32_t>(q);
   const std::vector<Bounds> all_reach = function_bounds(psi, s.subsample.positions, quad_of, rects.size());
@@ -444,8 +446,8 @@ std::vector<Texture> streamed_textures(const StreamedPoints& s, const std::vecto
                    s.tiles.size());
     std::vector<QuadPoints> points(batch.size());
     gather_batch(s, sub_normals, psi, local, reach, domains, points);
-    // 2. Their textures, largest first (as the in-memory bake's level_textures), each from its
-    //    own points as a one-domain set; a quad's points are freed once its texture is made.
+    // 2. Their rectangles and textures, largest first (as the in-memory bake's level_textures),
+    //    each from its own points as a one-domain set; a quad's points are freed once done.
     std::vector<std::size_t> by_size(batch.size());
     for (std::size_t k = 0; k < by_size.size(); ++k) by_size[k] = k;
     std::stable_sort(by_size.begin(), by_size.end(), [&](std::size_t x, std::size_t y) { return points[x].positions.size() > points[y].positions.size(); });
@@ -456,17 +458,39 @@ std::vector<Texture> streamed_textures(const StreamedPoints& s, const std::vecto
     for (std::ptrdiff_t q = 0; q < static_cast<std::ptrdiff_t>(by_size.size()); ++q) {
       const std::size_t k = by_size[static_cast<std::size_t>(q)];
       QuadPoints& p = points[k];
+      SupportRect& rect = rects[batch[k]];
       const std::size_t n = p.positions.size();
-      Domains one;
-      one.offsets = {0, static_cast<std::uint32_t>(n)};
-      one.points.resize(n);
-      std::vector<std::int32_t> outer(n + 1), inner(n, 0);
-      for (std::size_t i = 0; i < n; ++i) one.points[i] = static_cast<std::uint32_t>(i), outer[i] = static_cast<std::int32_t>(i);
-      outer[n] = static_cast<std::int32_t>(n);
-      const SparseMatrix alpha = from_rows(static_cast<Eigen::Index>(n), 1, outer, inner, p.alpha);
-      SupportRect rect = rects[batch[k]];
-      rect.domain = 0;
-      textures[batch[k]] = resample_texture(p.positions, p.colors, p.normals, p.radii, alpha, one, rect, texture);
+      if (n > 0) {
+        Domains one;
+        one.offsets = {0, static_cast<std::uint32_t>(n)};
+        one.points.resize(n);
+        std::vector<std::int32_t> outer(n + 1), inner(n, 0);
+        for (std::size_t i = 0; i < n; ++i) one.points[i] = static_cast<std::uint32_t>(i), outer[i] = static_cast<std::int32_t>(i);
+        outer[n] = static_cast<std::int32_t>(n);
+        // The rectangle again from every point of the domain, as the in-memory bake makes it
+        // (support_rectangles: weighted plane, extent with every splat, mean radius): the
+        // subsample's reaches up to its spacing short of the domain's outermost points, and its
+        // texture would clip their splats.
+        const SparseMatrix weights = from_rows(static_cast<Eigen::Index>(n), 1, outer, inner, p.psi);
+        const std::vector<SupportRect> full = support_rectangles(p.positions, p.normals, p.radii, weights, one, support);
+        if (full.size() == 1) {
+          const std::uint32_t domain = rect.domain;
+          rect = full[0];
+          rect.domain = domain;
+        }
+        const SparseMatrix alpha = from_rows(static_cast<Eigen::Index>(n), 1, outer, inner, p.alpha);
+        SupportRect local_rect = rect;
+        local_rect.domain = 0;
+        textures[batch[k]] = resample_texture(p.positions, p.colors, p.normals, p.radii, alpha, one, local_rect, texture);
+      } else {
+        // No point of the whole set passed tau for this function (its subsample points did):
+        // the subsample's rectangle, an empty texture of its size.
+        Domains none;
+        none.offsets = {0, 0};
+        SupportRect local_rect = rect;
+        local_rect.domain = 0;
+        textures[batch[k]] = resample_texture({}, {}, {}, {}, SparseMatrix(0, 1), none, local_rect, texture);
+      }
       p = QuadPoints{};
       progress::advance();
     }

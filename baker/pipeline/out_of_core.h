@@ -62,12 +62,16 @@ StreamedPoints spill_points(const PointSet& input, const std::vector<std::uint32
 void link_points(StreamedPoints& s);
 
 // A level's textures, one per rectangle (rects' order), resampled from every point: `psi` is the
-// level's basis on the subsample (m x functions), `d` its domains there, `sub_normals` the
-// subsample's normals (the input's or estimated; full points without normals get their links'
-// normals). Quads are handled in batches of about `batch_points` full-density points each, every
-// batch reading the tiles that may reach its quads. `batches`, when given, gets their number.
+// level's basis on the subsample (m x functions), `d` its domains there, `rects` their rectangles
+// there, remade here from every point of each domain (support_rectangles with `support`: the
+// plane, the extent that holds every splat, the mean radius) as the in-memory bake makes them;
+// `sub_normals` the subsample's normals (the input's or estimated; full points without normals
+// get their links'). Quads are handled in batches of about `batch_points` full-density points
+// each, every batch reading the tiles that may reach its quads. `batches`, when given, gets their
+// number. The same bytes at any thread count and any batch size.
 std::vector<Texture> streamed_textures(const StreamedPoints& s, const std::vector<Vec3f>& sub_normals, const SparseMatrix& psi,
-                                       const Domains& d, const std::vector<SupportRect>& rects, const DomainOptions& domains,
-                                       const TextureOptions& texture, std::size_t batch_points, std::size_t* batches = nullptr);
+                                       const Domains& d, std::vector<SupportRect>& rects, const DomainOptions& domains,
+                                       const SupportOptions& support, const TextureOptions& texture, std::size_t batch_points,
+                                       std::size_t* batches = nullptr);
 
 }  // namespace qf

@@ -90,7 +90,16 @@ TEST(OutOfCore, EveryPointAsSubsampleGivesTheInMemoryTextures) {
   for (std::size_t batch : {std::size_t{1} << 30, std::size_t{1}}) {  // one batch, and one quad a batch
     SCOPED_TRACE("batch " + std::to_string(batch));
     std::size_t batches = 0;
-    const std::vector<Texture> t = streamed_textures(s, s.subsample.normals, l.psi, l.d, l.rects, {}, {}, batch, &batches);
+    std::vector<SupportRect> rects = l.rects;
+    const std::vector<Texture> t = streamed_textures(s, s.subsample.normals, l.psi, l.d, rects, {}, {}, {}, batch, &batches);
+    // The rectangles remade from every point are the in-memory ones.
+    for (std::size_t q = 0; q < rects.size(); ++q) {
+      EXPECT_EQ(rects[q].domain, l.rects[q].domain);
+      EXPECT_EQ(rects[q].points, l.rects[q].points);
+      EXPECT_NEAR(rects[q].half_u, l.rects[q].half_u, 1e-5f);
+      EXPECT_NEAR(rects[q].half_v, l.rects[q].half_v, 1e-5f);
+      EXPECT_NEAR(length(rects[q].center - l.rects[q].center), 0.0f, 1e-5f);
+    }
     EXPECT_EQ(batches, batch > 6000 ? 1u : l.rects.size());
     ASSERT_EQ(t.size(), l.textures.size());
     for (std::size_t q = 0; q < t.size(); ++q) {
