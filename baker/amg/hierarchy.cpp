@@ -243,13 +243,20 @@ SparseMatrix coarsen(const SparseMatrix& a, const AmgOptions& o, double& theta_u
   return best;
 }
 
-// The target size the next level aims at from a level of `fine` functions: the largest of
-// o.target_sizes with fine in [1.5, 4] x it (0 = none).
+// The size the next level aims at from a level of `fine` functions (0 = none, the ratio rule):
+// for the largest target T of o.target_sizes with fine / T = r in [1.5, 27], the level k steps
+// before T, each of ratio r^(1/k): one step up to r = 4.5, else as many as ratios of at most 3
+// need (ruge-stueben splits of ratio under ~2 are rare: a level of 156 aimed at 100 gave 77).
 std::size_t aimed_size(const AmgOptions& o, std::size_t fine) {
-  std::size_t aim = 0;
-  for (std::size_t t : o.target_sizes)
-    if (t > 0 && double(fine) >= 1.5 * double(t) && double(fine) <= 4.0 * double(t)) aim = std::max(aim, t);
-  return aim;
+  std::size_t target = 0;
+  for (std::size_t t : o.target_sizes) {
+    const double r = t > 0 ? double(fine) / double(t) : 0.0;
+    if (r >= 1.5 && r <= 27.0) target = std::max(target, t);
+  }
+  if (!target) return 0;
+  const double r = double(fine) / double(target);
+  const double steps = r <= 4.5 ? 1.0 : std::ceil(std::log(r) / std::log(3.0));
+  return static_cast<std::size_t>(std::llround(double(fine) / std::pow(r, 1.0 / steps)));
 }
 
 // Breadth-first order of the matrix graph, component by component from the lowest index;

@@ -289,10 +289,11 @@ struct Member {
 };
 
 // The memberships of one point from its links: Psi_full(x) = sum_q w_q Psi_sub(link_q), then the
-// domain rule (domains.h) and domain_partition's renormalisation over the domains it is in.
+// domain rule (domains.h) and domain_partition's renormalisation over every domain it is in
+// (functions with a rectangle: quad_of >= 0); kept for the batch's quads (batch_of >= 0) only.
 void point_members(const SparseMatrix& psi, const std::uint32_t* idx, const float* w, const std::vector<std::int32_t>& quad_of,
-                   const DomainOptions& o, std::uint32_t point, std::vector<std::pair<std::int32_t, double>>& row,
-                   std::vector<Member>& out) {
+                   const std::vector<std::int32_t>& batch_of, const DomainOptions& o, std::uint32_t point,
+                   std::vector<std::pair<std::int32_t, double>>& row, std::vector<Member>& out) {
   row.clear();
   for (int q = 0; q < kLinks; ++q) {
     if (!(w[q] > 0)) continue;
@@ -311,8 +312,8 @@ void point_members(const SparseMatrix& psi, const std::uint32_t* idx, const floa
     std::size_t best = 0;
     for (std::size_t e = 1; e < row.size(); ++e)
       if (row[e].second > row[best].second) best = e;
-    if (quad_of[static_cast<std::size_t>(row[best].first)] >= 0)
-      out.push_back({point, static_cast<std::uint32_t>(quad_of[static_cast<std::size_t>(row[best].first)]), 1.0, row[best].second});
+    if (batch_of[static_cast<std::size_t>(row[best].first)] >= 0)
+      out.push_back({point, static_cast<std::uint32_t>(batch_of[static_cast<std::size_t>(row[best].first)]), 1.0, row[best].second});
     return;
   }
   double sum = 0;
@@ -320,8 +321,8 @@ void point_members(const SparseMatrix& psi, const std::uint32_t* idx, const floa
     if (v > o.tau && quad_of[static_cast<std::size_t>(f)] >= 0) sum += v;
   if (!(sum > 0)) return;
   for (const auto& [f, v] : row)
-    if (v > o.tau && quad_of[static_cast<std::size_t>(f)] >= 0)
-      out.push_back({point, static_cast<std::uint32_t>(quad_of[static_cast<std::size_t>(f)]), v / sum, v});
+    if (v > o.tau && batch_of[static_cast<std::size_t>(f)] >= 0)
+      out.push_back({point, static_cast<std::uint32_t>(batch_of[static_cast<std::size_t>(f)]), v / sum, v});
 }
 
 // Per quad, the box its full-density points can come from: the subsample points where its function
@@ -367,8 +368,8 @@ std::vector<std::vector<std::uint32_t>> quad_batches(const StreamedPoints& s, co
 
 // Gathers the batch's quads' points from every tile that may reach them.
 void gather_batch(const StreamedPoints& s, const std::vector<Vec3f>& sub_normals, const SparseMatrix& psi,
-                  const std::vector<std::int32_t>& quad_of, const std::vector<Bounds>& reach, const DomainOptions& o,
-                  std::vector<QuadPoints>& quads) {
+                  const std::vector<std::int32_t>& quad_of, const std::vector<std::int32_t>& batch_of, const std::vector<Bounds>& reach,
+                  const DomainOptions& o, std::vector<QuadPoints>& quads) {
   constexpr std::size_t kChunk = 4096;  // fixed chunks: the same order of members at any thread count
   TileData d;
   std::vector<std::vector<Member>> chunks;
@@ -389,8 +390,8 @@ void gather_batch(const StreamedPoints& s, const std::vector<Vec3f>& sub_normals
 #pragma omp for schedule(dynamic, 1)
       for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(chunks.size()); ++k)
         for (std::size_t i = static_cast<std::size_t>(k) * kChunk; i < std::min(c, (static_cast<std::size_t>(k) + 1) * kChunk); ++i)
-          point_members(psi, &d.link_index[i * kLinks], &d.link_weight[i * kLinks], quad_of, o, static_cast<std::uint32_t>(i), row,
-                        chunks[static_cast<std::size_t>(k)]);
+          point_members(psi, &d.link_index[i * kLinks], &d.link_weight[i * kLinks], quad_of, batch_of, o, static_cast<std::uint32_t>(i),
+                        row, chunks[static_cast<std::size_t>(k)]);
     }
     for (const std::vector<Member>& chunk : chunks)
       for (const Member& m : chunk) {
@@ -445,7 +446,7 @@ std::vector<Texture> streamed_textures(const StreamedPoints& s, const std::vecto
                        std::to_string(b + 1) + " of " + std::to_string(batches.size()) + ")",
                    s.tiles.size());
     std::vector<QuadPoints> points(batch.size());
-    gather_batch(s, sub_normals, psi, local, reach, domains, points);
+    gather_batch(s, sub_normals, psi, quad_of, local, reach, domains, points);
     // 2. Their rectangles and textures, largest first (as the in-memory bake's level_textures),
     //    each from its own points as a one-domain set; a quad's points are freed once done.
     std::vector<std::size_t> by_size(batch.size());
@@ -462,7 +463,7 @@ std::vector<Texture> streamed_textures(const StreamedPoints& s, const std::vecto
       const std::size_t n = p.positions.size();
       if (n > 0) {
         Domains one;
-        one.offsets = {0, static_cast<std::uint32_t>(n)};
+        one.offsets = std::vector<std::uint32_t>{0, static_cast<std::uint32_t>(n)};  // (moved in: GCC 12 warns on assign)
         one.points.resize(n);
         std::vector<std::int32_t> outer(n + 1), inner(n, 0);
         for (std::size_t i = 0; i < n; ++i) one.points[i] = static_cast<std::uint32_t>(i), outer[i] = static_cast<std::int32_t>(i);
@@ -486,7 +487,7 @@ std::vector<Texture> streamed_textures(const StreamedPoints& s, const std::vecto
         // No point of the whole set passed tau for this function (its subsample points did):
         // the subsample's rectangle, an empty texture of its size.
         Domains none;
-        none.offsets = {0, 0};
+        none.offsets = std::vector<std::uint32_t>{0, 0};
         SupportRect local_rect = rect;
         local_rect.domain = 0;
         textures[batch[k]] = resample_texture({}, {}, {}, {}, SparseMatrix(0, 1), none, local_rect, texture);
