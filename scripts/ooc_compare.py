@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Compares an out-of-core bake with the in-memory bake of the same input, level by level (issue 35
 item 2): quads, texels and bytes of each, and each level drawn by the engine method at its own size
-(the in-memory level's max_screen_pixels: measured when the bake measured, else geometric;
-clamped to 16..512 px) against the input by qf-render
+(the in-memory level's geometric max_screen_pixels, clamped to 16..512 px: an out-of-core bake
+past the memory its input's drawing needs is not measured) against the input by qf-render
 eval: PSNR and IoU of both and their differences (out of core less in memory).
 usage: ooc_compare.py INPUT MEM_DIR OOC_DIR [--render build/bin/qf-render] [--views 8] [--truth 4]"""
 import argparse
@@ -40,7 +40,7 @@ def main():
     print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     worst_psnr, worst_iou, worst_quads = 0.0, 0.0, 0.0
     for lm, lo in zip(mem["levels"], ooc["levels"]):
-        size = int(min(512, max(16, lm["max_screen_pixels"])))
+        size = int(min(512, max(16, lm.get("geometric_max_screen_pixels", lm["max_screen_pixels"]))))
         em = evaluate(a.render, a.input, os.path.join(a.mem, lm["file"]), size, a.views, a.truth)
         eo = evaluate(a.render, a.input, os.path.join(a.ooc, lo["file"]), size, a.views, a.truth)
         dq = (lo["primitives"] - lm["primitives"]) / lm["primitives"]

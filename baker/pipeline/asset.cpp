@@ -490,6 +490,18 @@ void measure_outputs(AssetBake& a, const AssetOptions& o, const std::string& pat
   }
 }
 
+// Why an out-of-core bake does not draw its input (empty: it may). The measuring and the page
+// draw the whole input as the truth (qf-render's reference scene: a textured quad per point,
+// held on the CPU by the GL driver), ~1.1 KB a point (1M-point torus: 1.06 GB peak measuring,
+// 1.11 GB for qf-render eval), more than the in-memory bake's ~0.8 KB.
+constexpr double kDrawBytesPerPoint = 1100;
+std::string drawing_past_limit(const BakeResult& r) {
+  const double need = kDrawBytesPerPoint * double(r.points);
+  if (!r.memory.out_of_core || need <= double(r.memory.limit)) return "";
+  return "drawing the input's " + std::to_string(r.points) + " points as the truth needs about " + format_bytes(need) + ", past the " +
+         format_bytes(double(r.memory.limit)) + " of " + r.memory.limit_source;
+}
+
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -540,8 +552,15 @@ AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::
     a.manifest["mesh_lods"] = std::move(mesh_lods);
     a.result.times.push_back({"mesh lods", lods_seconds, 0, 0});
   }
-  // 5. Every output measured on screen: honest screen sizes, the recommended chain.
-  if (o.measure) {
+  // 5. Every output measured on screen: honest screen sizes, the recommended chain. Not where an
+  //    out-of-core bake's limit cannot hold the input drawn as the truth.
+  const std::string undrawn = drawing_past_limit(a.result);
+  if (o.measure && !undrawn.empty())
+    a.result.warnings.push_back("the outputs were not measured (" + undrawn + "), so the levels keep their geometric max_screen_pixels "
+                                "and there is no recommended chain; give --no-measure to say so, or more --max-memory");
+  if (o.report_page && !undrawn.empty())
+    a.result.warnings.push_back("no report.html (" + undrawn + "); give --no-report-html to say so, or more --max-memory");
+  if (o.measure && undrawn.empty()) {
     const auto measure_start = std::chrono::steady_clock::now();
     measure_outputs(a, o, path);
     a.result.times.push_back({"measure", seconds_since(measure_start), 0, 0});
@@ -556,7 +575,7 @@ AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::
   // 7. The report, then the page, which shows it (its time is in the report's stages, as the
   // page's own: "report page").
   a.report = asset_report(a, o, input_name, a.manifest["levels"]);
-  if (o.report_page) {
+  if (o.report_page && undrawn.empty()) {
     const auto page_start = std::chrono::steady_clock::now();
     progress::step("report page");
     a.page = o.report_page(a, path);
