@@ -177,6 +177,11 @@ void print_bake_summary(const AssetBake& a, const std::string& in, const std::st
   const BakeResult& r = a.result;
   std::fprintf(stderr, "qf-bake: %s (%zu points) -> %s, hierarchy of %zu levels (cache: %s)\n", in.c_str(), r.points,
                outdir.c_str(), r.hierarchy_levels, r.cache.c_str());
+  if (r.memory.out_of_core)
+    std::fprintf(stderr, "  out of core (about %s needed, %s of %s): decomposed on %zu of the points, textured from all of them "
+                         "(scratch %s, removed)\n",
+                 format_bytes(double(r.memory.need)).c_str(), format_bytes(double(r.memory.limit)).c_str(), r.memory.limit_source.c_str(),
+                 r.memory.subsample, format_bytes(double(r.scratch_bytes)).c_str());
   for (const BakedLevel& l : r.levels)
     std::fprintf(stderr, "  level %zu: %zu primitives, %zu texels, error %.3g (%.2g of the diagonal)\n", l.level, l.primitives,
                  l.texels, l.error, l.relative_error);
