@@ -82,12 +82,11 @@ CommandSpec bake_spec() {
                                                   "the input beside every output drawn by the engine method at its own on-screen size and at\n"
                                                   "256 px, per file bytes, texels, GPU bytes and measured error, the chain as bands, the\n"
                                                   "warnings; without a GL driver it has no images and says so)"},
-                    {"max-memory", 0, "SIZE", "the memory available", "the memory the bake may take (bytes, or 512M, 4G: powers of 1024). A point set\n"
+                    {"max-memory", 0, "SIZE", "the memory available: the least of MemAvailable, the cgroup's limit, QF_MEMORY_LIMIT", "the memory the bake may take (bytes, or 512M, 4G: powers of 1024). A point set\n"
                                                                          "whose estimated need (384 MB + (440 + 8 k) bytes a point) is larger bakes out of core:\n"
                                                                          "decomposed on a subsample that fits, its textures resampled from every point, read\n"
                                                                          "back in tiles from a scratch file in $TMPDIR (removed at the end, on Ctrl-C and on\n"
-                                                                         "SIGTERM); manifest out_of_core, report memory. A mesh past it is refused (bake.memory).\n"
-                                                                         "Default: MemAvailable, the cgroup's limit, QF_MEMORY_LIMIT, the least of them"},
+                                                                         "SIGTERM); manifest out_of_core, report memory. A mesh past it is refused (bake.memory)"},
                     drop_nonfinite_option(),
                     {"quiet", 'q', "", "", "no progress and no summary on stderr (progress: on a terminal one line, redrawn;\n"
                                            "otherwise a line every 5 s or QF_PROGRESS_SECONDS: the step running and its count)"}},
