@@ -46,7 +46,9 @@ for k in 0 1 2; do
     "$render" eval "$work/torus.ply" "$work/ooc/$ooc" --size 128 --views 6 --truth 4 -m engine -o "$work/eo$k.json" 2>/dev/null ||
     { bad "eval of level $k"; continue; }
   # A subsample of one point in ~2.7 decomposes into other quads than the whole set: measured
-  # here +0.40 / +0.01 / +0.08 dB and -0.008 / +0.010 IoU at 300 / 100 / 30 quads.
+  # here +0.40 / +0.01 / +0.08 dB and +0.003 / -0.008 / +0.010 IoU at 300 / 100 / 30 quads (two
+  # in-memory bakes of the torus sampled with seeds 1 and 2, 250k points, differ by up to 0.37 dB
+  # and 0.019 IoU at their own sizes: another sampling is another decomposition).
   python3 - "$work/em$k.json" "$work/eo$k.json" <<'PY' && ok || bad "level $k: the out-of-core look is within 1 dB and 0.02 IoU of the in-memory one"
 import json, sys
 a, b = (json.load(open(p))["mean"]["engine"] for p in sys.argv[1:3])
