@@ -25,8 +25,11 @@
 # big: one big asset (issue 20): a generated torus and bunny00's mesh sampled by depth peeling, at
 # 1M and 10M points each, baked with the defaults on 2 threads: seconds per stage, wall and CPU
 # (user + sys) time and peak RSS of the whole command (GNU time -v), bytes per point, and the
-# growth exponents from 1M to 10M (scripts/big_table.py). Needs ~12 GB and ~15 minutes; not part
-# of "all" (CI does not run it).
+# growth exponents from 1M to 10M (scripts/big_table.py); then the torus again out of core (issue 35
+# item 2: --max-memory 4G at 10M, 700M at 1M, both bakes with --aim-primitives) with its path,
+# subsample and scratch bytes, and scripts/ooc_compare.py's per-level table of the in-memory and
+# out-of-core bakes (quads, PSNR / IoU at each level's own size). Needs ~12 GB and ~40 minutes; not
+# part of "all" (CI does not run it).
 # las: LAS/LAZ reading (issue 35): 10M points of formats 3 and 7, LAS and LAZ: seconds, points/s, peak RSS.
 # textures: PNG against KTX2 and WebP textures (issue 32, scripts/textures_table.py) on bunny00's vertices and
 # a 1M-point torus: per level bytes, GPU bytes, PSNR / IoU at its own size, holes at 1/4 and 1/8 of it
@@ -174,6 +177,21 @@ for w in "${what[@]}"; do
       bake_big "bunny00-mesh LDI-700" "$models/bunny00.off" --ldi 700
       bake_big "bunny00-mesh LDI-2200" "$models/bunny00.off" --ldi 2200
       python3 scripts/big_table.py "${rows[@]}"
+      # Out of core against in memory, both aimed at the default primitive counts.
+      echo
+      rows=()
+      for size in 1M:700M 10M:4G; do
+        n=${size%%:*} cap=${size##*:}
+        bake_big "torus-aimed $n" "$tmp/torus$n.ply" --aim-primitives
+        rm -rf "$tmp/mem$n" && cp -r "$tmp/out" "$tmp/mem$n"
+        bake_big "torus-ooc $n" "$tmp/torus$n.ply" --aim-primitives --max-memory "$cap"
+        rm -rf "$tmp/ooc$n" && cp -r "$tmp/out" "$tmp/ooc$n"
+      done
+      python3 scripts/big_table.py "${rows[@]}"
+      for n in 1M 10M; do
+        echo
+        python3 scripts/ooc_compare.py "$tmp/torus$n.ply" "$tmp/mem$n" "$tmp/ooc$n"
+      done
       rm -rf "$tmp" ;;
     fidelity)
       models=$(scripts/fetch-models.sh bunny00.off fandisk.off elephant.off ChineseDragon-10kv.off b9_training.ply | tail -1)

@@ -26,6 +26,8 @@ def gnu_time(path):
 def stage_groups(report):
     """Seconds per stage group: analysis and AMG apart, every level's steps summed."""
     groups = {"sample": 0.0, "prepare": 0.0, "analysis": 0.0, "amg": 0.0, "basis": 0.0, "levels": 0.0, "mesh lods": 0.0}
+    # An out-of-core bake's own steps (pipeline/out_of_core.h): the scratch file and the links
+    # count as its preparation.
     if report.get("sampling"):
         groups["sample"] = report["sampling"]["seconds"]
     for s in report["stages"]:
@@ -36,6 +38,8 @@ def stage_groups(report):
             groups["levels"] += s["seconds"]
         elif name == "hierarchy":  # reports from before the split: analysis + AMG in one
             groups["amg"] += s["seconds"]
+        elif name in ("spill", "link"):
+            groups["prepare"] += s["seconds"]
         elif name in groups:
             groups[name] += s["seconds"]
     return groups
@@ -47,17 +51,22 @@ for i in range(0, len(args), 3):
     name, report_path, time_path = args[i:i + 3]
     report = json.load(open(report_path))
     wall, cpu, rss = gnu_time(time_path)
-    rows.append({"name": name, "points": report["points"], "groups": stage_groups(report), "wall": wall, "cpu": cpu, "rss": rss})
+    memory = report.get("memory", {})
+    rows.append({"name": name, "points": report["points"], "groups": stage_groups(report), "wall": wall, "cpu": cpu, "rss": rss,
+                 "path": memory.get("path", "in-memory"), "subsample": memory.get("subsample_points"),
+                 "scratch": memory.get("scratch_bytes", 0)})
 
 cols = ["sample", "prepare", "analysis", "amg", "basis", "levels", "mesh lods"]
-print("| asset | points | " + " | ".join(c + " s" for c in cols) + " | read+write s | wall s | CPU s | peak MB | B/pt |")
-print("|---|---:|" + "---:|" * len(cols) + "---:|---:|---:|---:|---:|")
+print("| asset | points | path (subsample) | " + " | ".join(c + " s" for c in cols) + " | read+write s | wall s | CPU s | peak MB | B/pt | scratch MB |")
+print("|---|---:|---|" + "---:|" * len(cols) + "---:|---:|---:|---:|---:|---:|")
 for r in rows:
     g = r["groups"]
     other = r["wall"] - sum(g.values())
     cells = [f"{g[c]:.2f}" for c in cols]
-    print(f"| {r['name']} | {r['points']:,} | " + " | ".join(cells) +
-          f" | {other:.2f} | {r['wall']:.1f} | {r['cpu']:.1f} | {r['rss'] / 2**20:,.0f} | {r['rss'] / r['points']:.0f} |")
+    path = r["path"] + (f" ({r['subsample']:,})" if r["subsample"] else "")
+    print(f"| {r['name']} | {r['points']:,} | {path} | " + " | ".join(cells) +
+          f" | {other:.2f} | {r['wall']:.1f} | {r['cpu']:.1f} | {r['rss'] / 2**20:,.0f} | {r['rss'] / r['points']:.0f} | "
+          f"{r['scratch'] / 2**20:,.0f} |")
 
 # Growth exponents: cost ~ n^e between the smallest and largest bake of a family.
 families = {}

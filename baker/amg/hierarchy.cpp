@@ -213,29 +213,50 @@ SparseMatrix interpolation(const SparseMatrix& a, const Graph& s, std::vector<st
   return p;
 }
 
-// Steps 2-5 with theta bisected until the ratio lands in the target range (amg-notes 4.4).
-SparseMatrix coarsen(const SparseMatrix& a, const AmgOptions& o, double& theta_used) {
+// Steps 2-5 with theta bisected until the ratio lands in the target range (amg-notes 4.4), or,
+// with `aim` > 0, until the coarse size is nearest `aim` (AmgOptions::target_sizes; within 0.5%
+// ends the search).
+SparseMatrix coarsen(const SparseMatrix& a, const AmgOptions& o, double& theta_used, std::size_t aim) {
   const auto n = static_cast<std::size_t>(a.rows());
   double lo = 0.01, hi = 0.99, theta = theta_used;
   SparseMatrix best;
   double best_miss = INFINITY;
-  for (int t = 0; t < std::max(1, o.ratio_tries); ++t) {
+  const int tries = aim ? std::max(o.ratio_tries, kAimTries) : std::max(1, o.ratio_tries);
+  for (int t = 0; t < tries; ++t) {
     const Graph s = strength(a, theta);
     const Graph st = transpose(s, n);
     std::vector<std::int8_t> state = rs_first_pass(s, st, n);
     rs_second_pass(s, n, state);
     SparseMatrix p = interpolation(a, s, state);
     const double ratio = p.cols() ? double(n) / double(p.cols()) : INFINITY;
-    const double miss = ratio < o.target_ratio_min ? o.target_ratio_min - ratio
+    const double miss = aim ? std::fabs(double(p.cols()) - double(aim)) / double(aim)
+                        : ratio < o.target_ratio_min ? o.target_ratio_min - ratio
                         : ratio > o.target_ratio_max ? ratio - o.target_ratio_max : 0.0;
+    const bool too_coarse = aim ? std::size_t(p.cols()) < aim : ratio > o.target_ratio_max;
     if (miss < best_miss) best_miss = miss, best = std::move(p), theta_used = theta;
-    if (miss == 0) break;
+    if (aim ? miss <= 0.005 : miss == 0) break;
     // A higher theta keeps fewer strong couplings, so more points become C: the ratio falls.
-    if (ratio > o.target_ratio_max) lo = theta;
+    if (too_coarse) lo = theta;
     else hi = theta;
     theta = 0.5 * (lo + hi);
   }
   return best;
+}
+
+// The size the next level aims at from a level of `fine` functions (0 = none, the ratio rule):
+// for the largest target T of o.target_sizes with fine / T = r in [1.5, 27], the level k steps
+// before T, each of ratio r^(1/k): one step up to r = 4.5, else as many as ratios of at most 3
+// need (ruge-stueben splits of ratio under ~2 are rare: a level of 156 aimed at 100 gave 77).
+std::size_t aimed_size(const AmgOptions& o, std::size_t fine) {
+  std::size_t target = 0;
+  for (std::size_t t : o.target_sizes) {
+    const double r = t > 0 ? double(fine) / double(t) : 0.0;
+    if (r >= 1.5 && r <= 27.0) target = std::max(target, t);
+  }
+  if (!target) return 0;
+  const double r = double(fine) / double(target);
+  const double steps = r <= 4.5 ? 1.0 : std::ceil(std::log(r) / std::log(3.0));
+  return static_cast<std::size_t>(std::llround(double(fine) / std::pow(r, 1.0 / steps)));
 }
 
 // Breadth-first order of the matrix graph, component by component from the lowest index;
@@ -308,7 +329,10 @@ AmgHierarchy build_levels(const SparseMatrix& a0, SparseMatrix* release, const A
   while (static_cast<int>(h.levels.size()) < options.max_levels && h.levels.back().size > options.stop_size) {
     // Start from the threshold that suited the level above: neighbouring levels behave alike.
     const auto t0 = std::chrono::steady_clock::now();
-    SparseMatrix p = coarsen(a, options, theta);
+    const double theta_before = theta;
+    const std::size_t aim = aimed_size(options, h.levels.back().size);
+    SparseMatrix p = coarsen(a, options, theta, aim);
+    if (aim) theta = theta_before;  // an aimed level's threshold is no guide to the next
     const auto t1 = std::chrono::steady_clock::now();
     const std::size_t fine = static_cast<std::size_t>(a.rows()), coarse = static_cast<std::size_t>(p.cols());
     const double ratio = coarse ? double(fine) / double(coarse) : 0.0;

@@ -22,7 +22,15 @@ struct AmgOptions {
   int ratio_tries = 6;            // splits tried per level, bisecting theta, to land in the target range
   std::size_t stop_size = 9;      // stop below ~10 basis functions
   int max_levels = 25;
+  // Level sizes to aim at (qf-bake --aim-primitives: the --primitives counts), largest first;
+  // empty = the ratio rule alone. From a level 1.5 to 27 times a target not yet reached, the next
+  // levels are coarsened to land on the target in one to three even steps (theta bisected on the
+  // count, up to kAimTries splits) instead of into the ratio range. So two decompositions of one surface at
+  // different densities (an out-of-core bake's subsample and the whole set) get levels of the
+  // same sizes, which the nearest-count level choice alone does not give (a factor of 2-3 apart).
+  std::vector<std::size_t> target_sizes;
 };
+constexpr int kAimTries = 14;
 
 struct AmgLevel {
   std::size_t size = 0;  // basis functions on this level

@@ -146,6 +146,11 @@ std::string hierarchy_cache_key(const PointSet& points, const AnalysisOptions& a
   h.value(ao.classifier.epsilon);
   h.value(amg.theta), h.value(amg.target_ratio_min), h.value(amg.target_ratio_max), h.value(amg.ratio_tries);
   h.value(static_cast<std::uint64_t>(amg.stop_size)), h.value(amg.max_levels);
+  // Only when given, so that the keys of hierarchies made without them stay as they were.
+  if (!amg.target_sizes.empty()) {
+    h.value(static_cast<std::uint64_t>(amg.target_sizes.size()));
+    for (std::size_t t : amg.target_sizes) h.value(static_cast<std::uint64_t>(t));
+  }
   return h.hex();
 }
 

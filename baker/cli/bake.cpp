@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -14,6 +15,7 @@
 #include "cli/commands.h"
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/memory.h"
 #include "core/progress.h"
 #include "pipeline/asset.h"
 #include "tools/measure.h"
@@ -32,6 +34,9 @@ CommandSpec bake_spec() {
                    {output_option("OUTDIR", "output folder (created if needed); required"),
                     {"primitives", 'n', "N,N,...", "1000,300,100,30", "bake the levels nearest these numbers of primitives"},
                     {"levels", 0, "K,K,...", "", "instead: these level numbers (0 = points, negative = from the coarsest)"},
+                    {"aim-primitives", 0, "", "", "coarsen the AMG hierarchy so that levels land on the --primitives counts (within\n"
+                                                  "~1%) instead of the nearest level of its own (a factor 2-3 apart): an out-of-core bake\n"
+                                                  "and the in-memory one then get the same numbers of quads"},
                     {"tau", 0, "T", "0.05", "domain threshold"},
                     {"strict", 0, "", "", "strict domains: each point only in its strongest function's domain (thesis 2.5):\n"
                                           "alpha 1 on its own points' splats, no overlap between quads"},
@@ -81,6 +86,11 @@ CommandSpec bake_spec() {
                                                   "the input beside every output drawn by the engine method at its own on-screen size and at\n"
                                                   "256 px, per file bytes, texels, GPU bytes and measured error, the chain as bands, the\n"
                                                   "warnings; without a GL driver it has no images and says so)"},
+                    {"max-memory", 0, "SIZE", "the memory available: the least of MemAvailable, the cgroup's limit, QF_MEMORY_LIMIT", "the memory the bake may take (bytes, or 512M, 4G: powers of 1024). A point set\n"
+                                                                         "whose estimated need (384 MB + (440 + 8 k) bytes a point) is larger bakes out of core:\n"
+                                                                         "decomposed on a subsample that fits, its textures resampled from every point, read\n"
+                                                                         "back in tiles from a scratch file in $TMPDIR (removed at the end, on Ctrl-C and on\n"
+                                                                         "SIGTERM); manifest out_of_core, report memory. A mesh past it is refused (bake.memory)"},
                     drop_nonfinite_option(),
                     {"quiet", 'q', "", "", "no progress and no summary on stderr (progress: on a terminal one line, redrawn;\n"
                                            "otherwise a line every 5 s or QF_PROGRESS_SECONDS: the step running and its count)"}},
@@ -139,7 +149,22 @@ AssetOptions read_asset_options(const OptionValues& args) {
     for (long long n : args.get_int_list("primitives", 1, std::numeric_limits<long long>::max()))
       o.primitives.push_back(static_cast<std::size_t>(n));
   }
+  if (args.flag("aim-primitives")) {
+    if (args.has("levels")) throw UsageError("--aim-primitives aims the levels at --primitives; it does not go with --levels");
+    o.amg.target_sizes = o.primitives;
+    std::sort(o.amg.target_sizes.rbegin(), o.amg.target_sizes.rend());
+    o.amg.target_sizes.erase(std::unique(o.amg.target_sizes.begin(), o.amg.target_sizes.end()), o.amg.target_sizes.end());
+  }
   o.cache_dir = read_cache_dir(args);
+  if (args.has("max-memory")) {
+    const std::string v = args.get("max-memory");
+    try {
+      o.max_memory = parse_byte_size(v);
+    } catch (const std::invalid_argument&) {
+      throw UsageError("--max-memory: expected a size in bytes, or with K, M, G or T (powers of 1024), e.g. 4G; got '" + v + "'");
+    }
+    if (o.max_memory == 0) throw UsageError("--max-memory: a bake needs more than 0 bytes; got '" + v + "'");
+  }
   a.lod_file = args.flag("lod-file");
   a.lod_screen_height = args.get_double("lod-screen-height", a.lod_screen_height, 1.0, 100000.0);
   a.read.drop_nonfinite = args.flag("drop-nonfinite");
@@ -177,6 +202,11 @@ void print_bake_summary(const AssetBake& a, const std::string& in, const std::st
   const BakeResult& r = a.result;
   std::fprintf(stderr, "qf-bake: %s (%zu points) -> %s, hierarchy of %zu levels (cache: %s)\n", in.c_str(), r.points,
                outdir.c_str(), r.hierarchy_levels, r.cache.c_str());
+  if (r.memory.out_of_core)
+    std::fprintf(stderr, "  out of core (about %s needed, %s of %s): decomposed on %zu of the points, textured from all of them "
+                         "(scratch %s, removed)\n",
+                 format_bytes(double(r.memory.need)).c_str(), format_bytes(double(r.memory.limit)).c_str(), r.memory.limit_source.c_str(),
+                 r.memory.subsample, format_bytes(double(r.scratch_bytes)).c_str());
   for (const BakedLevel& l : r.levels)
     std::fprintf(stderr, "  level %zu: %zu primitives, %zu texels, error %.3g (%.2g of the diagonal)\n", l.level, l.primitives,
                  l.texels, l.error, l.relative_error);

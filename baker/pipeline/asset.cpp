@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/memory.h"
 #include "core/progress.h"
 #include "gltf/glb.h"
 #include "reconstruct/reconstruct.h"
@@ -255,6 +256,9 @@ nlohmann::json impostor_outputs(BakeResult& r, const std::string& stem, const st
                           {"bounding_box_diagonal", canonical_double(r.diagonal)},
                           {"levels", levels},
                           {"generator", "quasiflat qf-bake"}};
+  // Only where it ran: the bake was decomposed on a subsample (pipeline/out_of_core.h).
+  if (r.memory.out_of_core)
+    manifest["out_of_core"] = {{"subsample_points", r.memory.subsample}, {"scratch_bytes", r.scratch_bytes}};
   return manifest;
 }
 
@@ -273,6 +277,24 @@ nlohmann::json point_impostor_output(const PointSet& points, const AssetOptions&
           {"switch_distance", canonical_double(static_cast<float>(point_switch_distance(info)))},
           {"switch_screen_height", info.reference_height},
           {"switch_fov_degrees", canonical_double(info.reference_fov_degrees)}};
+}
+
+// 7a. How the bake fitted in memory: the path, the estimate and the limit, and out of core the
+// subsample, the scratch file and the batches of quads; the process' peak so far.
+nlohmann::json memory_entry(const BakeResult& r) {
+  const auto mb = [](double bytes) { return round_to(bytes / 1048576.0, 1); };
+  nlohmann::json m{{"path", r.memory.out_of_core ? "out-of-core" : "in-memory"},
+                   {"estimated_mb", mb(double(r.memory.need))},
+                   {"limit_mb", r.memory.limit == SIZE_MAX ? nlohmann::json(nullptr) : nlohmann::json(mb(double(r.memory.limit)))},
+                   {"limit_source", r.memory.limit_source},
+                   {"peak_mb", mb(double(process_memory("VmHWM:")))}};
+  if (r.memory.out_of_core) {
+    m["subsample_points"] = r.memory.subsample;
+    m["scratch_bytes"] = r.scratch_bytes;
+    m["batch_points"] = r.memory.batch_points;
+    m["batches"] = r.batches;
+  }
+  return m;
 }
 
 // 7. The report: what was read, the settings, the figures, per-stage time and memory.
@@ -302,11 +324,13 @@ nlohmann::json asset_report(AssetBake& a, const AssetOptions& o, const std::stri
           {"hierarchy_levels", r.hierarchy_levels},
           {"components", r.components},
           {"cache", r.cache},
+          {"memory", memory_entry(r)},
           {"settings",
            {{"k", o.bake.analysis.neighborhoods.k},
             {"tau", o.bake.domains.tau},
             {"strict", o.bake.domains.strict},
             {"merge", o.bake.merge},
+            {"aim_primitives", !o.bake.amg.target_sizes.empty()},
             {"texel_factor", canonical_double(o.bake.texture.texel_factor)},
             {"texel_density", canonical_double(static_cast<float>(o.bake.texel_density))},
             {"max_texture", o.bake.texture.max_side},
@@ -466,6 +490,18 @@ void measure_outputs(AssetBake& a, const AssetOptions& o, const std::string& pat
   }
 }
 
+// Why an out-of-core bake does not draw its input (empty: it may). The measuring and the page
+// draw the whole input as the truth (qf-render's reference scene: a textured quad per point,
+// held on the CPU by the GL driver), ~1.1 KB a point (1M-point torus: 1.06 GB peak measuring,
+// 1.11 GB for qf-render eval), more than the in-memory bake's ~0.8 KB.
+constexpr double kDrawBytesPerPoint = 1100;
+std::string drawing_past_limit(const BakeResult& r) {
+  const double need = kDrawBytesPerPoint * double(r.points);
+  if (!r.memory.out_of_core || need <= double(r.memory.limit)) return "";
+  return "drawing the input's " + std::to_string(r.points) + " points as the truth needs about " + format_bytes(need) + ", past the " +
+         format_bytes(double(r.memory.limit)) + " of " + r.memory.limit_source;
+}
+
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -478,7 +514,7 @@ AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::
   // 1. Points (a mesh is sampled).
   TriangleMesh mesh;
   MeshSurface surface;  // a mesh input's quads draw the mesh itself
-  const PointSet points = load_point_set(path, o.read, o.sample, "bake", a.read, &a.sampled, &mesh, &surface.point_triangles);
+  PointSet points = load_point_set(path, o.read, o.sample, "bake", a.read, &a.sampled, &mesh, &surface.point_triangles);
   const bool is_mesh = !a.sampled.backend.empty();
   // A mesh's normals: its own; else flat for glTF (as engines draw it), smooth for the others (as
   // the reference is drawn, tools/reference_scene.cpp). Its quads and mesh LODs are drawn so too.
@@ -496,7 +532,9 @@ AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::
   const double lods_seconds = seconds_since(lods_start);
   BakeOptions bake_options = o.bake;
   use_surface_edges(bake_options, is_mesh);
-  a.result = bake(points, bake_options, path, is_mesh ? &surface : nullptr);
+  // A point set is handed over: an out-of-core bake frees it once on disk (a mesh's points stay,
+  // for its point impostor; a mesh is never baked out of core).
+  a.result = is_mesh ? bake(points, bake_options, path, &surface) : bake(std::move(points), bake_options, path);
   if (!is_mesh && !o.mesh_only_given.empty()) {
     std::string names;
     for (const std::string& n : o.mesh_only_given) names += (names.empty() ? "" : ", ") + n;
@@ -514,8 +552,15 @@ AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::
     a.manifest["mesh_lods"] = std::move(mesh_lods);
     a.result.times.push_back({"mesh lods", lods_seconds, 0, 0});
   }
-  // 5. Every output measured on screen: honest screen sizes, the recommended chain.
-  if (o.measure) {
+  // 5. Every output measured on screen: honest screen sizes, the recommended chain. Not where an
+  //    out-of-core bake's limit cannot hold the input drawn as the truth.
+  const std::string undrawn = drawing_past_limit(a.result);
+  if (o.measure && !undrawn.empty())
+    a.result.warnings.push_back("the outputs were not measured (" + undrawn + "), so the levels keep their geometric max_screen_pixels "
+                                "and there is no recommended chain; give --no-measure to say so, or more --max-memory");
+  if (o.report_page && !undrawn.empty())
+    a.result.warnings.push_back("no report.html (" + undrawn + "); give --no-report-html to say so, or more --max-memory");
+  if (o.measure && undrawn.empty()) {
     const auto measure_start = std::chrono::steady_clock::now();
     measure_outputs(a, o, path);
     a.result.times.push_back({"measure", seconds_since(measure_start), 0, 0});
@@ -530,7 +575,7 @@ AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::
   // 7. The report, then the page, which shows it (its time is in the report's stages, as the
   // page's own: "report page").
   a.report = asset_report(a, o, input_name, a.manifest["levels"]);
-  if (o.report_page) {
+  if (o.report_page && undrawn.empty()) {
     const auto page_start = std::chrono::steady_clock::now();
     progress::step("report page");
     a.page = o.report_page(a, path);

@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "core/memory.h"
 #include "core/progress.h"
+#include "pipeline/out_of_core.h"
 
 namespace qf {
 namespace {
@@ -164,19 +165,44 @@ std::size_t estimated_bake_bytes(std::size_t points, const AnalysisOptions& anal
   return kBakeFixedBytes + static_cast<std::size_t>(per_point * double(points));
 }
 
-void check_bake_memory(std::size_t points, const AnalysisOptions& analysis, const std::string& source_name) {
-  const std::size_t need = estimated_bake_bytes(points, analysis);
-  MemoryBudget budget;
-  try {
-    budget = available_memory();
-  } catch (const std::invalid_argument& e) {
-    throw UsageError(std::string("QF_MEMORY_LIMIT: ") + e.what());
+MemoryPlan plan_bake_memory(std::size_t points, const BakeOptions& o, bool mesh, const std::string& source_name) {
+  MemoryPlan plan;
+  plan.need = estimated_bake_bytes(points, o.analysis);
+  if (o.max_memory > 0) {
+    plan.limit = o.max_memory, plan.limit_source = "--max-memory";
+  } else {
+    MemoryBudget budget;
+    try {
+      budget = available_memory();
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("QF_MEMORY_LIMIT: ") + e.what());
+    }
+    plan.limit = budget.bytes, plan.limit_source = budget.source;
   }
-  if (need <= budget.bytes) return;
-  throw InputError("bake.memory", source_name, "",
-                   "its " + std::to_string(points) + " points need about " + format_bytes(double(need)) +
-                       " to bake (estimated), but only " + format_bytes(double(budget.bytes)) + " is available (" +
-                       budget.source + "); bake it on a machine with more memory, or split it");
+  if (plan.need <= plan.limit) return plan;
+  const std::string figures = "its " + std::to_string(points) + " points need about " + format_bytes(double(plan.need)) +
+                              " to bake (estimated), but only " + format_bytes(double(plan.limit)) + " is " +
+                              (o.max_memory > 0 ? "allowed" : "available") + " (" + plan.limit_source + ")";
+  if (mesh)
+    throw InputError("bake.memory", source_name, "",
+                     figures + "; a mesh is sampled into points and baked in memory, not streamed: sample fewer points (--ldi), "
+                               "or bake it on a machine with more memory");
+  // Out of core: the largest subsample whose decomposition takes its share of the limit.
+  const double per_point = kBakeBytesPerPoint + kBakeBytesPerNeighbor * std::max(1, o.analysis.neighborhoods.k);
+  const double room = plan.limit > kBakeFixedBytes ? double(plan.limit - kBakeFixedBytes) : 0.0;
+  const auto fits = static_cast<std::size_t>(kOutOfCoreSubsampleShare * room / per_point);
+  std::size_t most = 0;
+  for (std::size_t n : o.primitives) most = std::max(most, n);
+  const std::size_t least = std::max(kOutOfCoreMinSubsample, 16 * (o.levels.empty() ? most : 0));
+  if (fits < least)
+    throw InputError("bake.memory", source_name, "",
+                     figures + "; even out of core, a subsample of " + std::to_string(least) + " points needs about " +
+                         format_bytes(kBakeFixedBytes + double(least) * per_point / kOutOfCoreSubsampleShare) +
+                         "; bake it on a machine with more memory, or split it");
+  plan.out_of_core = true;
+  plan.subsample = std::min(points, fits);
+  plan.batch_points = std::max<std::size_t>(1, static_cast<std::size_t>(kOutOfCoreBatchShare * room / kOutOfCoreBytesPerMember));
+  return plan;
 }
 
 namespace {
@@ -192,18 +218,25 @@ PointSet completed_points(const PointSet& input, const std::vector<std::uint32_t
   return points;
 }
 
+// A level's textures from its basis on the bake's points, its domains and rectangles: the
+// out-of-core bake resamples them from every point on disk (streamed_textures) instead of from
+// the subsample the level was decomposed on.
+// It may remake the rectangles (from every point), which the level's quads then take.
+using LevelTexturer = std::function<std::vector<Texture>(const SparseMatrix& psi, const Domains& d,
+                                                         std::vector<SupportRect>& rects, const TextureOptions& texture)>;
+
 // 4b. One level from its basis `psi` (with --merge, merged, and its neighbour edges): domains,
-// rectangles, textures, atlas, glb.
+// rectangles, textures (`texturer`'s when given), atlas, glb.
 BakedLevel bake_level(std::size_t level, const SparseMatrix& psi, std::vector<std::array<std::uint32_t, 2>> merged_edges,
                       const PointSet& points, const std::vector<Vec3f>& normals, const BakeOptions& o, double diagonal,
-                      const MeshSurface* surface, Stopwatch& watch) {
+                      const MeshSurface* surface, Stopwatch& watch, const LevelTexturer* texturer) {
   const std::string name = "level " + std::to_string(level);
   progress::step(name + ": domains and rectangles");
   Domains d = make_domains(psi, o.domains);
   // Merged faces trimmed at their crease no longer overlap but stay neighbours there.
   if (o.merge) d.edges = std::move(merged_edges);
-  const std::vector<SupportRect> rects = support_rectangles(points.positions, normals, points.radii, psi, d, o.support);
-  SparseMatrix alpha = domain_partition(psi, d);  // what the rendered sum adds up
+  std::vector<SupportRect> rects = support_rectangles(points.positions, normals, points.radii, psi, d, o.support);
+  SparseMatrix alpha = texturer ? SparseMatrix() : domain_partition(psi, d);  // what the rendered sum adds up
   watch.lap(name + " domains");
   BakedLevel out;
   out.level = level;
@@ -215,7 +248,8 @@ BakedLevel bake_level(std::size_t level, const SparseMatrix& psi, std::vector<st
   const TextureOptions texture = level_texture_options(o, diagonal, out.max_screen_pixels);
   out.texel = texture.min_texel;
   progress::step(name + ": textures of " + std::to_string(rects.size()) + " quads", rects.size());
-  std::vector<Texture> textures = level_textures(points, normals, alpha, d, rects, texture, surface);
+  std::vector<Texture> textures =
+      texturer ? (*texturer)(psi, d, rects, texture) : level_textures(points, normals, alpha, d, rects, texture, surface);
   watch.lap(name + " textures");
   for (const Texture& t : textures) out.texels += static_cast<std::size_t>(t.width) * static_cast<std::size_t>(t.height);
   // The level's partition is done with; its textures once packed into the atlas (at 10M sampled
@@ -240,14 +274,14 @@ BakedLevel bake_level(std::size_t level, const SparseMatrix& psi, std::vector<st
 // by their merged count come merged from choose_merged_levels.
 std::vector<BakedLevel> baked_levels(const AmgHierarchy& h, const BakeOptions& o, const PointSet& points,
                                      const std::vector<Vec3f>& normals, double diagonal, const MeshSurface* surface,
-                                     Stopwatch& watch) {
+                                     Stopwatch& watch, const LevelTexturer* texturer = nullptr) {
   std::vector<BakedLevel> out;
   progress::step("basis functions");
   if (o.merge && o.levels.empty()) {
     std::vector<MergedLevel> bases = choose_merged_levels(h, o, points.positions, normals);
     watch.lap("basis");
     for (MergedLevel& b : bases) {
-      out.push_back(bake_level(b.level, b.psi, std::move(b.edges), points, normals, o, diagonal, surface, watch));
+      out.push_back(bake_level(b.level, b.psi, std::move(b.edges), points, normals, o, diagonal, surface, watch, texturer));
       b.psi = SparseMatrix();  // done with
     }
     return out;
@@ -258,14 +292,14 @@ std::vector<BakedLevel> baked_levels(const AmgHierarchy& h, const BakeOptions& o
     if (!wanted(l)) return;
     if (!o.merge) {
       watch.lap("level " + std::to_string(l) + " basis");
-      out.push_back(bake_level(l, psi, {}, points, normals, o, diagonal, surface, watch));
+      out.push_back(bake_level(l, psi, {}, points, normals, o, diagonal, surface, watch, texturer));
       progress::step("basis functions");
       return;
     }
     MergeReport report;
     const SparseMatrix merged = merge_domains(psi, points.positions, normals, o.merge_options, &report);
     watch.lap("level " + std::to_string(l) + " basis");
-    out.push_back(bake_level(l, merged, std::move(report.edges), points, normals, o, diagonal, surface, watch));
+    out.push_back(bake_level(l, merged, std::move(report.edges), points, normals, o, diagonal, surface, watch, texturer));
     progress::step("basis functions");
   };
   if (wanted(0)) visit(0, basis_at_level(h, 0));
@@ -283,17 +317,32 @@ std::vector<BakedLevel> baked_levels(const AmgHierarchy& h, const BakeOptions& o
 
 }  // namespace
 
-BakeResult bake(const PointSet& input, const BakeOptions& o, const std::string& source_name, const MeshSurface* surface) {
-  BakeResult r;
-  Stopwatch watch(r.times);
-  r.points = input.size();
-  const std::size_t needed = static_cast<std::size_t>(std::max(4, std::min(o.analysis.neighborhoods.k, 8)));
-  if (input.size() < needed)
+namespace {
+
+// 3. Hierarchy (analysis + AMG) of the points the decomposition runs on, cached; estimated
+// normals into `estimated` where the points have none.
+AmgHierarchy decomposed(const PointSet& points, const BakeOptions& o, const std::string& source_name, BakeResult& r,
+                        Stopwatch& watch, std::vector<Vec3f>& estimated) {
+  progress::step("analysis (neighbourhoods, classifier, stiffness)");
+  AmgHierarchy h = cached_hierarchy(points, o.analysis, o.amg, o.cache_dir, r.cache, &estimated, [&](const char* stage) {
+    watch.lap(stage);
+    progress::step("AMG coarsening");
+  });
+  r.hierarchy_levels = h.level_count();
+  r.components = h.components;
+  if (h.level_count() < 2)
     throw InputError("bake.too_small", source_name, "",
-                     "holds " + std::to_string(input.size()) + " points; a decomposition needs at least " +
-                         std::to_string(needed));
-  // 1. Fail early, with the figures, where the bake would not fit in memory (not an OOM kill).
-  check_bake_memory(input.size(), o.analysis, source_name);
+                     "cannot be decomposed: its " + std::to_string(points.size()) +
+                         " points form no surface (all coincident, collinear, or too few)");
+  if (h.components > 1)
+    r.warnings.push_back(std::to_string(h.components) + " disconnected parts: coarse levels keep one function each");
+  watch.lap("hierarchy");
+  return h;
+}
+
+// The in-memory bake: every stage on every point.
+void bake_in_memory(const PointSet& input, const BakeOptions& o, const std::string& source_name, const MeshSurface* surface,
+                    BakeResult& r, Stopwatch& watch) {
   // 2. Complete the point set; a mesh surface's triangles follow its points into Morton order.
   progress::step("ordering " + std::to_string(input.size()) + " points");
   std::vector<std::uint32_t> order = morton_order(input.positions);
@@ -312,25 +361,82 @@ BakeResult bake(const PointSet& input, const BakeOptions& o, const std::string& 
   watch.lap("prepare");
   // 3. Hierarchy (analysis + AMG), cached.
   std::vector<Vec3f> estimated;
-  progress::step("analysis (neighbourhoods, classifier, stiffness)");
-  const AmgHierarchy h = cached_hierarchy(points, o.analysis, o.amg, o.cache_dir, r.cache, &estimated, [&](const char* stage) {
-    watch.lap(stage);
-    progress::step("AMG coarsening");
-  });
-  r.hierarchy_levels = h.level_count();
-  r.components = h.components;
-  if (h.level_count() < 2)
-    throw InputError("bake.too_small", source_name, "",
-                     "cannot be decomposed: its " + std::to_string(points.size()) +
-                         " points form no surface (all coincident, collinear, or too few)");
-  if (h.components > 1)
-    r.warnings.push_back(std::to_string(h.components) + " disconnected parts: coarse levels keep one function each");
-  watch.lap("hierarchy");
+  const AmgHierarchy h = decomposed(points, o, source_name, r, watch, estimated);
   // Normals orient the planes and make the normal maps: the input's, else the analysis' estimate.
   const std::vector<Vec3f>& normals = points.has_normals() ? points.normals : estimated;
   // 4. Every chosen level: basis, then domains, rectangles, textures, atlas, glb.
   r.levels = baked_levels(h, o, points, normals, r.diagonal, drawn, watch);
+}
+
+// The out-of-core bake (pipeline/out_of_core.h): the points to scratch in Morton tiles (`owned`,
+// when given, is freed then), the decomposition on the subsample, each level's textures from
+// every point read back tile by tile.
+void bake_out_of_core(const PointSet& input, PointSet* owned, const BakeOptions& o, const std::string& source_name,
+                      BakeResult& r, Stopwatch& watch) {
+  // 2. Scratch and subsample.
+  progress::step("ordering " + std::to_string(input.size()) + " points");
+  StreamedPoints s;
+  {
+    const std::vector<std::uint32_t> order = morton_order(input.positions);
+    try {
+      s = spill_points(input, order, r.memory.subsample, o.scratch_dir);
+    } catch (const std::runtime_error& e) {  // no room on disk: the setting or the machine, not the input
+      throw UsageError(std::string("out-of-core bake: ") + e.what());
+    }
+  }
+  if (s.needs_radii && input.has_radii()) r.warnings.push_back("some radii were 0 and were estimated");
+  if (owned) *owned = PointSet();  // on disk now; its memory goes to the decomposition
+  r.diagonal = s.bounds.diagonal();
+  watch.lap("spill");
+  // 3. Hierarchy of the subsample; every point linked to it.
+  std::vector<Vec3f> estimated;
+  const AmgHierarchy h = decomposed(s.subsample, o, source_name, r, watch, estimated);
+  const std::vector<Vec3f>& normals = s.subsample.has_normals() ? s.subsample.normals : estimated;
+  try {
+    link_points(s);
+  } catch (const std::runtime_error& e) {
+    throw UsageError(std::string("out-of-core bake: ") + e.what());
+  }
+  watch.lap("link");
+  // 4. Every chosen level, decomposed on the subsample, textured from every point.
+  const LevelTexturer streamed = [&](const SparseMatrix& psi, const Domains& d, std::vector<SupportRect>& rects,
+                                     const TextureOptions& texture) {
+    std::size_t batches = 0;
+    std::vector<Texture> t =
+        streamed_textures(s, normals, psi, d, rects, o.domains, o.support, texture, r.memory.batch_points, &batches);
+    r.batches = std::max(r.batches, batches);
+    return t;
+  };
+  r.levels = baked_levels(h, o, s.subsample, normals, r.diagonal, nullptr, watch, &streamed);
+  r.scratch_bytes = s.file->size();
+}
+
+BakeResult bake_points(const PointSet& input, PointSet* owned, const BakeOptions& o, const std::string& source_name,
+                       const MeshSurface* surface) {
+  BakeResult r;
+  Stopwatch watch(r.times);
+  r.points = input.size();
+  const std::size_t needed = static_cast<std::size_t>(std::max(4, std::min(o.analysis.neighborhoods.k, 8)));
+  if (input.size() < needed)
+    throw InputError("bake.too_small", source_name, "",
+                     "holds " + std::to_string(input.size()) + " points; a decomposition needs at least " +
+                         std::to_string(needed));
+  // 1. The path that fits in memory; a failure early, with the figures, where none does (not an
+  //    OOM kill).
+  r.memory = plan_bake_memory(input.size(), o, surface && surface->mesh, source_name);
+  if (r.memory.out_of_core) bake_out_of_core(input, owned, o, source_name, r, watch);
+  else bake_in_memory(input, o, source_name, surface, r, watch);
   return r;
+}
+
+}  // namespace
+
+BakeResult bake(const PointSet& input, const BakeOptions& o, const std::string& source_name, const MeshSurface* surface) {
+  return bake_points(input, nullptr, o, source_name, surface);
+}
+
+BakeResult bake(PointSet&& input, const BakeOptions& o, const std::string& source_name) {
+  return bake_points(input, &input, o, source_name, nullptr);
 }
 
 }  // namespace qf

@@ -43,11 +43,37 @@ constexpr double kBakeBytesPerNeighbor = 8;
 constexpr std::size_t kBakeFixedBytes = std::size_t{384} << 20;
 std::size_t estimated_bake_bytes(std::size_t points, const AnalysisOptions& analysis);
 
-// Throws InputError("bake.memory") naming the estimated need and the memory available
-// (core/memory.h available_memory: MemAvailable, the cgroup's limit, QF_MEMORY_LIMIT) when a bake
-// of `points` points would not fit, so that a batch fails that asset with the figures instead of
-// the kernel killing the process; UsageError for a malformed QF_MEMORY_LIMIT.
-void check_bake_memory(std::size_t points, const AnalysisOptions& analysis, const std::string& source_name);
+struct BakeOptions;
+
+// How a bake fits in memory (plan_bake_memory): in memory when its estimated need fits the limit;
+// else, for a point set, out of core (pipeline/out_of_core.h): the decomposition on a subsample
+// sized to fit, the textures from every point read back from scratch in tiles.
+struct MemoryPlan {
+  bool out_of_core = false;
+  std::size_t need = 0;        // estimated_bake_bytes of the whole set
+  std::size_t limit = 0;       // bytes: --max-memory, else the memory available
+  std::string limit_source;    // "--max-memory", or available_memory's source
+  std::size_t subsample = 0;   // out of core: points the decomposition runs on
+  std::size_t batch_points = 0;  // out of core: full-density points gathered per batch of quads
+};
+
+// The share of the limit above the fixed part that the out-of-core subsample's decomposition may
+// take (at estimated_bake_bytes' rate per point); the rest is for the held hierarchy, each level's
+// gathered points (kOutOfCoreBatchShare, at kOutOfCoreBytesPerMember a point and quad) and
+// textures.
+constexpr double kOutOfCoreSubsampleShare = 0.65;
+constexpr double kOutOfCoreBatchShare = 0.15;
+constexpr double kOutOfCoreBytesPerMember = 64;
+
+// The plan for a bake of `points` points under `max_memory` bytes (0: the memory available,
+// core/memory.h available_memory: MemAvailable, the cgroup's limit, QF_MEMORY_LIMIT). Throws
+// InputError("bake.memory") naming the estimated need and the limit where no plan fits, so that a
+// batch fails that asset with the figures instead of the kernel killing the process: a mesh input
+// (`mesh`: its points are sampled, not streamed) past the limit, or a limit too small for a
+// subsample of at least max(kOutOfCoreMinSubsample, 16 x the most primitives asked for);
+// UsageError for a malformed QF_MEMORY_LIMIT.
+constexpr std::size_t kOutOfCoreMinSubsample = 10000;
+MemoryPlan plan_bake_memory(std::size_t points, const BakeOptions& options, bool mesh, const std::string& source_name);
 
 struct BakeOptions {
   AnalysisOptions analysis;
@@ -75,6 +101,10 @@ struct BakeOptions {
   std::vector<long long> levels;
   std::vector<std::size_t> primitives{1000, 300, 100, 30};
   std::string cache_dir;  // empty = no hierarchy cache
+  // The memory the bake may take, bytes (qf-bake --max-memory); 0 = the memory available. Past
+  // it a point set bakes out of core (plan_bake_memory).
+  std::size_t max_memory = 0;
+  std::string scratch_dir;  // the out-of-core bake's scratch file; empty = $TMPDIR, else /tmp
 };
 
 // The quads' alpha edges, cut to the texel where the input's surface ends
@@ -149,6 +179,9 @@ struct StageTime {
 };
 
 struct BakeResult {
+  MemoryPlan memory;
+  std::uint64_t scratch_bytes = 0;  // out of core: the scratch file at its largest
+  std::size_t batches = 0;          // out of core: the most batches of quads a level took
   std::vector<BakedLevel> levels;
   std::size_t points = 0, hierarchy_levels = 0, components = 0;
   float diagonal = 0;  // of the bounding box
@@ -173,11 +206,13 @@ std::vector<MergedLevel> choose_merged_levels(const AmgHierarchy& h, const BakeO
 
 // Bakes the chosen levels. Throws InputError("bake.too_small") when the set cannot be decomposed
 // (fewer points than a neighbourhood needs, or no surface: every fan empty), InputError
-// ("bake.memory") when it would need more memory than is available (check_bake_memory, before any
-// work), UsageError for a level number the hierarchy does not have. `surface`, for a mesh input
-// (its sampled points' triangles, one per point of `points`), gives the quads the mesh's own look
-// (resample_texture).
+// ("bake.memory") when no plan fits the memory (plan_bake_memory, before any work), UsageError
+// for a level number the hierarchy does not have. `surface`, for a mesh input (its sampled
+// points' triangles, one per point of `points`), gives the quads the mesh's own look
+// (resample_texture). Past the memory limit a point set bakes out of core (result.memory says
+// so); the overload taking the set by rvalue frees it once written to scratch.
 BakeResult bake(const PointSet& points, const BakeOptions& options, const std::string& source_name,
                 const MeshSurface* surface = nullptr);
+BakeResult bake(PointSet&& points, const BakeOptions& options, const std::string& source_name);
 
 }  // namespace qf

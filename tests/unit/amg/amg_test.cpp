@@ -282,6 +282,23 @@ TEST(Levels, ByIndexAndByPrimitives) {
   for (std::size_t l = 0; l <= last; ++l) EXPECT_EQ(level_by_primitives(h, h.levels[l].size), l);
 }
 
+TEST(Levels, AimedLevelsLandOnTheTargetsAtTwoDensities) {
+  // A torus at two densities (as an out-of-core bake's subsample and its whole set): with target
+  // sizes both hierarchies hold levels within 3% of each target, the contracts kept.
+  AmgOptions amg;
+  amg.target_sizes = {300, 100, 30};
+  for (std::size_t n : {12000u, 30000u}) {
+    SCOPED_TRACE(std::to_string(n) + " points");
+    const AmgHierarchy h = build_hierarchy(analyze_surface(generate_shape("torus", {n, 2})).stiffness, amg);
+    for (std::size_t t : amg.target_sizes) {
+      const std::size_t got = h.levels[level_by_primitives(h, t)].size;
+      EXPECT_NEAR(double(got), double(t), 0.03 * double(t)) << "aimed at " << t;
+    }
+    const SparseMatrix psi = basis_at_level(h, level_by_primitives(h, 30));
+    for (Eigen::Index i = 0; i < psi.rows(); ++i) EXPECT_NEAR(psi.row(i).sum(), 1.0, 1e-9);
+  }
+}
+
 }  // namespace
 }  // namespace qf
 

@@ -1,4 +1,4 @@
-// The memory budget (core/memory.h) and the bake's memory check (pipeline/bake.h check_bake_memory).
+// The memory budget (core/memory.h) and the bake's memory check (pipeline/bake.h plan_bake_memory).
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -65,25 +65,51 @@ TEST(Memory, EstimateGrowsWithPointsAndNeighbours) {
 }
 
 TEST(Memory, BakeThatDoesNotFitFailsWithTheFigures) {
-  const AnalysisOptions a;
-  MemoryLimit cap("1G");
-  EXPECT_NO_THROW(check_bake_memory(1000, a, "small.ply"));
+  const BakeOptions o;
+  MemoryLimit cap("390M");  // the fixed 384 MB and room for 6 MB more: no subsample fits
+  EXPECT_FALSE(plan_bake_memory(1000, o, false, "small.ply").out_of_core);
   try {
-    check_bake_memory(10000000, a, "big.ply");
-    FAIL() << "10M points fit in 1 GB";
+    plan_bake_memory(10000000, o, false, "big.ply");
+    FAIL() << "10M points fit in 390 MB";
   } catch (const InputError& e) {
     EXPECT_EQ(e.code(), "bake.memory");
     EXPECT_EQ(e.file(), "big.ply");
     const std::string what = e.what();
     EXPECT_NE(what.find("10000000 points"), std::string::npos) << what;
-    EXPECT_NE(what.find(format_bytes(double(estimated_bake_bytes(10000000, a)))), std::string::npos) << what;
-    EXPECT_NE(what.find("1.0 GB is available (QF_MEMORY_LIMIT)"), std::string::npos) << what;
+    EXPECT_NE(what.find(format_bytes(double(estimated_bake_bytes(10000000, o.analysis)))), std::string::npos) << what;
+    EXPECT_NE(what.find("390 MB is available (QF_MEMORY_LIMIT)"), std::string::npos) << what;
+    EXPECT_NE(what.find("even out of core"), std::string::npos) << what;
+  }
+}
+
+TEST(Memory, PointSetPastTheLimitBakesOutOfCoreMeshIsRefused) {
+  BakeOptions o;
+  o.max_memory = std::size_t{1} << 30;  // --max-memory 1G
+  const MemoryPlan plan = plan_bake_memory(10000000, o, false, "big.ply");
+  EXPECT_TRUE(plan.out_of_core);
+  EXPECT_EQ(plan.limit_source, "--max-memory");
+  // The subsample's estimated decomposition takes its share of the room above the fixed part.
+  EXPECT_LE(double(estimated_bake_bytes(plan.subsample, o.analysis) - kBakeFixedBytes),
+            kOutOfCoreSubsampleShare * double(plan.limit - kBakeFixedBytes));
+  EXPECT_GT(plan.subsample, 400000u);
+  EXPECT_LT(plan.subsample, 10000000u);
+  EXPECT_GT(plan.batch_points, 0u);
+  // Under the limit: in memory, whatever the machine has.
+  EXPECT_FALSE(plan_bake_memory(100000, o, false, "small.ply").out_of_core);
+  try {
+    plan_bake_memory(10000000, o, true, "big.off");
+    FAIL() << "a mesh past the limit is not streamed";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.code(), "bake.memory");
+    const std::string what = e.what();
+    EXPECT_NE(what.find("1.0 GB is allowed (--max-memory)"), std::string::npos) << what;
+    EXPECT_NE(what.find("not streamed"), std::string::npos) << what;
   }
 }
 
 TEST(Memory, MalformedLimitIsAUsageError) {
   MemoryLimit cap("lots");
-  EXPECT_THROW(check_bake_memory(1000, AnalysisOptions{}, "x.ply"), UsageError);
+  EXPECT_THROW(plan_bake_memory(1000, BakeOptions{}, false, "x.ply"), UsageError);
 }
 
 }  // namespace

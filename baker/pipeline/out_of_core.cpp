@@ -1,0 +1,514 @@
+// The out-of-core bake's streaming parts: the scratch file in Morton tiles, the subsample, the
+// links of full points to it, and the textures resampled from every point, tile by tile.
+#include "pipeline/out_of_core.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <stdexcept>
+
+#include "analysis/neighborhoods.h"
+#include "core/progress.h"
+
+namespace qf {
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// One tile's points as read back: the file's records, and the links once made.
+struct TileData {
+  std::vector<Vec3f> positions, normals;
+  std::vector<float> radii;
+  std::vector<Rgb8> colors;
+  std::vector<std::uint32_t> link_index;  // kLinks per point
+  std::vector<float> link_weight;
+};
+
+template <class T>
+void append_array(ScratchFile& f, const std::vector<T>& v) {
+  if (!v.empty()) f.append(v.data(), v.size() * sizeof(T));
+}
+
+template <class T>
+std::uint64_t read_array(const ScratchFile& f, std::vector<T>& v, std::size_t n, std::uint64_t at) {
+  v.resize(n);
+  if (n) f.read(v.data(), n * sizeof(T), at);
+  return at + n * sizeof(T);
+}
+
+void read_tile(const StreamedPoints& s, const StreamedPoints::Tile& t, TileData& out, bool links) {
+  const std::size_t c = t.count;
+  std::uint64_t at = read_array(*s.file, out.positions, c, t.offset);
+  if (s.normals) at = read_array(*s.file, out.normals, c, at);
+  if (s.radii) at = read_array(*s.file, out.radii, c, at);
+  if (s.colors) read_array(*s.file, out.colors, c, at);
+  if (links) read_array(*s.file, out.link_weight, c * kLinks, read_array(*s.file, out.link_index, c * kLinks, t.links_offset));
+}
+
+// The subsample: stratum j holds the points [j n / m, (j + 1) n / m) of the Morton order, spatially
+// compact runs of the same number of points, so the subsample follows the input's density as the
+// in-memory bake sees it (an even voxel grid would thin dense parts more than sparse ones). Each
+// stratum keeps its point nearest the stratum's centroid (a real point, with its own attributes;
+// the lowest Morton index on ties).
+PointSet pick_subsample(const PointSet& input, const std::vector<std::uint32_t>& order, std::size_t m) {
+  const std::size_t n = order.size();
+  std::vector<std::uint32_t> picked(m);
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t j = 0; j < static_cast<std::ptrdiff_t>(m); ++j) {
+    const std::size_t begin = static_cast<std::size_t>(j) * n / m, end = (static_cast<std::size_t>(j) + 1) * n / m;
+    double c[3] = {0, 0, 0};
+    for (std::size_t i = begin; i < end; ++i)
+      for (int a = 0; a < 3; ++a) c[a] += input.positions[order[i]][a];
+    const Vec3f centroid{float(c[0] / double(end - begin)), float(c[1] / double(end - begin)), float(c[2] / double(end - begin))};
+    std::size_t best = begin;
+    float best_d = INFINITY;
+    for (std::size_t i = begin; i < end; ++i) {
+      const Vec3f v = input.positions[order[i]] - centroid;
+      const float d = dot(v, v);
+      if (d < best_d) best_d = d, best = i;
+    }
+    picked[static_cast<std::size_t>(j)] = order[best];
+  }
+  return permuted(input, picked);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Nearest subsample points of arbitrary query points: a uniform grid of cells about the
+// subsample's spacing, hashed (open addressing), searched in growing shells of cells until the
+// kLinks-th nearest found lies within the searched cube (exact k nearest, ties by index).
+class CellGrid {
+ public:
+  CellGrid(const std::vector<Vec3f>& points, float cell, Vec3f origin) : cell_(cell), origin_(origin) {
+    const std::size_t m = points.size();
+    std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(m);
+    for (std::size_t j = 0; j < m; ++j) keyed[j] = {key(coords(points[j])), static_cast<std::uint32_t>(j)};
+    std::sort(keyed.begin(), keyed.end());
+    sorted_.resize(m);
+    positions_.resize(m);
+    for (std::size_t j = 0; j < m; ++j) sorted_[j] = keyed[j].second, positions_[j] = points[keyed[j].second];
+    std::size_t cells = 0;
+    for (std::size_t j = 0; j < m; ++j) cells += j == 0 || keyed[j].first != keyed[j - 1].first;
+    std::size_t capacity = 16;
+    while (capacity < 2 * cells) capacity *= 2;
+    mask_ = capacity - 1;
+    slot_key_.assign(capacity, kEmpty);
+    slot_begin_.assign(capacity, 0);
+    slot_end_.assign(capacity, 0);
+    for (std::size_t j = 0; j < m;) {
+      std::size_t e = j;
+      while (e < m && keyed[e].first == keyed[j].first) ++e;
+      std::size_t h = hash(keyed[j].first) & mask_;
+      while (slot_key_[h] != kEmpty) h = (h + 1) & mask_;
+      slot_key_[h] = keyed[j].first, slot_begin_[h] = static_cast<std::uint32_t>(j), slot_end_[h] = static_cast<std::uint32_t>(e);
+      j = e;
+    }
+  }
+
+  // The k nearest points of x (k <= kLinks, fewer only when the grid holds fewer): indices into
+  // the grid's points and squared distances, nearest first.
+  int nearest(Vec3f x, int k, std::uint32_t* index, float* d2) const {
+    const std::array<std::int64_t, 3> c = coords(x);
+    int found = 0;
+    for (std::int64_t ring = 0;; ++ring) {
+      for (std::int64_t dx = -ring; dx <= ring; ++dx)
+        for (std::int64_t dy = -ring; dy <= ring; ++dy)
+          for (std::int64_t dz = -ring; dz <= ring; ++dz) {
+            if (std::max({std::llabs(dx), std::llabs(dy), std::llabs(dz)}) != ring) continue;  // the shell only
+            const std::int64_t cx = c[0] + dx, cy = c[1] + dy, cz = c[2] + dz;
+            if (cx < 0 || cy < 0 || cz < 0 || cx >= kSide || cy >= kSide || cz >= kSide) continue;
+            std::uint32_t b, e;
+            if (!find(key({cx, cy, cz}), b, e)) continue;
+            for (std::uint32_t q = b; q < e; ++q) {
+              const Vec3f v = positions_[q] - x;
+              insert(dot(v, v), sorted_[q], k, found, index, d2);
+            }
+          }
+      // Every point outside the searched cube is at least ring cells away from x.
+      const float reach = float(ring) * cell_;
+      if (found == k && d2[k - 1] <= reach * reach) return found;
+      if (ring > 2 * kSide) return found;  // the whole grid searched
+      if (ring >= 48 && found > 0 && found == static_cast<int>(std::min<std::size_t>(k, sorted_.size()))) return found;
+    }
+  }
+
+ private:
+  static constexpr std::int64_t kSide = std::int64_t{1} << 21;
+  static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
+
+  std::array<std::int64_t, 3> coords(Vec3f p) const {
+    std::array<std::int64_t, 3> c{};
+    for (int a = 0; a < 3; ++a)
+      c[static_cast<std::size_t>(a)] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((p[a] - origin_[a]) / cell_)), 0, kSide - 1);
+    return c;
+  }
+  static std::uint64_t key(const std::array<std::int64_t, 3>& c) {
+    return (std::uint64_t(c[0]) << 42) | (std::uint64_t(c[1]) << 21) | std::uint64_t(c[2]);
+  }
+  static std::uint64_t hash(std::uint64_t k) {
+    k ^= k >> 33, k *= 0xff51afd7ed558ccdULL, k ^= k >> 33;
+    return k;
+  }
+  bool find(std::uint64_t k, std::uint32_t& b, std::uint32_t& e) const {
+    for (std::size_t h = hash(k) & mask_;; h = (h + 1) & mask_) {
+      if (slot_key_[h] == kEmpty) return false;
+      if (slot_key_[h] == k) {
+        b = slot_begin_[h], e = slot_end_[h];
+        return true;
+      }
+    }
+  }
+  // Keeps the k best (distance, then index) in d2 / index, sorted.
+  static void insert(float d, std::uint32_t j, int k, int& found, std::uint32_t* index, float* d2) {
+    if (found == k && (d > d2[k - 1] || (d == d2[k - 1] && j > index[k - 1]))) return;
+    int at = found < k ? found++ : k - 1;
+    while (at > 0 && (d < d2[at - 1] || (d == d2[at - 1] && j < index[at - 1]))) {
+      d2[at] = d2[at - 1], index[at] = index[at - 1];
+      --at;
+    }
+    d2[at] = d, index[at] = j;
+  }
+
+  float cell_;
+  Vec3f origin_;
+  std::vector<std::uint32_t> sorted_;
+  std::vector<Vec3f> positions_;
+  std::size_t mask_ = 0;
+  std::vector<std::uint64_t> slot_key_;
+  std::vector<std::uint32_t> slot_begin_, slot_end_;
+};
+
+// The subsample's typical spacing: the median of its radii at its own density.
+float subsample_spacing(const StreamedPoints& s) {
+  std::vector<float> r = s.subsample.radii;
+  if (r.empty()) return s.bounds.diagonal() * 1e-3f + 1e-30f;
+  std::nth_element(r.begin(), r.begin() + static_cast<std::ptrdiff_t>(r.size() / 2), r.end());
+  return std::max(1e-30f, r[r.size() / 2] * float(std::sqrt(s.stride)));
+}
+
+}  // namespace
+
+StreamedPoints spill_points(const PointSet& input, const std::vector<std::uint32_t>& order, std::size_t subsample,
+                            const std::string& scratch_dir) {
+  if (subsample < 1 || subsample > input.size() || order.size() != input.size())
+    throw std::logic_error("spill_points: a subsample of 1 .. n points of a Morton order of the input");
+  StreamedPoints s;
+  s.points = input.size();
+  s.normals = input.has_normals(), s.radii = input.has_radii(), s.colors = input.has_colors();
+  s.needs_radii = !s.radii || std::find(input.radii.begin(), input.radii.end(), 0.0f) != input.radii.end();
+  s.stride = double(s.points) / double(subsample);
+  s.file = std::make_unique<ScratchFile>("bake", scratch_dir);
+  // 1. The tiles: runs of kTilePoints points of the Morton order, each record array in turn.
+  progress::step("writing " + std::to_string(s.points) + " points to scratch (" + s.file->path() + ")", (s.points + kTilePoints - 1) / kTilePoints);
+  for (std::size_t first = 0; first < s.points; first += kTilePoints) {
+    StreamedPoints::Tile t;
+    t.first = static_cast<std::uint32_t>(first);
+    t.count = static_cast<std::uint32_t>(std::min(kTilePoints, s.points - first));
+    TileData d;
+    for (std::size_t i = first; i < first + t.count; ++i) {
+      const std::uint32_t p = order[i];
+      d.positions.push_back(input.positions[p]);
+      t.bounds.add(input.positions[p]);
+      if (s.normals) d.normals.push_back(input.normals[p]);
+      if (s.radii) d.radii.push_back(input.radii[p]);
+      if (s.colors) d.colors.push_back(input.colors[p]);
+    }
+    t.offset = s.file->size();
+    append_array(*s.file, d.positions);
+    append_array(*s.file, d.normals);
+    append_array(*s.file, d.radii);
+    append_array(*s.file, d.colors);
+    s.bounds.add(t.bounds.min), s.bounds.add(t.bounds.max);
+    s.tiles.push_back(t);
+    progress::advance();
+  }
+  // 2. The subsample, its radii at the full density where the input has none.
+  progress::step("subsample of " + std::to_string(subsample) + " points");
+  s.subsample = pick_subsample(input, order, subsample);
+  if (s.needs_radii) {
+    PointSet own;
+    own.positions = s.subsample.positions;
+    estimate_radii(own);
+    const float scale = 1.0f / static_cast<float>(std::sqrt(s.stride));
+    if (s.subsample.radii.empty()) s.subsample.radii.assign(subsample, 0.0f);
+    for (std::size_t j = 0; j < subsample; ++j)
+      if (s.subsample.radii[j] == 0.0f) s.subsample.radii[j] = own.radii[j] * scale;
+  }
+  return s;
+}
+
+void link_points(StreamedPoints& s) {
+  const float spacing = subsample_spacing(s);
+  const CellGrid grid(s.subsample.positions, spacing, s.bounds.min - Vec3f{spacing, spacing, spacing});
+  const int k = static_cast<int>(std::min<std::size_t>(kLinks, s.subsample.size()));
+  // Inverse-square-distance weights (Shepard's): they interpolate, so a point of the subsample
+  // takes exactly its own functions (and coincident ones share equally), and a subsample of every
+  // point gives the in-memory bake's alpha.
+  progress::step("linking " + std::to_string(s.points) + " points to the subsample", s.tiles.size());
+  TileData d;
+  for (StreamedPoints::Tile& t : s.tiles) {
+    read_tile(s, t, d, false);
+    const std::size_t c = t.count;
+    d.link_index.assign(c * kLinks, 0);
+    d.link_weight.assign(c * kLinks, 0.0f);
+    float reach = 0;
+#pragma omp parallel for schedule(static) reduction(max : reach)
+    for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(c); ++i) {
+      std::uint32_t* idx = &d.link_index[static_cast<std::size_t>(i) * kLinks];
+      float* w = &d.link_weight[static_cast<std::size_t>(i) * kLinks];
+      float d2[kLinks];
+      const int found = grid.nearest(d.positions[static_cast<std::size_t>(i)], k, idx, d2);
+      int zeros = 0;
+      while (zeros < found && d2[zeros] == 0.0f) ++zeros;
+      double sum = 0;
+      for (int q = 0; q < found; ++q) sum += zeros ? (q < zeros ? 1.0 : 0.0) : 1.0 / double(d2[q]);
+      for (int q = 0; q < found; ++q) w[q] = static_cast<float>((zeros ? (q < zeros ? 1.0 : 0.0) : 1.0 / double(d2[q])) / sum);
+      for (int q = found; q < kLinks; ++q) idx[q] = idx[0], w[q] = 0.0f;  // unused slots weigh nothing
+      reach = std::max(reach, std::sqrt(d2[found - 1]));
+    }
+    t.reach = reach;
+    t.links_offset = s.file->size();
+    append_array(*s.file, d.link_index);
+    append_array(*s.file, d.link_weight);
+    progress::advance();
+  }
+}
+
+namespace {
+
+// A quad's full-density points, gathered from the tiles for its texture.
+struct QuadPoints {
+  std::vector<Vec3f> positions, normals;
+  std::vector<float> radii;
+  std::vector<Rgb8> colors;
+  std::vector<double> alpha, psi;  // its alpha (domain_partition's) and its function's value
+};
+
+// One point's membership: quad (index into rects), alpha and the function's value.
+struct Member {
+  std::uint32_t point, quad;
+  double alpha, psi;
+};
+
+// The memberships of one point from its links: Psi_full(x) = sum_q w_q Psi_sub(link_q), then the
+// domain rule (domains.h) and domain_partition's renormalisation over every domain it is in
+// (functions with a rectangle: quad_of >= 0); kept for the batch's quads (batch_of >= 0) only.
+void point_members(const SparseMatrix& psi, const std::uint32_t* idx, const float* w, const std::vector<std::int32_t>& quad_of,
+                   const std::vector<std::int32_t>& batch_of, const DomainOptions& o, std::uint32_t point,
+                   std::vector<std::pair<std::int32_t, double>>& row, std::vector<Member>& out) {
+  row.clear();
+  for (int q = 0; q < kLinks; ++q) {
+    if (!(w[q] > 0)) continue;
+    for (SparseMatrix::InnerIterator it(psi, static_cast<Eigen::Index>(idx[q])); it; ++it) row.push_back({it.col(), double(w[q]) * it.value()});
+  }
+  if (row.empty()) return;
+  // Summed per function in link order (stable), so the sums do not depend on anything else.
+  std::stable_sort(row.begin(), row.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::size_t u = 0;
+  for (std::size_t e = 1; e < row.size(); ++e) {
+    if (row[e].first == row[u].first) row[u].second += row[e].second;
+    else row[++u] = row[e];
+  }
+  row.resize(u + 1);
+  if (o.strict) {
+    std::size_t best = 0;
+    for (std::size_t e = 1; e < row.size(); ++e)
+      if (row[e].second > row[best].second) best = e;
+    if (batch_of[static_cast<std::size_t>(row[best].first)] >= 0)
+      out.push_back({point, static_cast<std::uint32_t>(batch_of[static_cast<std::size_t>(row[best].first)]), 1.0, row[best].second});
+    return;
+  }
+  double sum = 0;
+  for (const auto& [f, v] : row)
+    if (v > o.tau && quad_of[static_cast<std::size_t>(f)] >= 0) sum += v;
+  if (!(sum > 0)) return;
+  for (const auto& [f, v] : row)
+    if (v > o.tau && batch_of[static_cast<std::size_t>(f)] >= 0)
+      out.push_back({point, static_cast<std::uint32_t>(batch_of[static_cast<std::size_t>(f)]), v / sum, v});
+}
+
+// Per quad, the box its full-density points can come from: the subsample points where its function
+// is non-zero (a full point in the domain has one of them among its links).
+std::vector<Bounds> function_bounds(const SparseMatrix& psi, const std::vector<Vec3f>& sub, const std::vector<std::int32_t>& quad_of,
+                                    std::size_t quads) {
+  std::vector<Bounds> b(quads);
+  for (Eigen::Index j = 0; j < psi.rows(); ++j)
+    for (SparseMatrix::InnerIterator it(psi, j); it; ++it)
+      if (it.value() > 0 && quad_of[static_cast<std::size_t>(it.col())] >= 0)
+        b[static_cast<std::size_t>(quad_of[static_cast<std::size_t>(it.col())])].add(sub[static_cast<std::size_t>(j)]);
+  return b;
+}
+
+bool overlaps(const Bounds& a, const Bounds& b, float pad) {
+  if (a.empty() || b.empty()) return false;
+  for (int k = 0; k < 3; ++k)
+    if (a.min[k] - pad > b.max[k] || b.min[k] - pad > a.max[k]) return false;
+  return true;
+}
+
+// The quads in batches of about `batch_points` estimated full points (a domain's subsample points
+// x the stride), in the order of their rectangles' centres along the Morton curve so that a batch
+// reads nearby tiles; a quad larger than a batch is a batch of its own.
+std::vector<std::vector<std::uint32_t>> quad_batches(const StreamedPoints& s, const Domains& d, const std::vector<SupportRect>& rects,
+                                                     std::size_t batch_points) {
+  std::vector<Vec3f> centers;
+  for (const SupportRect& r : rects) centers.push_back(r.center);
+  const std::vector<std::uint32_t> order = centers.empty() ? std::vector<std::uint32_t>() : morton_order(centers);
+  std::vector<std::vector<std::uint32_t>> batches;
+  double held = 0;
+  for (std::uint32_t q : order) {
+    const double est = double(d.size(rects[q].domain)) * s.stride;
+    if (batches.empty() || (held + est > double(batch_points) && !batches.back().empty())) {
+      batches.emplace_back();
+      held = 0;
+    }
+    batches.back().push_back(q);
+    held += est;
+  }
+  return batches;
+}
+
+// Gathers the batch's quads' points from every tile that may reach them.
+void gather_batch(const StreamedPoints& s, const std::vector<Vec3f>& sub_normals, const SparseMatrix& psi,
+                  const std::vector<std::int32_t>& quad_of, const std::vector<std::int32_t>& batch_of, const std::vector<Bounds>& reach,
+                  const DomainOptions& o, std::vector<QuadPoints>& quads) {
+  constexpr std::size_t kChunk = 4096;  // fixed chunks: the same order of members at any thread count
+  // The subsample points where a function of the batch is non-zero: a point none of whose links is
+  // one can be in none of the batch's domains, and is passed over without making its row (most
+  // of them, the batches being spatially compact: the 1M-point torus' textures took 18 s a level
+  // with every row made in each of 6 batches).
+  std::vector<char> touches(static_cast<std::size_t>(psi.rows()), 0);
+  for (Eigen::Index j = 0; j < psi.rows(); ++j)
+    for (SparseMatrix::InnerIterator it(psi, j); it; ++it)
+      if (batch_of[static_cast<std::size_t>(it.col())] >= 0) touches[static_cast<std::size_t>(j)] = 1;
+  TileData d;
+  std::vector<std::vector<Member>> chunks;
+  for (const StreamedPoints::Tile& t : s.tiles) {
+    bool wanted = false;
+    for (std::size_t q = 0; q < quads.size() && !wanted; ++q)
+      wanted = overlaps(t.bounds, reach[q], t.reach);
+    if (!wanted) {
+      progress::advance();
+      continue;
+    }
+    read_tile(s, t, d, true);
+    const std::size_t c = t.count;
+    chunks.assign((c + kChunk - 1) / kChunk, {});
+#pragma omp parallel
+    {
+      std::vector<std::pair<std::int32_t, double>> row;
+#pragma omp for schedule(dynamic, 1)
+      for (std::ptrdiff_t k = 0; k < static_cast<std::ptrdiff_t>(chunks.size()); ++k)
+        for (std::size_t i = static_cast<std::size_t>(k) * kChunk; i < std::min(c, (static_cast<std::size_t>(k) + 1) * kChunk); ++i) {
+          bool near = false;
+          for (int q = 0; q < kLinks && !near; ++q) near = d.link_weight[i * kLinks + q] > 0 && touches[d.link_index[i * kLinks + q]];
+          if (near)
+            point_members(psi, &d.link_index[i * kLinks], &d.link_weight[i * kLinks], quad_of, batch_of, o, static_cast<std::uint32_t>(i),
+                          row, chunks[static_cast<std::size_t>(k)]);
+        }
+    }
+    for (const std::vector<Member>& chunk : chunks)
+      for (const Member& m : chunk) {
+        QuadPoints& p = quads[m.quad];
+        const std::size_t i = m.point;
+        const std::uint32_t* idx = &d.link_index[i * kLinks];
+        const float* w = &d.link_weight[i * kLinks];
+        p.positions.push_back(d.positions[i]);
+        p.alpha.push_back(m.alpha);
+        p.psi.push_back(m.psi);
+        if (s.colors) p.colors.push_back(d.colors[i]);
+        // A radius of its own, else its links' (at the full density); a normal of its own, else
+        // its links' (the subsample's estimated normals, oriented alike), renormalised.
+        float r = s.radii ? d.radii[i] : 0.0f;
+        if (r == 0.0f)
+          for (int q = 0; q < kLinks; ++q) r += w[q] * s.subsample.radii[idx[q]];
+        p.radii.push_back(r);
+        if (s.normals) {
+          p.normals.push_back(d.normals[i]);
+        } else if (!sub_normals.empty()) {
+          Vec3f n{};
+          for (int q = 0; q < kLinks; ++q) n = n + sub_normals[idx[q]] * w[q];
+          p.normals.push_back(normalized(n, sub_normals[idx[0]]));
+        }
+      }
+    progress::advance();
+  }
+}
+
+}  // namespace
+
+std::vector<Texture> streamed_textures(const StreamedPoints& s, const std::vector<Vec3f>& sub_normals, const SparseMatrix& psi,
+                                       const Domains& d, std::vector<SupportRect>& rects, const DomainOptions& domains,
+                                       const SupportOptions& support, const TextureOptions& texture, std::size_t batch_points,
+                                       std::size_t* batch_count) {
+  std::vector<std::int32_t> quad_of(static_cast<std::size_t>(psi.cols()), -1);  // function -> rectangle
+  for (std::size_t q = 0; q < rects.size(); ++q) quad_of[rects[q].domain] = static_cast<std::int32_t>(q);
+  const std::vector<Bounds> all_reach = function_bounds(psi, s.subsample.positions, quad_of, rects.size());
+  const std::vector<std::vector<std::uint32_t>> batches = quad_batches(s, d, rects, batch_points);
+  if (batch_count) *batch_count = batches.size();
+  std::vector<Texture> textures(rects.size());
+  for (std::size_t b = 0; b < batches.size(); ++b) {
+    const std::vector<std::uint32_t>& batch = batches[b];
+    // 1. The batch's points: this batch's quads only (the others map to -1 here).
+    std::vector<std::int32_t> local(quad_of.size(), -1);
+    std::vector<Bounds> reach;
+    for (std::size_t k = 0; k < batch.size(); ++k) {
+      local[rects[batch[k]].domain] = static_cast<std::int32_t>(k);
+      reach.push_back(all_reach[batch[k]]);
+    }
+    progress::step("reading " + std::to_string(s.tiles.size()) + " tiles for " + std::to_string(batch.size()) + " quads (batch " +
+                       std::to_string(b + 1) + " of " + std::to_string(batches.size()) + ")",
+                   s.tiles.size());
+    std::vector<QuadPoints> points(batch.size());
+    gather_batch(s, sub_normals, psi, quad_of, local, reach, domains, points);
+    // 2. Their rectangles and textures, largest first (as the in-memory bake's level_textures),
+    //    each from its own points as a one-domain set; a quad's points are freed once done.
+    std::vector<std::size_t> by_size(batch.size());
+    for (std::size_t k = 0; k < by_size.size(); ++k) by_size[k] = k;
+    std::stable_sort(by_size.begin(), by_size.end(), [&](std::size_t x, std::size_t y) { return points[x].positions.size() > points[y].positions.size(); });
+    progress::step("textures of " + std::to_string(batch.size()) + " quads (batch " + std::to_string(b + 1) + " of " +
+                       std::to_string(batches.size()) + ")",
+                   batch.size());
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::ptrdiff_t q = 0; q < static_cast<std::ptrdiff_t>(by_size.size()); ++q) {
+      const std::size_t k = by_size[static_cast<std::size_t>(q)];
+      QuadPoints& p = points[k];
+      SupportRect& rect = rects[batch[k]];
+      const std::size_t n = p.positions.size();
+      if (n > 0) {
+        Domains one;
+        one.offsets = std::vector<std::uint32_t>{0, static_cast<std::uint32_t>(n)};  // (moved in: GCC 12 warns on assign)
+        one.points.resize(n);
+        std::vector<std::int32_t> outer(n + 1), inner(n, 0);
+        for (std::size_t i = 0; i < n; ++i) one.points[i] = static_cast<std::uint32_t>(i), outer[i] = static_cast<std::int32_t>(i);
+        outer[n] = static_cast<std::int32_t>(n);
+        // The rectangle again from every point of the domain, as the in-memory bake makes it
+        // (support_rectangles: weighted plane, extent with every splat, mean radius): the
+        // subsample's reaches up to its spacing short of the domain's outermost points, and its
+        // texture would clip their splats.
+        const SparseMatrix weights = from_rows(static_cast<Eigen::Index>(n), 1, outer, inner, p.psi);
+        const std::vector<SupportRect> full = support_rectangles(p.positions, p.normals, p.radii, weights, one, support);
+        if (full.size() == 1) {
+          const std::uint32_t domain = rect.domain;
+          rect = full[0];
+          rect.domain = domain;
+        }
+        const SparseMatrix alpha = from_rows(static_cast<Eigen::Index>(n), 1, outer, inner, p.alpha);
+        SupportRect local_rect = rect;
+        local_rect.domain = 0;
+        textures[batch[k]] = resample_texture(p.positions, p.colors, p.normals, p.radii, alpha, one, local_rect, texture);
+      } else {
+        // No point of the whole set passed tau for this function (its subsample points did):
+        // the subsample's rectangle, an empty texture of its size.
+        Domains none;
+        none.offsets = std::vector<std::uint32_t>{0, 0};
+        SupportRect local_rect = rect;
+        local_rect.domain = 0;
+        textures[batch[k]] = resample_texture({}, {}, {}, {}, SparseMatrix(0, 1), none, local_rect, texture);
+      }
+      p = QuadPoints{};
+      progress::advance();
+    }
+  }
+  return textures;
+}
+
+}  // namespace qf
