@@ -3,6 +3,7 @@
 
 #include <transcoder/basisu_transcoder.h>
 
+#include <algorithm>
 #include <cstring>
 #include <mutex>
 
@@ -16,6 +17,30 @@ constexpr std::uint8_t kIdentifier[12] = {0xAB, 0x4B, 0x54, 0x58, 0x20, 0x32, 0x
 
 [[noreturn]] void bad(const std::string& path, const std::string& what) { throw InputError("render.gltf.image", path, "", what); }
 
+std::uint64_t le(const std::uint8_t* p, int bytes) {
+  std::uint64_t v = 0;
+  for (int i = bytes - 1; i >= 0; --i) v = v << 8 | p[i];
+  return v;
+}
+
+// Checks that the header's sections (data format, key/value data, supercompression data) and every
+// mip level lie within the image, in 64-bit arithmetic, before Basis Universal reads them: its own
+// check adds the 32-bit key/value offset and length, which wrap, and it then allocated a key of
+// 4 GB (glb fuzz target). KTX2 header: 80 bytes, the level index after it (KTX 2.0 section 3).
+void check_sections(const std::uint8_t* bytes, std::size_t size, const std::string& path) {
+  if (size < 80) bad(path, "a KTX2 image shorter than its 80-byte header");
+  const auto within = [&](std::uint64_t offset, std::uint64_t length, const char* what) {
+    if (offset > size || length > size - offset) bad(path, std::string("a KTX2 image whose ") + what + " reaches past its end");
+  };
+  within(le(bytes + 48, 4), le(bytes + 52, 4), "data format descriptor");
+  within(le(bytes + 56, 4), le(bytes + 60, 4), "key/value data");
+  within(le(bytes + 64, 8), le(bytes + 72, 8), "supercompression data");
+  const std::uint64_t levels = std::max<std::uint64_t>(le(bytes + 40, 4), 1);
+  if (levels > 16) bad(path, "a KTX2 image with " + std::to_string(levels) + " mip levels (1 to 16 expected)");
+  within(80, levels * 24, "level index");
+  for (std::uint64_t i = 0; i < levels; ++i) within(le(bytes + 80 + 24 * i, 8), le(bytes + 88 + 24 * i, 8), "mip level");
+}
+
 }  // namespace
 
 bool is_ktx2(const std::uint8_t* bytes, std::size_t size) {
@@ -26,6 +51,7 @@ Image decode_ktx2(const std::uint8_t* bytes, std::size_t size, const std::string
   static std::once_flag init;
   std::call_once(init, [] { basist::basisu_transcoder_init(); });
   if (size > 0xFFFFFFFFu) bad(path, "a KTX2 image over 4 GB");
+  check_sections(bytes, size, path);
   basist::ktx2_transcoder t;
   if (!t.init(bytes, static_cast<std::uint32_t>(size))) bad(path, "a KTX2 image that is not a Basis Universal texture (ETC1S or UASTC)");
   if (t.get_faces() != 1 || t.get_layers() > 1) bad(path, "a KTX2 image that is a cube map or an array, not a 2D texture");

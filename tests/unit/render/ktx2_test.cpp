@@ -102,5 +102,23 @@ TEST(Ktx2, HugeSizeIsRefused) {
   }
 }
 
+// Sections whose offset and length wrap in 32 bits are refused before Basis Universal reads them
+// (the glb fuzz target: a key/value section that wrapped made it allocate a 4 GB key).
+TEST(Ktx2, SectionPastTheEndIsRefused) {
+  const std::vector<std::uint8_t> good = encode_ktx2(mip_levels(leaves(16)), {});
+  const std::uint32_t offset = 0xFFFFFFF0u, length = 0x20u;  // offset + length wraps to 16
+  for (const std::size_t at : {std::size_t{48}, std::size_t{56}}) {  // data format descriptor, key/value data
+    std::vector<std::uint8_t> bytes = good;
+    std::memcpy(bytes.data() + at, &offset, 4);
+    std::memcpy(bytes.data() + at + 4, &length, 4);
+    try {
+      decode_ktx2(bytes.data(), bytes.size(), "wrap.ktx2");
+      ADD_FAILURE() << "a section wrapping past the end decoded (field at " << at << ")";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("reaches past its end"), std::string::npos) << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace qf::render
