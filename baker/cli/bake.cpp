@@ -54,7 +54,8 @@ CommandSpec bake_spec() {
                     {"ktx2-color", 0, "etc1s|uastc", "etc1s", "--textures ktx2: the Basis codec of colour (+ alpha) and emission textures"},
                     {"ktx2-normal", 0, "etc1s|uastc", "uastc", "--textures ktx2: the Basis codec of normal maps and occlusion/roughness/metallic"},
                     {"ktx2-quality", 0, "Q", "128", "--textures ktx2: ETC1S quality, 1..255 (codebook sizes; more is larger and sharper)"},
-                    {"webp-color", 0, "Q|lossless", "80", "--textures webp: colour (+ alpha, kept exact) and emission: lossy at quality Q (1..100) or lossless"},
+                    {"webp-color", 0, "Q|lossless", "lossless", "--textures webp: colour (+ alpha, always exact) and emission: lossless, or lossy at quality Q\n"
+                                                              "(1..100; 80: smaller for textured meshes' colour)"},
                     {"webp-normal", 0, "Q|lossless", "90", "--textures webp: normal maps: lossy at quality Q (1..100) or lossless"},
                     {"lod-file", 0, "", "", "also write STEM_lods.glb: every level in one file under MSFT_lod (finest in the scene,\n"
                                              "the others as its lower LODs, switched by MSFT_screencoverage)"},

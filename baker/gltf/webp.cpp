@@ -46,19 +46,19 @@ WebPConfig config_of(const WebpOptions& o) {
 }  // namespace
 
 // By measurement (docs/textures.md, "WebP settings, by measurement": bunny00's vertices, the
-// coloured scan b9_training and the generated bush, each level at its own size against PNG).
-// Colour: lossy at 80 with the alpha plane lossless. Quality 70..95 scored within -0.02..+0.12 dB of
-// PNG on every level (the levels' error is their geometry's); 80 takes 16% fewer colour bytes than
-// 90 on the bush's leaf textures. Lossless colour is as small on point sets (their colour is smooth)
-// but 75% larger on the bush. Alpha at quality 90 saved 2..4% and moved IoU by up to 0.0014
-// (the cutoff). `exact` keeps the colour bled under alpha 0 (TextureOptions::extend_colors): off, it
-// saved 14% on the bush but cost up to 0.08 dB at the coarsest level, where the engine's box-
-// filtered mips average the flattened texels in. The sharp RGB->YUV conversion: +11% colour bytes on
-// the bush, no gain.
+// coloured scan b9_training, the generated bush and a 1M-point torus, each level at its own size
+// against PNG). Colour + alpha: lossless. Lossy colour (quality 70..95, the alpha plane lossless,
+// `exact`) stayed within -0.02..+0.12 dB on the first three, but the torus's colour pattern lost
+// 0.28..0.44 dB at every level (90 and 80), past the 0.3 dB bound; lossless costs nothing there and
+// is no larger on point sets (their colour is smooth and the exact alpha plane dominates: 1..3%
+// smaller than lossy 80..90 on the torus, bunny and b9). Only textured meshes pay: the bush's leaf colour is 75%
+// larger than at 80 (--webp-color 80 for those). `exact` keeps the colour bled under alpha 0
+// (TextureOptions::extend_colors), which lossless would otherwise zero and the engine's bilinear
+// filter and box-filtered mips would then mix in as a dark fringe.
 WebpOptions default_webp_color() {
   WebpOptions o;
-  o.lossless = false;
-  o.quality = 80;
+  o.lossless = true;
+  o.quality = 75;  // libwebp's default effort
   o.alpha_quality = 100;
   o.exact = true;
   return o;

@@ -2,12 +2,12 @@
 # WebP textures (issue 32, --textures webp): every texture an EXT_texture_webp WebP image (RIFF/WEBP)
 # named in the extension alone, the extension required; the manifest's texture bytes under the PNG
 # bake's and its GPU bytes equal to them (both decode to RGBA8, the engine makes the mips); the same
-# bytes at OMP_NUM_THREADS=1 and 2; every level drawn by `qf-render eval` (engine method) no more
-# than 0.3 dB below its PNG level and within 0.005 IoU, for a point set and for alpha-masked
-# foliage; a level whose WebP bytes are damaged is refused naming the file (exit 1, no crash).
-# The PSNR bound is one-sided: lossy colour smooths the octahedron's per-point colour noise, which
-# the truth (drawn larger, box-filtered) averages too, so its finer level scores 0.3 dB above PNG
-# (22.85 -> 23.15 dB; lossless colour 22.85).
+# bytes at OMP_NUM_THREADS=1 and 2; every level drawn by `qf-render eval` (engine method) within
+# 0.3 dB PSNR and 0.005 IoU of its PNG level, for a point set and for alpha-masked foliage
+# (measured -0.034..+0.037 dB, IoU equal); a level whose WebP bytes are damaged is refused naming
+# the file (exit 1, no crash). (With lossy colour, --webp-color 80, the octahedron's finer level
+# scored 0.31 dB above PNG: lossy coding smooths its per-point colour noise as the box-filtered
+# truth does; the default colour is lossless.)
 # usage: webp_test.sh QF_BAKE QF_RENDER
 set -u
 bake=$1 render=$2
@@ -69,7 +69,7 @@ for png in "$work"/oct_png/*_L*.glb "$work"/bush_png/*_L*.glb; do
 import json, sys
 p, w = (json.load(open(f))["mean"]["engine"] for f in sys.argv[1:3])
 dp, di = w["psnr"] - p["psnr"], w["iou"] - p["iou"]
-ok = dp >= -0.3 and abs(di) <= 0.005
+ok = abs(dp) <= 0.3 and abs(di) <= 0.005
 print(f"{'ok  ' if ok else 'FAIL'} {sys.argv[3]}: {w['psnr']:.3f} dB IoU {w['iou']:.4f} vs PNG {p['psnr']:.3f} dB IoU {p['iou']:.4f} ({dp:+.3f} dB, {di:+.4f})")
 sys.exit(0 if ok else 1)
 PY

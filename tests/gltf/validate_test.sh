@@ -52,7 +52,7 @@ for f in files:
             head = data[bin0 + view.get("byteOffset", 0):bin0 + view.get("byteOffset", 0) + 12]
             if "source" in t or img.get("mimeType") != "image/webp" or head[:4] != b"RIFF" or head[8:12] != b"WEBP":
                 print(f, "WebP texture wrong"); bad = 1
-        if doc.get("extensionsRequired") != ["EXT_texture_webp"] or "EXT_texture_webp" not in doc["extensionsUsed"]:
+        if "EXT_texture_webp" not in doc.get("extensionsRequired", []) or "EXT_texture_webp" not in doc["extensionsUsed"]:
             print(f, "EXT_texture_webp not required"); bad = 1
     if f.endswith("_lods.glb"):
         # Every level under MSFT_lod: only the finest node in the scene, the others as its ids,

@@ -57,18 +57,22 @@ TEST(Webp, LosslessIsExactWithTheColourUnderZeroAlpha) {
   EXPECT_EQ(img.rgba, in);
 }
 
-// The bake's colour setting: lossy colour, the alpha plane exact (the alpha test's cutoff turns any
-// alpha error into coverage), and the colour under alpha 0 kept near (`exact`): a black or flattened
-// fill there would be 100+ levels off and darken the filtered edges.
-TEST(Webp, DefaultColourKeepsAlphaExactAndColourNear) {
+// The bake's colour setting and lossy colour (--webp-color 80): the alpha plane exact either way (the
+// alpha test's cutoff turns any alpha error into coverage), and the colour under alpha 0 kept near
+// (`exact`): a black or flattened fill there would be 100+ levels off and darken filtered edges.
+TEST(Webp, ColourKeepsAlphaExactAndColourNear) {
   const std::vector<std::uint8_t> in = leaves(128);
-  const std::vector<std::uint8_t> bytes = encode_webp(in.data(), 128, 128, 4, default_webp_color());
-  const Image img = decode_webp(bytes.data(), bytes.size(), "t.webp");
-  ASSERT_EQ(img.rgba.size(), in.size());
-  for (std::size_t i = 3; i < in.size(); i += 4) ASSERT_EQ(img.rgba[i], in[i]) << "alpha of texel " << i / 4;
-  EXPECT_LT(mean_rgb(in, img.rgba, false), 4.0);
-  EXPECT_LT(mean_rgb(in, img.rgba, true), 4.0);
-  EXPECT_LT(bytes.size(), in.size() / 4);  // a lossy image: well under a byte a channel
+  WebpOptions lossy = default_webp_color();
+  lossy.lossless = false;
+  lossy.quality = 80;
+  for (const WebpOptions& o : {default_webp_color(), lossy}) {
+    const std::vector<std::uint8_t> bytes = encode_webp(in.data(), 128, 128, 4, o);
+    const Image img = decode_webp(bytes.data(), bytes.size(), "t.webp");
+    ASSERT_EQ(img.rgba.size(), in.size());
+    for (std::size_t i = 3; i < in.size(); i += 4) ASSERT_EQ(img.rgba[i], in[i]) << "alpha of texel " << i / 4;
+    EXPECT_LT(mean_rgb(in, img.rgba, false), o.lossless ? 1e-9 : 4.0);
+    EXPECT_LT(mean_rgb(in, img.rgba, true), o.lossless ? 1e-9 : 4.0);
+  }
 }
 
 TEST(Webp, RgbHasNoAlpha) {
