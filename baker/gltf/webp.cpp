@@ -45,35 +45,6 @@ WebPConfig config_of(const WebpOptions& o) {
 
 }  // namespace
 
-// By measurement (docs/textures.md, "WebP settings, by measurement": bunny00's vertices, the
-// coloured scan b9_training, the generated bush and a 1M-point torus, each level at its own size
-// against PNG). Colour + alpha: lossless. Lossy colour (quality 70..95, the alpha plane lossless,
-// `exact`) stayed within -0.02..+0.12 dB on the first three, but the torus's colour pattern lost
-// 0.28..0.44 dB at every level (90 and 80), past the 0.3 dB bound; lossless costs nothing there and
-// is no larger on point sets (their colour is smooth and the exact alpha plane dominates: 1..3%
-// smaller than lossy 80..90 on the torus, bunny and b9). Only textured meshes pay: the bush's leaf colour is 75%
-// larger than at 80 (--webp-color 80 for those). `exact` keeps the colour bled under alpha 0
-// (TextureOptions::extend_colors), which lossless would otherwise zero and the engine's bilinear
-// filter and box-filtered mips would then mix in as a dark fringe.
-WebpOptions default_webp_color() {
-  WebpOptions o;
-  o.lossless = true;
-  o.quality = 75;  // libwebp's default effort
-  o.alpha_quality = 100;
-  o.exact = true;
-  return o;
-}
-
-// Normal maps: lossy at 90, 62% fewer bytes than lossless (bunny00: 98 KB against 261 KB) for
-// -0.06..-0.10 dB; 95 took 26% more for no better; 80 lost up to 0.17 dB. Near-lossless saved
-// nothing over lossless.
-WebpOptions default_webp_normal() {
-  WebpOptions o;
-  o.lossless = false;
-  o.quality = 90;
-  return o;
-}
-
 std::vector<std::uint8_t> encode_webp(const std::uint8_t* pixels, int w, int h, int channels, const WebpOptions& options) {
   if (w < 1 || h < 1 || w > WEBP_MAX_DIMENSION || h > WEBP_MAX_DIMENSION)
     throw std::invalid_argument("WebP encoding: an image of " + std::to_string(w) + " x " + std::to_string(h) +
