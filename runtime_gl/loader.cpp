@@ -319,42 +319,6 @@ void decode_weights(double exponent, const std::string& path, ImpostorScene& s) 
     for (std::size_t k = 3; k < s.textures[t].rgba.size(); k += 4) s.textures[t].rgba[k] = table[s.textures[t].rgba[k]];
 }
 
-// Step 2 with the extension: quad k is the next two triangles of the group of its atlas image
-// (the writer emits one primitive per atlas image, quads in index order).
-void extension_items(const tinygltf::Model& m, const tinygltf::Value& ext, const std::string& path,
-                     const std::vector<TriangleGroup>& groups, std::uint32_t white, ImpostorScene& s) {
-  const std::vector<float> center = number_array<float>(ext, "center", path), normal = number_array<float>(ext, "normal", path),
-                           rect = number_array<float>(ext, "atlasRect", path);
-  const auto quads = static_cast<std::size_t>(to_integer<std::uint32_t>(ext.Get("quadCount").GetNumberAsDouble(), path, "quadCount"));
-  s.offsets = number_array<std::uint32_t>(ext, "neighborOffsets", path);
-  s.neighbors = number_array<std::uint32_t>(ext, "neighbors", path);
-  if (center.size() != quads * 3 || normal.size() != quads * 3 || rect.size() != quads * 5 || s.offsets.size() != quads + 1 ||
-      s.offsets.back() != s.neighbors.size())
-    fail(path, "extension", std::string(kImpostorExtension) + " arrays do not match quadCount " + std::to_string(quads));
-  for (std::uint32_t nb : s.neighbors)
-    if (nb >= quads) fail(path, "extension", "a neighbour index is out of range");
-  std::vector<std::size_t> next(groups.size(), 0);
-  for (std::size_t k = 0; k < quads; ++k) {
-    const int image = to_integer<int>(rect[k * 5], path, "atlasRect");
-    std::size_t g = 0;
-    while (g < groups.size() && !(groups[g].material == image && next[g] + 2 <= groups[g].first.size())) ++g;
-    if (g == groups.size()) fail(path, "extension", "quad " + std::to_string(k) + " has no triangles in its atlas image's primitive");
-    Item it;
-    it.first_vertex = groups[g].first[next[g]];
-    it.vertex_count = 6;
-    if (groups[g].first[next[g] + 1] != it.first_vertex + 3) fail(path, "extension", "quad triangles are not consecutive");
-    next[g] += 2;
-    it.texture = texture_of(m, groups[g].material, white);
-    it.center = {center[k * 3], center[k * 3 + 1], center[k * 3 + 2]};
-    it.normal = {normal[k * 3], normal[k * 3 + 1], normal[k * 3 + 2]};
-    s.items.push_back(it);
-  }
-  s.has_extension = true;
-  s.level = ext.Has("level") ? to_integer<int>(ext.Get("level").GetNumberAsDouble(), path, "level") : -1;
-  if (ext.Has("alphaRef")) s.alpha_ref = static_cast<float>(ext.Get("alphaRef").GetNumberAsDouble());
-  if (ext.Has("alphaExponent")) decode_weights(ext.Get("alphaExponent").GetNumberAsDouble(), path, s);
-}
-
 // Step 2 for plain glTF: consecutive triangle pairs are quads; others stand alone; each item with
 // its own centroid and area-weighted normal.
 void plain_items(const tinygltf::Model& m, const std::vector<TriangleGroup>& groups, std::uint32_t white, ImpostorScene& s) {
@@ -381,6 +345,38 @@ void plain_items(const tinygltf::Model& m, const std::vector<TriangleGroup>& gro
       s.items.push_back(it);
     }
   }
+}
+
+// Step 2 with the extension: quad k is the k-th pair of triangles of the mesh's primitives taken
+// in order (the writer emits one primitive per atlas image, 4 vertices and 2 triangles a quad);
+// its plane comes from its corners as for plain glTF, the domains and the graph from the extension.
+void extension_items(const tinygltf::Model& m, const tinygltf::Value& ext, const std::string& path,
+                     const std::vector<TriangleGroup>& groups, std::uint32_t white, ImpostorScene& s) {
+  const auto quads = static_cast<std::size_t>(to_integer<std::uint32_t>(ext.Get("quadCount").GetNumberAsDouble(), path, "quadCount"));
+  s.offsets = number_array<std::uint32_t>(ext, "neighborOffsets", path);
+  s.neighbors = number_array<std::uint32_t>(ext, "neighbors", path);
+  if (s.offsets.size() != quads + 1 || s.offsets.back() != s.neighbors.size())
+    fail(path, "extension", std::string(kImpostorExtension) + " neighbour rows do not match quadCount " + std::to_string(quads));
+  for (std::size_t k = 0; k < quads; ++k)
+    if (s.offsets[k] > s.offsets[k + 1]) fail(path, "extension", "neighborOffsets decrease at quad " + std::to_string(k));
+  for (std::uint32_t nb : s.neighbors)
+    if (nb >= quads) fail(path, "extension", "a neighbour index is out of range");
+  for (const TriangleGroup& g : groups)
+    if (g.first.size() % 2 != 0) fail(path, "extension", "a primitive's triangle count is odd (a quad is two triangles)");
+  plain_items(m, groups, white, s);
+  if (s.items.size() != quads)
+    fail(path, "extension", "the mesh holds " + std::to_string(s.items.size()) + " quads, the extension's quadCount is " + std::to_string(quads));
+  for (const Item& it : s.items) {
+    const std::size_t v = it.first_vertex * 3;
+    // Two triangles over four corners: (0, 1, 2) and (0, 2, 3).
+    if (std::memcmp(&s.positions[v], &s.positions[v + 9], 3 * sizeof(float)) != 0 ||
+        std::memcmp(&s.positions[v + 6], &s.positions[v + 12], 3 * sizeof(float)) != 0)
+      fail(path, "extension", "a quad's two triangles do not share its diagonal");
+  }
+  s.has_extension = true;
+  s.level = ext.Has("level") ? to_integer<int>(ext.Get("level").GetNumberAsDouble(), path, "level") : -1;
+  if (ext.Has("alphaRef")) s.alpha_ref = static_cast<float>(ext.Get("alphaRef").GetNumberAsDouble());
+  if (ext.Has("alphaExponent")) decode_weights(ext.Get("alphaExponent").GetNumberAsDouble(), path, s);
 }
 
 ImpostorScene impostor_scene(const tinygltf::Model& m, const std::string& path, int only_mesh) {

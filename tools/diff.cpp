@@ -103,17 +103,22 @@ struct Quads {
   std::set<std::pair<long long, long long>> edges;  // by domain, smaller first
 };
 
-std::optional<Quads> impostor_quads(const Json& j) {
+// The quads of an impostor level: domains, errors and graph from its extension, planes from the
+// runtime's reading of its vertices (`scene`: quad k is item k).
+std::optional<Quads> impostor_quads(const Json& j, const AnyScene& scene) {
   if (!j.contains("extensions") || !j["extensions"].contains(kImpostorExtension)) return std::nullopt;
   const Json& e = j["extensions"][kImpostorExtension];
   Quads q;
   q.level = e.value("level", -1LL);
   const std::size_t n = e.value("quadCount", std::size_t{0});
-  if (!e.contains("domain") || e["domain"].size() != n) return q;
+  const std::vector<Item>& items = scene.impostor.items;
+  if (!e.contains("domain") || e["domain"].size() != n || !e.contains("error") || e["error"].size() != n || scene.kind != AnyScene::kImpostor ||
+      items.size() != n)
+    return q;
   for (std::size_t k = 0; k < n; ++k) {
     q.domain.push_back(e["domain"][k].get<long long>());
-    q.center.push_back({e["center"][3 * k].get<float>(), e["center"][3 * k + 1].get<float>(), e["center"][3 * k + 2].get<float>()});
-    q.normal.push_back({e["normal"][3 * k].get<float>(), e["normal"][3 * k + 1].get<float>(), e["normal"][3 * k + 2].get<float>()});
+    q.center.push_back(items[k].center);
+    q.normal.push_back(items[k].normal);
     q.error.push_back(e["error"][k].get<double>());
   }
   const Json& off = e["neighborOffsets"];
@@ -426,7 +431,7 @@ bool drawn_glb_diff(OJson& r, const std::string& name, const std::string& pa, co
                     const DiffOptions& o) {
   bool within = true;
   const AnyScene sa = load_scene(pa), sb = load_scene(pb);
-  const std::optional<Quads> qa = impostor_quads(ja), qb = impostor_quads(jb);
+  const std::optional<Quads> qa = impostor_quads(ja, sa), qb = impostor_quads(jb, sb);
   if (qa && qb) {
     double change = 0;
     r["structure"] = quad_diff(*qa, *qb, sa.bounds().diagonal(), change);

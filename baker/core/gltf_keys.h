@@ -6,8 +6,8 @@
 
 namespace qf {
 
-// Root extension of an impostor level (schemas/QF_impostor_level): the quads' centres, normals,
-// domains, errors, atlas rectangles and neighbour graph.
+// Root extension of an impostor level (schemas/QF_impostor_level): the quads' domains, errors and
+// neighbour graph, and the blend rule.
 constexpr const char* kImpostorExtension = "QF_impostor_level";
 // Root extension of a point impostor (schemas/QF_point_impostor): pixel size, point count, seed,
 // switch distance.

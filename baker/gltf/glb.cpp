@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <sstream>
 #include <stdexcept>
 #include <tuple>
@@ -277,12 +278,21 @@ int add_level_materials(tinygltf::Model& m, const Atlas& atlas, const GltfOption
   return first_material;
 }
 
+// The quads in the order the file holds them: by atlas image (one primitive each), then by index.
+// The packer places tiles tallest first, so a level with several images interleaves them.
+std::vector<std::size_t> quad_file_order(const ImpostorLevel& level) {
+  std::vector<std::size_t> order(level.quads.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return level.atlas.tiles[a].atlas < level.atlas.tiles[b].atlas; });
+  return order;
+}
+
 // The quads of atlas image `img` as one primitive (none when it has no quads).
 void add_level_primitive(tinygltf::Model& m, tinygltf::Mesh& mesh, const ImpostorLevel& level, std::size_t img, int material) {
   const Atlas& atlas = level.atlas;
   // Normals, tangents and texture coordinates quantized (KHR_mesh_quantization): normal and tangent
-  // as normalized bytes (within 0.5 degrees; the extension keeps the exact normal for the blend
-  // order), UVs as normalized shorts (1/16 texel in a 4096 atlas); 120 bytes a quad instead of
+  // as normalized bytes (within 0.5 degrees; a runtime takes the exact plane from the positions),
+  // UVs as normalized shorts (1/16 texel in a 4096 atlas); 120 bytes a quad instead of
   // 216 with floats. TANGENT stays although a flat quad's derived frame would equal it: without it
   // the glTF-Validator warns that a runtime-generated tangent space may be non-portable.
   std::vector<float> pos;
@@ -341,24 +351,24 @@ int add_level(tinygltf::Model& m, const ImpostorLevel& level, const GltfOptions&
   return static_cast<int>(m.nodes.size() - 1);
 }
 
-// The extension's object: per quad data and the neighbour graph as compressed rows. Empty arrays
-// are left out (tinygltf 2.7 writes them as null).
+// The extension's object: per quad its domain and error, and the neighbour graph as compressed
+// rows, quads in the file's order (quad_file_order). A quad's plane and atlas rectangle are in its
+// vertices (positions, UVs) and its primitive's material, so the extension does not repeat them
+// (they were two thirds of its bytes). Empty arrays are left out (tinygltf 2.7 writes them as null).
 Value impostor_extension(const ImpostorLevel& level) {
-  const Atlas& atlas = level.atlas;
+  const std::vector<std::size_t> order = quad_file_order(level);
+  std::vector<std::uint32_t> rank(order.size());
+  for (std::size_t i = 0; i < order.size(); ++i) rank[order[i]] = static_cast<std::uint32_t>(i);
   std::vector<std::uint32_t> domain, offsets{0}, neighbors;
-  std::vector<float> centers, normals, errors, rects;
+  std::vector<float> errors;
   std::vector<std::vector<std::uint32_t>> adj(level.quads.size());
-  for (const auto& e : level.edges) adj[e[0]].push_back(e[1]), adj[e[1]].push_back(e[0]);
-  for (std::size_t k = 0; k < level.quads.size(); ++k) {
-    const SupportRect& q = level.quads[k];
+  for (const auto& e : level.edges) adj[rank[e[0]]].push_back(rank[e[1]]), adj[rank[e[1]]].push_back(rank[e[0]]);
+  for (std::size_t i = 0; i < order.size(); ++i) {
+    const SupportRect& q = level.quads[order[i]];
     domain.push_back(q.domain);
-    centers.insert(centers.end(), {q.center.x, q.center.y, q.center.z});
-    normals.insert(normals.end(), {q.normal.x, q.normal.y, q.normal.z});
     errors.push_back(static_cast<float>(q.error));
-    const AtlasTile& t = atlas.tiles[k];
-    rects.insert(rects.end(), {static_cast<float>(t.atlas), t.u0, t.v0, t.u1, t.v1});
-    std::sort(adj[k].begin(), adj[k].end());
-    neighbors.insert(neighbors.end(), adj[k].begin(), adj[k].end());
+    std::sort(adj[i].begin(), adj[i].end());
+    neighbors.insert(neighbors.end(), adj[i].begin(), adj[i].end());
     offsets.push_back(static_cast<std::uint32_t>(neighbors.size()));
   }
   Value::Object ext{{"level", Value(static_cast<int>(level.level))},
@@ -369,10 +379,7 @@ Value impostor_extension(const ImpostorLevel& level) {
   if (level.alpha_exponent != 1) ext["alphaExponent"] = Value(canonical_double(level.alpha_exponent));
   if (!level.quads.empty()) {
     ext["domain"] = int_array(domain);
-    ext["center"] = number_array(centers);
-    ext["normal"] = number_array(normals);
     ext["error"] = number_array(errors);
-    ext["atlasRect"] = number_array(rects);
   }
   if (!neighbors.empty()) ext["neighbors"] = int_array(neighbors);
   return Value(ext);

@@ -106,8 +106,12 @@ for f in files:
     ext = doc["extensions"]["QF_impostor_level"]
     errors = list(check.iter_errors(ext))
     n = ext["quadCount"]
-    if len(ext["neighborOffsets"]) != n + 1 or (n and len(ext["center"]) != 3 * n) or (n and len(ext["atlasRect"]) != 5 * n):
+    if len(ext["neighborOffsets"]) != n + 1 or (n and len(ext["domain"]) != n) or (n and len(ext["error"]) != n):
         errors.append("array lengths do not match quadCount")
+    # Quad k is the k-th pair of triangles of the mesh's primitives: six indices a quad.
+    indices = sum(doc["accessors"][p["indices"]]["count"] for m in doc["meshes"] for p in m["primitives"])
+    if indices != 6 * n:
+        errors.append(f"{indices} indices for quadCount {n}")
     if "QF_impostor_level" in doc.get("extensionsRequired", []):
         errors.append("listed in extensionsRequired")
     if n and "KHR_mesh_quantization" not in doc.get("extensionsRequired", []):

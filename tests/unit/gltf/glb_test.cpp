@@ -3,12 +3,16 @@
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
 
+#include <algorithm>
+#include <set>
+
 #include "amg/basis.h"
 #include "amg/hierarchy.h"
 #include "analysis/analysis.h"
 #include "domains/merge.h"
 #include "gltf/glb.h"
 #include "primitives/texture.h"
+#include "runtime_gl/loader.h"
 #include "shapes/shapes.h"
 
 namespace qf {
@@ -83,8 +87,12 @@ TEST(Glb, QuadsMaterialsAndExtension) {
   EXPECT_EQ(ext.Get("quadCount").GetNumberAsInt(), 8);
   EXPECT_EQ(ext.Get("blend").Get<std::string>(), "additive_sorted_lock_by_depth");
   EXPECT_DOUBLE_EQ(ext.Get("alphaRef").GetNumberAsDouble(), 0.1);
-  EXPECT_EQ(ext.Get("center").ArrayLen(), 24u);
-  EXPECT_EQ(ext.Get("atlasRect").ArrayLen(), 40u);
+  EXPECT_EQ(ext.Get("domain").ArrayLen(), 8u);
+  EXPECT_EQ(ext.Get("error").ArrayLen(), 8u);
+  // The planes and atlas rectangles are in the vertices, not repeated in the extension.
+  EXPECT_FALSE(ext.Has("center"));
+  EXPECT_FALSE(ext.Has("normal"));
+  EXPECT_FALSE(ext.Has("atlasRect"));
   EXPECT_EQ(ext.Get("neighborOffsets").ArrayLen(), 9u);
   EXPECT_EQ(ext.Get("neighbors").ArrayLen(), 24u);
   EXPECT_FALSE(ext.Has("alphaExponent"));  // Psi itself
@@ -94,6 +102,69 @@ TEST(Glb, QuadsMaterialsAndExtension) {
   ImpostorLevel sharp = level;
   sharp.alpha_exponent = 2;
   EXPECT_DOUBLE_EQ(load(encode_glb(sharp)).extensions.at(kImpostorExtension).Get("alphaExponent").GetNumberAsDouble(), 2.0);
+}
+
+// Quad k of the extension is the k-th quad of the mesh's primitives, also when the atlas spans
+// several images and the packer (tallest tiles first) interleaves them: the runtime reads each
+// quad's domain with the plane of its own vertices.
+TEST(Glb, ExtensionQuadsFollowThePrimitives) {
+  const PointSet p = generate_shape("octahedron");
+  const AmgHierarchy h = build_hierarchy(analyze_surface(p).stiffness);
+  const SparseMatrix psi = merge_domains(basis_at_level(h, h.level_count() - 2), p.positions);
+  const Domains d = make_domains(psi);
+  const std::vector<SupportRect> rects = support_rectangles(p.positions, p.normals, p.radii, psi, d);
+  std::vector<Texture> textures;
+  for (std::size_t k = 0; k < rects.size(); ++k) {
+    // Odd quads' tiles taller, so the packer places them first and they fill the first 64 x 64
+    // image (two 32 x 32 cells a row); the shorter even ones go to the second.
+    Texture t;
+    t.width = 28;
+    t.height = k % 2 ? 28 : 12;
+    t.texel = 0.02f;  // the quad's size: texels x texel
+    t.rgba.assign(static_cast<std::size_t>(t.width * t.height * 4), 200);
+    textures.push_back(t);
+  }
+  AtlasOptions small;
+  small.max_side = 64;
+  const ImpostorLevel level = make_impostor_level(h.level_count() - 2, rects, textures, d, small);
+  ASSERT_GE(level.atlas.images.size(), 2u);
+  ASSERT_NE(level.atlas.tiles[0].atlas, level.atlas.tiles[1].atlas);  // interleaved
+  const render::BakedScene scene = render::load_baked(encode_glb(level), "interleaved.glb");
+  const tinygltf::Model model = load(encode_glb(level));
+  const tinygltf::Value& ext = model.extensions.at(kImpostorExtension);
+  ASSERT_EQ(scene.impostor.items.size(), level.quads.size());
+  std::vector<bool> seen(level.quads.size(), false);
+  std::uint32_t last_image = 0;
+  for (std::size_t k = 0; k < level.quads.size(); ++k) {
+    // The level's quad with this domain: its plane is what the runtime read for quad k.
+    const auto domain = static_cast<std::uint32_t>(ext.Get("domain").Get(static_cast<int>(k)).GetNumberAsInt());
+    std::size_t q = 0;
+    while (q < level.quads.size() && level.quads[q].domain != domain) ++q;
+    ASSERT_LT(q, level.quads.size());
+    seen[q] = true;
+    EXPECT_GE(level.atlas.tiles[q].atlas, last_image);  // images in order
+    last_image = level.atlas.tiles[q].atlas;
+    const render::Item& it = scene.impostor.items[k];
+    EXPECT_LT(length(it.center - level.quads[q].center), 1e-5f) << k;
+    EXPECT_GT(dot(it.normal, level.quads[q].normal), 0.9999f) << k;
+  }
+  EXPECT_EQ(std::count(seen.begin(), seen.end(), true), static_cast<long>(level.quads.size()));
+  // The graph in the file's order: each edge of the level between the quads of its two domains.
+  const std::vector<std::uint32_t>& off = scene.impostor.offsets;
+  ASSERT_EQ(off.size(), level.quads.size() + 1);
+  EXPECT_EQ(scene.impostor.neighbors.size(), 2 * level.edges.size());
+  std::set<std::pair<std::uint32_t, std::uint32_t>> file_edges, level_edges;
+  for (std::size_t k = 0; k < level.quads.size(); ++k)
+    for (std::uint32_t i = off[k]; i < off[k + 1]; ++i) {
+      const auto a = static_cast<std::uint32_t>(ext.Get("domain").Get(static_cast<int>(k)).GetNumberAsInt());
+      const auto b = static_cast<std::uint32_t>(ext.Get("domain").Get(static_cast<int>(scene.impostor.neighbors[i])).GetNumberAsInt());
+      file_edges.insert({std::min(a, b), std::max(a, b)});
+    }
+  for (const auto& e : level.edges) {
+    const std::uint32_t a = level.quads[e[0]].domain, b = level.quads[e[1]].domain;
+    level_edges.insert({std::min(a, b), std::max(a, b)});
+  }
+  EXPECT_EQ(file_edges, level_edges);
 }
 
 // A strip of `quads` unit squares (4 vertices each, unshared), so its vertex count is 4 x quads.
