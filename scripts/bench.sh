@@ -34,12 +34,15 @@
 # textures: PNG against KTX2 and WebP textures (issue 32, scripts/textures_table.py) on bunny00's vertices and
 # a 1M-point torus: per level bytes, GPU bytes, PSNR / IoU at its own size, holes at 1/4 and 1/8 of it
 # with mipmaps; per set bytes and bake seconds.
-# usage: scripts/bench.sh [io|las|analysis|amg|render|bake|sample|cluster|batch|fidelity|chain|scans|textures|big]...   (default: all but big)
+# bytes: the league at equal bytes (issue 32, scripts/bytes_league.py): bunny00, fandisk, elephant and the
+# generated tree baked with PNG, WebP and KTX2 textures; each impostor level against the best mesh LOD of
+# at most its bytes, at the largest chain band within its max_screen_pixels (~2 min).
+# usage: scripts/bench.sh [io|las|analysis|amg|render|bake|sample|cluster|batch|fidelity|chain|scans|textures|bytes|big]...   (default: all but big)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh >/dev/null
 what=("$@")
-[[ ${#what[@]} -eq 0 ]] && what=(io las analysis amg render bake sample cluster batch fidelity chain scans textures)
+[[ ${#what[@]} -eq 0 ]] && what=(io las analysis amg render bake sample cluster batch fidelity chain scans textures bytes)
 for w in "${what[@]}"; do
   case $w in
     io) build/bin/qf-bench-io ;;
@@ -224,6 +227,12 @@ for w in "${what[@]}"; do
       build/bin/qf-bake convert "$models/bunny00.off" "$tmp/bunny00.xyz" --vertices -q
       build/bin/qf-bake generate torus --points 1000000 -o "$tmp/torus1m.ply" -q
       python3 scripts/textures_table.py build/bin "$tmp" "$tmp/bunny00.xyz" "$tmp/torus1m.ply"
+      rm -rf "$tmp" ;;
+    bytes)
+      models=$(scripts/fetch-models.sh bunny00.off fandisk.off elephant.off | tail -1)
+      tmp=$(mktemp -d)
+      build/bin/qf-bake generate tree -o "$tmp/tree.glb" -q
+      python3 scripts/bytes_league.py build/bin "$tmp" "$models/bunny00.off" "$models/fandisk.off" "$models/elephant.off" "$tmp/tree.glb"
       rm -rf "$tmp" ;;
     chain)
       models=$(scripts/fetch-models.sh bunny00.off fandisk.off | tail -1)
