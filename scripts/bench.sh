@@ -30,6 +30,9 @@
 # subsample and scratch bytes, and scripts/ooc_compare.py's per-level table of the in-memory and
 # out-of-core bakes (quads, PSNR / IoU at each level's own size). Needs ~12 GB and ~40 minutes; not
 # part of "all" (CI does not run it).
+# growth: the torus and a scan-like scene at 10M, 30M and 100M points under --max-memory 16G
+# (QF_BIG_GROWTH sets the counts): wall, CPU, peak memory, scratch bytes and the growth exponents
+# (scripts/big_table.py). Hours on 2 cores; not part of "all".
 # las: LAS/LAZ reading (issue 35): 10M points of formats 3 and 7, LAS and LAZ: seconds, points/s, peak RSS.
 # textures: PNG against KTX2 and WebP textures (issue 32, scripts/textures_table.py) on bunny00's vertices and
 # a 1M-point torus: per level bytes, GPU bytes, PSNR / IoU at its own size, holes at 1/4 and 1/8 of it
@@ -37,7 +40,7 @@
 # bytes: the league at equal bytes (issue 32, scripts/bytes_league.py): bunny00, fandisk, elephant and the
 # generated tree baked with PNG, WebP and KTX2 textures; each impostor level against the best mesh LOD of
 # at most its bytes, at the largest chain band within its max_screen_pixels (~2 min).
-# usage: scripts/bench.sh [io|las|analysis|amg|render|bake|sample|cluster|batch|fidelity|chain|scans|textures|bytes|big]...   (default: all but big)
+# usage: scripts/bench.sh [io|las|analysis|amg|render|bake|sample|cluster|batch|fidelity|chain|scans|textures|bytes|big|growth]...   (default: all but big and growth)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh >/dev/null
@@ -195,6 +198,29 @@ for w in "${what[@]}"; do
         echo
         python3 scripts/ooc_compare.py "$tmp/torus$n.ply" "$tmp/mem$n" "$tmp/ooc$n"
       done
+      rm -rf "$tmp" ;;
+    growth)
+      # Issue 35 item 5: the torus and the scan-like scene (qf-bake generate scan: density falling
+      # with distance, shadows, range noise, 0.2% outliers) at each of QF_BIG_GROWTH points
+      # (default 10M, 30M, 100M), baked with the defaults under --max-memory 16G (out of core where
+      # the estimate passes it): stages, wall, CPU, peak memory, scratch bytes, and the growth
+      # exponents from the smallest to the largest count. The defaults take hours on 2 cores and
+      # about 10 GB of disk at 100M.
+      tmp=$(mktemp -d)
+      echo "growth: qf-bake IN -o OUT --no-cache --max-memory 16G, 2 threads"
+      echo
+      rows=()
+      for n in ${QF_BIG_GROWTH:-10000000 30000000 100000000}; do
+        for shape in torus scan; do
+          build/bin/qf-bake generate "$shape" --points "$n" -o "$tmp/$shape.ply" -q
+          rm -rf "$tmp/out"
+          OMP_NUM_THREADS=2 /usr/bin/time -v build/bin/qf-bake "$tmp/$shape.ply" -o "$tmp/out" --no-cache -q --max-memory 16G 2>"$tmp/time${#rows[@]}.txt"
+          cp "$tmp/out/report.json" "$tmp/report${#rows[@]}.json"
+          rows+=("$shape $n" "$tmp/report${#rows[@]}.json" "$tmp/time${#rows[@]}.txt")
+          rm -f "$tmp/$shape.ply"
+        done
+      done
+      python3 scripts/big_table.py "${rows[@]}"
       rm -rf "$tmp" ;;
     fidelity)
       models=$(scripts/fetch-models.sh bunny00.off fandisk.off elephant.off ChineseDragon-10kv.off b9_training.ply | tail -1)

@@ -1,7 +1,8 @@
 // Analytic sample shapes: octahedron (paper fig. 1), cube with a checker pattern, sphere, torus,
-// and two planes meeting at a right-angled crease.
+// two planes meeting at a right-angled crease, and a scan-like scene.
 #include "shapes/shapes.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "analysis/neighborhoods.h"
@@ -111,6 +112,89 @@ PointSet crease(const ShapeOptions& o) {
   return p;
 }
 
+// A single-station terrestrial scan of a small scene (Y up): a ground plane, a building with
+// windows and two poles, seen from a scanner at kScanner. What makes it scan-like: density falls
+// with the square of the distance and with the incidence angle (a point is kept with probability
+// cos(incidence) (2 / distance)^2), surfaces facing away or hidden behind the building are not
+// seen (holes, shadows), the range is noisy (0.15% of the distance, along the ray), and every
+// 500th point is an outlier anywhere in the scene's box (a mixed pixel). Normals are the
+// surfaces' (an outlier's faces the scanner).
+PointSet scan(const ShapeOptions& o) {
+  const Vec3f kScanner{0.3f, 1.7f, 4.0f};
+  const Vec3f box_min{-1.2f, 0.0f, -0.8f}, box_max{1.2f, 1.4f, 0.2f};  // the building
+  // Whether the segment from p to the scanner passes through the building (slab test), p being
+  // nudged off its own surface first.
+  const auto hidden = [&](Vec3f p, Vec3f n) {
+    const Vec3f a = p + n * 1e-4f, d = kScanner - a;
+    double t0 = 0, t1 = 1;
+    for (int k = 0; k < 3; ++k) {
+      if (std::fabs(d[k]) < 1e-12f) {
+        if (a[k] < box_min[k] || a[k] > box_max[k]) return false;
+        continue;
+      }
+      double ta = (box_min[k] - a[k]) / d[k], tb = (box_max[k] - a[k]) / d[k];
+      if (ta > tb) std::swap(ta, tb);
+      t0 = std::max(t0, ta), t1 = std::min(t1, tb);
+      if (t0 > t1) return false;
+    }
+    return true;
+  };
+  struct Part {
+    double area;
+    int kind;  // 0 ground, 1..5 building faces (front, back, left, right, roof), 6..7 poles
+  };
+  const Part parts[] = {{5.0 * 4.5, 0}, {2.4 * 1.4, 1}, {2.4 * 1.4, 2}, {1.0 * 1.4, 3}, {1.0 * 1.4, 4}, {2.4 * 1.0, 5},
+                        {2 * kPi * 0.06 * 1.8, 6}, {2 * kPi * 0.06 * 1.8, 7}};
+  double total = 0;
+  for (const Part& q : parts) total += q.area;
+  const float pole_x[2] = {1.8f, -1.9f}, pole_z[2] = {1.2f, 0.9f};
+  Random r(o.seed);
+  PointSet p;
+  while (p.size() < o.points) {
+    if (p.size() % 500 == 499) {  // an outlier: anywhere in the scene's box
+      const Vec3f x{static_cast<float>(-2.5 + 5 * r.uniform()), static_cast<float>(2.2 * r.uniform()), static_cast<float>(-2 + 4.5 * r.uniform())};
+      add(p, x, kScanner - x, {128, 128, 128});
+      continue;
+    }
+    double pick = r.uniform() * total;
+    int kind = 0;
+    for (const Part& q : parts) {
+      kind = q.kind;
+      if (pick < q.area) break;
+      pick -= q.area;
+    }
+    const float u = static_cast<float>(r.uniform()), v = static_cast<float>(r.uniform());
+    Vec3f x, n;
+    Rgb8 c;
+    switch (kind) {
+      case 0: x = {-2.5f + 5 * u, 0, -2 + 4.5f * v}, n = {0, 1, 0}, c = {110, 120, 90}; break;
+      case 1: case 2: {  // front and back walls: brick, with a 4 x 2 grid of windows
+        x = {-1.2f + 2.4f * u, 1.4f * v, kind == 1 ? 0.2f : -0.8f}, n = {0, 0, kind == 1 ? 1.0f : -1.0f};
+        const float wu = std::fmod(u * 4, 1.0f), wv = std::fmod(v * 2, 1.0f);
+        c = wu > 0.3f && wu < 0.7f && wv > 0.35f && wv < 0.8f ? Rgb8{60, 70, 90} : Rgb8{170, 70, 55};
+        break;
+      }
+      case 3: case 4: x = {kind == 3 ? -1.2f : 1.2f, 1.4f * v, -0.8f + u}, n = {kind == 3 ? -1.0f : 1.0f, 0, 0}, c = {150, 65, 50}; break;
+      case 5: x = {-1.2f + 2.4f * u, 1.4f, -0.8f + v}, n = {0, 1, 0}, c = {70, 70, 75}; break;
+      default: {
+        const int k = kind - 6;
+        const double a = 2 * kPi * u;
+        n = {static_cast<float>(std::cos(a)), 0, static_cast<float>(std::sin(a))};
+        x = Vec3f{pole_x[k], 1.8f * v, pole_z[k]} + n * 0.06f;
+        c = {160, 160, 165};
+      }
+    }
+    const Vec3f ray = kScanner - x;
+    const float d = length(ray);
+    const float cosine = dot(n, ray) / d;
+    if (cosine <= 0 || r.uniform() > std::min(1.0f, cosine * (2.0f / d) * (2.0f / d)) || hidden(x, n)) continue;
+    // Range noise: a normal deviate (Box-Muller) along the ray.
+    const double g = std::sqrt(-2 * std::log(1 - r.uniform())) * std::cos(2 * kPi * r.uniform());
+    add(p, x - ray * static_cast<float>(0.0015 * g), n, c);
+  }
+  return p;
+}
+
 // A triangle split into n x n similar ones, appended to `m` with a shared-vertex grid.
 void add_subdivided(TriangleMesh& m, Vec3f a, Vec3f b, Vec3f c, int n, Rgb8 color) {
   const auto base = static_cast<std::uint32_t>(m.positions.size());
@@ -175,6 +259,8 @@ const std::vector<ShapeInfo>& shape_catalog() {
       {"sphere", "unit sphere, colour = normal"},
       {"torus", "ring radius 1, tube radius 0.35, 12 colour stripes"},
       {"crease", "two unit squares meeting at a 90-degree crease along the z axis"},
+      {"scan", "a single-station scan of a building, ground and poles: density falling with\n"
+               "              distance and incidence, shadows, range noise, 0.2% outliers"},
   };
   return c;
 }
@@ -187,10 +273,18 @@ PointSet generate_shape(const std::string& name, const ShapeOptions& options) {
   else if (name == "sphere") p = sphere(options);
   else if (name == "torus") p = torus(options);
   else if (name == "crease") p = crease(options);
-  else throw UsageError("unknown shape '" + name + "'; choose one of octahedron, cube, sphere, torus, crease");
+  else if (name == "scan") p = scan(options);
+  else throw UsageError("unknown shape '" + name + "'; choose one of octahedron, cube, sphere, torus, crease, scan");
   p.comments.push_back("quasiflat sample: " + name + ", " + std::to_string(options.points) + " points, seed " +
                        std::to_string(options.seed));
   estimate_radii(p);
+  if (name == "scan") {
+    // An outlier's own estimate (from its far neighbours) would draw it as a blob the size of the
+    // scene; a scanner's mixed pixel has the beam's footprint: the median radius.
+    std::vector<float> sorted = p.radii;
+    std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
+    for (std::size_t i = 499; i < p.size(); i += 500) p.radii[i] = sorted[sorted.size() / 2];
+  }
   return p;
 }
 

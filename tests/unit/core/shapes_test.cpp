@@ -1,6 +1,7 @@
 // The analytic sample shapes lie on their surfaces, carry their colours, and are reproducible.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -62,6 +63,39 @@ TEST(Shapes, SeededAndReproducible) {
   for (std::size_t i = 0; i < a.size(); ++i) EXPECT_TRUE(a.positions[i] == b.positions[i]);
   EXPECT_FALSE(a.positions[0] == c.positions[0]);
   EXPECT_THROW(generate_shape("teapot"), UsageError);
+}
+
+// The scan-like scene: seen from one station, so its density is uneven (near ground far denser
+// than far ground), the building's back and what it hides are missing, every 500th point is an
+// outlier, and the rest lie on their surfaces within the range noise.
+TEST(Shapes, ScanIsUnevenWithShadowsAndOutliers) {
+  ShapeOptions o;
+  o.points = 20000;
+  const PointSet p = generate_shape("scan", o);
+  ASSERT_EQ(p.size(), 20000u);
+  ASSERT_TRUE(p.has_normals() && p.has_colors() && p.has_radii());
+  std::size_t near_ground = 0, far_ground = 0, back_wall = 0, behind = 0, outliers = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const Vec3f x = p.positions[i];
+    if (i % 500 == 499) {
+      ++outliers;
+      continue;
+    }
+    if (std::fabs(x.y) < 0.02f && p.normals[i].y > 0.99f) {  // ground: equal 1 x 1 patches, near and far from the scanner
+      if (x.x > -0.5f && x.x < 0.5f && x.z > 1.5f && x.z < 2.5f) ++near_ground;
+      if (x.x > -2.5f && x.x < -1.5f && x.z > -2.0f && x.z < -1.0f) ++far_ground;
+      if (x.x > -0.5f && x.x < 0.5f && x.z > -1.6f && x.z < -1.0f) ++behind;  // in the building's shadow
+    }
+    if (p.normals[i].z < -0.99f) ++back_wall;
+  }
+  EXPECT_EQ(outliers, 40u);
+  EXPECT_GT(near_ground, 5 * std::max<std::size_t>(far_ground, 1));
+  EXPECT_GT(far_ground, 0u);
+  EXPECT_EQ(back_wall, 0u);
+  EXPECT_EQ(behind, 0u);
+  // Same seed, same points.
+  const PointSet again = generate_shape("scan", o);
+  for (std::size_t i = 0; i < p.size(); i += 97) EXPECT_TRUE(p.positions[i] == again.positions[i]);
 }
 
 TEST(Shapes, RadiiFollowSpacing) {
