@@ -279,7 +279,8 @@ expect 0 "bake a mesh" -- "$bake" "$work/ball_mesh.ply" -o "$work/meshbake" --pr
 [[ ! -s "$work/err" ]] && ok || bad "bake -q prints nothing: $(head -c 300 "$work/err")"
 # without -q, a log (not a terminal) gets a progress line every QF_PROGRESS_SECONDS, then the summary
 QF_PROGRESS_SECONDS=0.05 expect 0 "bake with progress" -- "$bake" "$work/ball_mesh.ply" -o "$work/meshbake_p" --primitives 50 --ldi 64 --no-chain
-grep -qE '^qf-bake bake: [0-9]+ s, (sampling|analysis|level [0-9]+: textures of [0-9]+ quads [0-9]+/[0-9]+)' "$work/err" && ok || bad "bake shows its progress: $(head -c 300 "$work/err")"
+# (any step: which ones last past 0.05 s depends on the machine and the hierarchy cache)
+grep -qE '^qf-bake bake: [0-9]+ s, (sampling|analysis|basis functions|level [0-9]+: )' "$work/err" && ok || bad "bake shows its progress: $(head -c 300 "$work/err")"
 grep -q $'\r' "$work/err" && bad "progress in a log has no carriage returns" || ok
 grep -q "^qf-bake: .* -> " "$work/err" && ok || bad "bake prints its summary after the progress"
 # mesh-only options on a point set: said, not silently ignored
