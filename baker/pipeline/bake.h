@@ -63,7 +63,11 @@ struct MemoryPlan {
 // textures.
 constexpr double kOutOfCoreSubsampleShare = 0.65;
 constexpr double kOutOfCoreBatchShare = 0.15;
-constexpr double kOutOfCoreBytesPerMember = 64;
+// A member: 47 bytes gathered (position, normal, radius, colour, alpha, Psi), up to 10% over its
+// quad's reservation, and the texture stage's copies for the quads in hand (index lists and n x 1
+// matrices, ~40 bytes). It was 64, counting neither; with that and the Delaunay of every point
+// (now merged per cell: texture.cpp), the 100M-point torus passed its 16 GB limit by 2.5 GB.
+constexpr double kOutOfCoreBytesPerMember = 96;
 
 // The plan for a bake of `points` points under `max_memory` bytes (0: the memory available,
 // core/memory.h available_memory: MemAvailable, the cgroup's limit, QF_MEMORY_LIMIT). Throws

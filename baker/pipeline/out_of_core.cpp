@@ -280,6 +280,16 @@ struct QuadPoints {
   std::vector<float> radii;
   std::vector<Rgb8> colors;
   std::vector<double> alpha, psi;  // its alpha (domain_partition's) and its function's value
+  void reserve(double estimate, const StreamedPoints& s, const std::vector<Vec3f>& sub_normals) {
+    const auto n = static_cast<std::size_t>(estimate);
+    positions.reserve(n), radii.reserve(n), alpha.reserve(n), psi.reserve(n);
+    if (s.colors) colors.reserve(n);
+    if (s.normals || !sub_normals.empty()) normals.reserve(n);
+  }
+  void fit() {
+    positions.shrink_to_fit(), normals.shrink_to_fit(), radii.shrink_to_fit(), colors.shrink_to_fit();
+    alpha.shrink_to_fit(), psi.shrink_to_fit();
+  }
 };
 
 // One point's membership: quad (index into rects), alpha and the function's value.
@@ -457,8 +467,12 @@ std::vector<Texture> streamed_textures(const StreamedPoints& s, const std::vecto
     progress::step("reading " + std::to_string(s.tiles.size()) + " tiles for " + std::to_string(batch.size()) + " quads (batch " +
                        std::to_string(b + 1) + " of " + std::to_string(batches.size()) + ")",
                    s.tiles.size());
+    // Each quad's room reserved for its estimated points and 10% more, then fitted: growing by
+    // doubling could hold twice the batch's points at its end (the plan counts each member once).
     std::vector<QuadPoints> points(batch.size());
+    for (std::size_t k = 0; k < batch.size(); ++k) points[k].reserve(1.1 * double(d.size(rects[batch[k]].domain)) * s.stride, s, sub_normals);
     gather_batch(s, sub_normals, psi, quad_of, local, reach, domains, points);
+    for (QuadPoints& p : points) p.fit();
     // 2. Their rectangles and textures, largest first (as the in-memory bake's level_textures),
     //    each from its own points as a one-domain set; a quad's points are freed once done.
     std::vector<std::size_t> by_size(batch.size());
@@ -484,14 +498,20 @@ std::vector<Texture> streamed_textures(const StreamedPoints& s, const std::vecto
         // (support_rectangles: weighted plane, extent with every splat, mean radius): the
         // subsample's reaches up to its spacing short of the domain's outermost points, and its
         // texture would clip their splats.
-        const SparseMatrix weights = from_rows(static_cast<Eigen::Index>(n), 1, outer, inner, p.psi);
-        const std::vector<SupportRect> full = support_rectangles(p.positions, p.normals, p.radii, weights, one, support);
-        if (full.size() == 1) {
-          const std::uint32_t domain = rect.domain;
-          rect = full[0];
-          rect.domain = domain;
+        // (Each copy freed once made or used: a quad may hold millions of points.)
+        {
+          const SparseMatrix weights = from_rows(static_cast<Eigen::Index>(n), 1, outer, inner, p.psi);
+          p.psi = {};
+          const std::vector<SupportRect> full = support_rectangles(p.positions, p.normals, p.radii, weights, one, support);
+          if (full.size() == 1) {
+            const std::uint32_t domain = rect.domain;
+            rect = full[0];
+            rect.domain = domain;
+          }
         }
         const SparseMatrix alpha = from_rows(static_cast<Eigen::Index>(n), 1, outer, inner, p.alpha);
+        p.alpha = {};
+        outer = {}, inner = {};
         SupportRect local_rect = rect;
         local_rect.domain = 0;
         textures[batch[k]] = resample_texture(p.positions, p.colors, p.normals, p.radii, alpha, one, local_rect, texture);

@@ -38,6 +38,7 @@ struct Sample {
   double r;     // splat radius
   double value[kChannels];
   double alpha;  // Psi of the domain
+  double join;   // a Delaunay edge longer than the sum of its ends' `join` is a concavity: r, or more when merged
 };
 
 // Accumulates weighted channels and alpha per texel. Channels are weighted by each point's Psi
@@ -127,7 +128,7 @@ struct Outline {
 void interpolate_triangles(const std::vector<Sample>& samples, const Grid& g, Accumulator& acc, Outline* outline) {
   std::vector<std::pair<Kernel::Point_2, VertexInfo>> pts;
   pts.reserve(samples.size());
-  for (std::uint32_t k = 0; k < samples.size(); ++k) pts.push_back({Kernel::Point_2(samples[k].s, samples[k].t), {k, samples[k].r}});
+  for (std::uint32_t k = 0; k < samples.size(); ++k) pts.push_back({Kernel::Point_2(samples[k].s, samples[k].t), {k, samples[k].join}});
   Delaunay dt;
   dt.insert(pts.begin(), pts.end());
   if (outline) outline->on_edge.assign(samples.size(), 1);
@@ -427,6 +428,74 @@ void cap_by_coverage(const std::vector<double>& coverage, const TextureOptions& 
   }
 }
 
+// A domain with many points a texel is merged per cell of 1/kMergeCells of a texel before the
+// resampling: a coarse level of a dense set gathers millions of points a quad for a few hundred
+// texels (the 22-quad level of a 100M-point torus: up to 8M points a quad), and the Delaunay of
+// every point cost ~300 bytes and ~1 us a point, for texels that sample the surface at their
+// centres, which the cells' means give as well (a box filter a third of a texel wide). Merging
+// starts where the points outnumber the cells kMergeAbove times, so the cells never hold more
+// memory than the points' samples would; below it the samples are the points, unchanged.
+constexpr int kMergeCells = 3;
+constexpr double kMergeAbove = 2.0;
+
+// Sums of the points in one cell.
+struct CellSum {
+  double s = 0, t = 0, r = 0, alpha = 0;
+  double value[kChannels] = {}, plain[kChannels] = {};
+  std::uint32_t count = 0;
+};
+
+// The domain's samples: each point in rectangle coordinates with its colour, its normal in the
+// rectangle's frame and its Psi, or the cells' means (values weighted by Psi as the texels' are;
+// the Delaunay joins a merged sample to its neighbours over half a texel at least, as adjacent
+// cells' means may lie up to 2.9 cells apart). `slab` gets the points' farthest distance from the
+// plane.
+std::vector<Sample> domain_samples(const std::vector<Vec3f>& positions, const std::vector<Rgb8>& colors,
+                                   const std::vector<Vec3f>& normals, const std::vector<float>& radii, const SparseMatrix& psi,
+                                   const Domains& domains, const SupportRect& rect, const SupportRect& grid_rect, const Texture& tex,
+                                   const TextureOptions& o, double& slab) {
+  const std::size_t d = rect.domain;
+  const auto sample_of = [&](std::uint32_t i) {
+    const Vec3f x = positions[i] - rect.center;
+    slab = std::max(slab, std::fabs(double(dot(x, rect.normal))));
+    Sample sm{dot(x, rect.axis_u), dot(x, rect.axis_v), radii[i], {0, 0, 0, 0, 0, 1}, psi.coeff(i, static_cast<Eigen::Index>(d)), radii[i]};
+    const Rgb8 c = colors.empty() ? o.base_color : colors[i];
+    sm.value[0] = c.r, sm.value[1] = c.g, sm.value[2] = c.b;
+    if (!normals.empty()) {
+      const Vec3f n = normals[i];
+      sm.value[3] = dot(n, rect.axis_u), sm.value[4] = dot(n, rect.axis_v), sm.value[5] = dot(n, rect.normal);
+    }
+    return sm;
+  };
+  const std::size_t points = domains.offsets[d + 1] - domains.offsets[d];
+  const std::size_t cw = static_cast<std::size_t>(tex.width) * kMergeCells, ch = static_cast<std::size_t>(tex.height) * kMergeCells;
+  std::vector<Sample> samples;
+  if (double(points) <= kMergeAbove * double(cw * ch)) {
+    samples.reserve(points);
+    for (std::uint32_t q = domains.offsets[d]; q < domains.offsets[d + 1]; ++q) samples.push_back(sample_of(domains.points[q]));
+    return samples;
+  }
+  const double cell = double(tex.texel) / kMergeCells;
+  std::vector<CellSum> cells(cw * ch);
+  for (std::uint32_t q = domains.offsets[d]; q < domains.offsets[d + 1]; ++q) {
+    const Sample p = sample_of(domains.points[q]);
+    const auto at = [&](double v, double half, std::size_t size) {
+      return std::min(size - 1, static_cast<std::size_t>(std::max(0.0, std::floor((v + half) / cell))));
+    };
+    CellSum& c = cells[at(p.t, grid_rect.half_v, ch) * cw + at(p.s, grid_rect.half_u, cw)];
+    c.s += p.s, c.t += p.t, c.r += p.r, c.alpha += p.alpha, ++c.count;
+    for (int k = 0; k < kChannels; ++k) c.value[k] += p.alpha * p.value[k], c.plain[k] += p.value[k];
+  }
+  for (const CellSum& c : cells) {
+    if (c.count == 0) continue;
+    const double inv = 1.0 / c.count;
+    Sample m{c.s * inv, c.t * inv, c.r * inv, {}, c.alpha * inv, std::max(c.r * inv, 1.5 * cell)};
+    for (int k = 0; k < kChannels; ++k) m.value[k] = c.alpha > 0 ? c.value[k] / c.alpha : c.plain[k] * inv;
+    samples.push_back(m);
+  }
+  return samples;
+}
+
 }  // namespace
 
 Texture resample_texture(const std::vector<Vec3f>& positions, const std::vector<Rgb8>& colors,
@@ -450,23 +519,10 @@ Texture resample_texture(const std::vector<Vec3f>& positions, const std::vector<
   SupportRect r = rect;
   r.half_u = static_cast<float>(0.5 * tex.width * texel);
   r.half_v = static_cast<float>(0.5 * tex.height * texel);
-  // 2. The domain's points in rectangle coordinates.
-  std::vector<Sample> samples;
+  // 2. The domain's points in rectangle coordinates, merged per cell where there are many a texel.
   const std::size_t d = rect.domain;
   double slab = 0;  // the points' farthest distance from the plane
-  for (std::uint32_t q = domains.offsets[d]; q < domains.offsets[d + 1]; ++q) {
-    const std::uint32_t i = domains.points[q];
-    const Vec3f x = positions[i] - rect.center;
-    slab = std::max(slab, std::fabs(double(dot(x, rect.normal))));
-    Sample sm{dot(x, rect.axis_u), dot(x, rect.axis_v), radii[i], {0, 0, 0, 0, 0, 1}, psi.coeff(i, static_cast<Eigen::Index>(d))};
-    const Rgb8 c = colors.empty() ? o.base_color : colors[i];
-    sm.value[0] = c.r, sm.value[1] = c.g, sm.value[2] = c.b;
-    if (!normals.empty()) {
-      const Vec3f n = normals[i];
-      sm.value[3] = dot(n, rect.axis_u), sm.value[4] = dot(n, rect.axis_v), sm.value[5] = dot(n, rect.normal);
-    }
-    samples.push_back(sm);
-  }
+  const std::vector<Sample> samples = domain_samples(positions, colors, normals, radii, psi, domains, rect, r, tex, o, slab);
   // 3. Resample.
   const std::size_t n = static_cast<std::size_t>(tex.width) * static_cast<std::size_t>(tex.height);
   Accumulator acc(n);

@@ -289,6 +289,57 @@ TEST(Texture, MaxSideLimitsTheGrid) {
   EXPECT_GT(t.texel, 0.05f);
 }
 
+// A domain with many points a texel (a coarse level of a dense set) is merged per third of a
+// texel before the resampling; its texture is the one its surface gives at an ordinary density.
+// The L of ConcavitiesStayEmptyAndColoursExtend at 10x the density (0.005 apart, 120k points) and
+// at the grid's (0.05), both on texels of 0.1: ~30 points a texel against ~0.3.
+TEST(Texture, DenseDomainsShowTheirSurface) {
+  const auto l_shape = [](float x, float y) { return !(x > 1.01f && y > 1.01f); };
+  const Scene sparse = grid(l_shape);
+  Scene dense;
+  {
+    std::vector<std::int32_t> outer{0}, inner;
+    std::vector<double> values;
+    for (int y = 0; y <= 400; ++y)
+      for (int x = 0; x <= 400; ++x) {
+        const float px = 0.005f * x, py = 0.005f * y;
+        if (!l_shape(px, py)) continue;
+        dense.positions.push_back({px, py, 0});
+        dense.normals.push_back({0, 0, 1});
+        dense.radii.push_back(0.005f);
+        dense.colors.push_back({static_cast<std::uint8_t>(std::lround(127.5f * px)), 50, 100});
+        inner.push_back(0), values.push_back(1.0 - px / 2);
+        outer.push_back(static_cast<std::int32_t>(inner.size()));
+      }
+    dense.psi = from_rows(static_cast<Eigen::Index>(dense.positions.size()), 1, outer, inner, values);
+  }
+  TextureOptions o;
+  o.min_texel = 0.1;
+  const Domains dd = make_domains(dense.psi), ds = make_domains(sparse.psi);
+  SupportRect r = support_rectangles(sparse.positions, sparse.normals, sparse.radii, sparse.psi, ds)[0];
+  const Texture a = resample_texture(dense.positions, dense.colors, dense.normals, dense.radii, dense.psi, dd, r, o);
+  const Texture b = resample_texture(sparse.positions, sparse.colors, sparse.normals, sparse.radii, sparse.psi, ds, r, o);
+  ASSERT_EQ(a.width, b.width);
+  ASSERT_EQ(a.height, b.height);
+  EXPECT_EQ(texel_at(a, r, 1.6f, 1.6f)[3], 0);  // the concavity stays empty
+  EXPECT_GT(texel_at(a, r, 0.6f, 1.6f)[3], 100);
+  int worst_alpha = 0, worst_red = 0;
+  for (float y = 0.15f; y < 1.9f; y += 0.1f)
+    for (float x = 0.15f; x < 1.9f; x += 0.1f) {
+      // Texels of the L (the rectangle may not reach the concavity's far corner), away from the
+      // concavity's edges, where the ramp depends on the spacing.
+      if (!l_shape(x, y) || std::fabs(x - 1.0f) < 0.15f || std::fabs(y - 1.0f) < 0.15f) continue;
+      const auto p = texel_at(a, r, x, y), q = texel_at(b, r, x, y);
+      worst_alpha = std::max(worst_alpha, std::abs(p[3] - q[3]));
+      if (q[3] > 0) worst_red = std::max(worst_red, std::abs(p[0] - q[0]));
+    }
+  EXPECT_LE(worst_alpha, 3);
+  EXPECT_LE(worst_red, 3);
+  // Coverage as the L's area (3) gives: the sparse grid's splats reach half a spacing beyond it
+  // (328 texels), the dense points' edges lie on it (297 unmerged).
+  EXPECT_NEAR(double(a.covered), 3.0 / (0.1 * 0.1), 0.05 * 300);
+}
+
 // A mesh input's quad shows the mesh itself (issue 31): a square [0, 1] x [0, 2] of two triangles
 // with a two-texel texture (red below y = 1, blue above) under the grid's points, which are green.
 // The texture's colours show, not the points'; alpha is the mesh's coverage where it covers less
