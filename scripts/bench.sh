@@ -204,14 +204,14 @@ for w in "${what[@]}"; do
       # with distance, shadows, range noise, 0.2% outliers) at each of QF_BIG_GROWTH points
       # (default 10M, 30M, 100M), baked with the defaults under --max-memory 16G (out of core where
       # the estimate passes it): stages, wall, CPU, peak memory, scratch bytes, and the growth
-      # exponents from the smallest to the largest count. The defaults take hours on 2 cores and
-      # about 10 GB of disk at 100M.
+      # exponents from the smallest to the largest count (QF_BIG_SHAPES: which of the two, default
+      # both). The defaults take about an hour on 2 cores and about 10 GB of disk at 100M.
       tmp=$(mktemp -d)
       echo "growth: qf-bake IN -o OUT --no-cache --max-memory 16G, 2 threads"
       echo
       rows=()
       for n in ${QF_BIG_GROWTH:-10000000 30000000 100000000}; do
-        for shape in torus scan; do
+        for shape in ${QF_BIG_SHAPES:-torus scan}; do
           build/bin/qf-bake generate "$shape" --points "$n" -o "$tmp/$shape.ply" -q
           rm -rf "$tmp/out"
           OMP_NUM_THREADS=2 /usr/bin/time -v build/bin/qf-bake "$tmp/$shape.ply" -o "$tmp/out" --no-cache -q --max-memory 16G 2>"$tmp/time${#rows[@]}.txt"

@@ -92,6 +92,10 @@ std::vector<std::uint8_t> encode_glb(const ImpostorLevel& level, const GltfOptio
 std::vector<std::uint8_t> combine_lod_glb(const std::vector<const std::vector<std::uint8_t>*>& parts,
                                           const std::vector<double>& screen_coverage, const std::string& name);
 
+// The bytes of a finished .glb's images (its textures as stored, every format). Throws
+// std::invalid_argument where combine_lod_glb would.
+std::size_t glb_image_bytes(const std::vector<std::uint8_t>& glb);
+
 // One .glb drawing every part at once (`parts`: finished .glb files as for combine_lod_glb; the
 // tiles of one scan, qf-bake join): a root node NAME whose children are the parts' root nodes,
 // named NAME_0..n, their materials and textures prefixed the same way. Plain glTF, as

@@ -122,6 +122,14 @@ std::vector<std::uint8_t> glb_bytes(tinygltf::Model& m, const char* who) {
 
 }  // namespace
 
+std::size_t glb_image_bytes(const std::vector<std::uint8_t>& glb) {
+  const tinygltf::Model m = parse_glb(glb);
+  std::size_t bytes = 0;
+  for (const tinygltf::Image& i : m.images)
+    if (i.bufferView >= 0) bytes += m.bufferViews[static_cast<std::size_t>(i.bufferView)].byteLength;
+  return bytes;
+}
+
 std::vector<std::uint8_t> join_glb(const std::vector<const std::vector<std::uint8_t>*>& parts, const std::string& name) {
   if (parts.empty()) throw std::invalid_argument("join_glb: no part");
   tinygltf::Model m = empty_model();

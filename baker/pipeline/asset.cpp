@@ -9,6 +9,7 @@
 #include <fstream>
 #include <ostream>
 #include <functional>
+#include <limits>
 
 #include "core/error.h"
 #include "core/file_io.h"
@@ -363,21 +364,39 @@ void lod_file_output(AssetBake& a, const AssetOptions& o, const std::string& ste
     for (std::size_t i = 0; i < levels.size(); ++i)
       steps.push_back({stem + "_L" + std::to_string(levels[i]->level) + ".glb", i + 1 < levels.size() ? levels[i + 1]->max_screen_pixels : 0.0});
   }
+  // Babylon.js loads every MSFT_lod level at once, coarsest first, and on each level's arrival
+  // disposes the next coarser one, loaded or not: a coarser level still decoding its textures when
+  // a finer one arrives never finishes, and neither does the load (measured: a torus chain of an
+  // impostor level, a mesh LOD and a far impostor level hung Babylon.js 9.31's loader). A level is
+  // kept only where its images are no larger than those of every finer level kept (an untextured
+  // mesh LOD has none): then each level arrives after the coarser ones. The others stay in the
+  // chain as files of their own.
   std::vector<const std::vector<std::uint8_t>*> parts;
   std::vector<double> coverage;
-  nlohmann::json names = nlohmann::json::array();
+  nlohmann::json names = nlohmann::json::array(), left_out = nlohmann::json::array();
+  std::size_t finer_images = std::numeric_limits<std::size_t>::max();
   for (const auto& [file, pixels] : steps) {
+    const OutputFile* part = nullptr;
     for (const OutputFile& f : a.files)
-      if (f.name == file) parts.push_back(&f.bytes);
+      if (f.name == file) part = &f;
+    if (!part) throw std::logic_error("lod_file_output: no file " + file);
+    const std::size_t images = glb_image_bytes(part->bytes);
+    if (images > finer_images) {
+      left_out.push_back(file);
+      continue;
+    }
+    finer_images = images;
+    parts.push_back(&part->bytes);
     double c = std::min(1.0, pixels / o.lod_screen_height);
     if (!coverage.empty()) c = std::min(c, coverage.back());
     coverage.push_back(canonical_double(static_cast<float>(c)));
     names.push_back(file);
   }
+  coverage.back() = 0.0;  // the coarsest kept is never culled
   std::vector<std::uint8_t> combined = combine_lod_glb(parts, coverage, chain ? "chain" : "impostor");
   const std::string name = stem + "_lods.glb";
   a.files.push_back({name, std::move(combined)});
-  a.manifest["lod_file"] = {{"file", name}, {"screen_height", o.lod_screen_height}, {"parts", names}};
+  a.manifest["lod_file"] = {{"file", name}, {"screen_height", o.lod_screen_height}, {"parts", names}, {"left_out", left_out}};
 }
 
 // 5c (used by 5a). Up to which on-screen size a file is made for (0: any): a level's or mesh

@@ -39,6 +39,18 @@ export function encodePng(width, height, rgba) {
                         chunk('IDAT', zlib.deflateSync(raw)), chunk('IEND', Buffer.alloc(0))]);
 }
 
+// A load or render the engine never finishes (a loader waiting on a promise that never settles)
+// fails its job after QF_RENDER_TIMEOUT seconds (default 180) instead of holding the caller until
+// it is killed.
+const limitMs = Number(process.env.QF_RENDER_TIMEOUT || 180) * 1000;
+function within(promise) {
+  let timer;
+  const late = new Promise((_, reject) => {
+    timer = setTimeout(() => reject(new Error(`the engine did not finish loading and drawing within ${limitMs / 1000} s`)), limitMs);
+  });
+  return Promise.race([promise, late]).finally(() => clearTimeout(timer));
+}
+
 // label: the engine's name in messages; chromium: its playwright-core's; page: withPage's options.
 export async function renderMain(label, chromium, page) {
   const args = process.argv.slice(2);
@@ -58,8 +70,8 @@ export async function renderMain(label, chromium, page) {
         const cams = JSON.parse(fs.readFileSync(job.cameras, 'utf8'));
         try {
           // The file's path rides in the query so that each job's URL differs (no cached file).
-          const { images, warnings, drawn, loaded } = await tab.evaluate(([u, c]) => window.qfRender(u, c),
-            [`/files/model.glb?${encodeURIComponent(job.file)}`, cams]);
+          const { images, warnings, drawn, loaded } = await within(tab.evaluate(([u, c]) => window.qfRender(u, c),
+            [`/files/model.glb?${encodeURIComponent(job.file)}`, cams]));
           fs.mkdirSync(job.out, { recursive: true });
           images.forEach((pair, i) => {
             const v = cams.views[i];
