@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace qf {
 namespace {
@@ -236,6 +237,60 @@ Neighborhoods k_nearest(const std::vector<Vec3f>& positions, int k) {
   NeighborhoodOptions o;
   o.k = k;
   return compute_neighborhoods(positions, o);
+}
+
+struct NearestPoints::Tree {
+  flann::Matrix<float> data;
+  // FLANN's search methods are const but not marked so; queries never modify the tree.
+  mutable flann::KDTreeSingleIndex<flann::L2_Simple<float>> index;
+  explicit Tree(std::vector<float>& cloud) : data(cloud.data(), cloud.size() / 3, 3), index(data, flann::KDTreeSingleIndexParams(15)) {
+    index.buildIndex();
+  }
+};
+
+NearestPoints::NearestPoints(const std::vector<Vec3f>& points) {
+  if (points.empty()) throw std::invalid_argument("NearestPoints: no points");
+  cloud_.reserve(3 * points.size());
+  for (Vec3f p : points) cloud_.insert(cloud_.end(), {p.x, p.y, p.z});
+  tree_ = std::make_unique<Tree>(cloud_);
+}
+
+NearestPoints::~NearestPoints() = default;
+
+int NearestPoints::nearest(const Vec3f* queries, std::size_t count, int k, std::uint32_t* index, float* d2) const {
+  const std::size_t n = cloud_.size() / 3;
+  const int got = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(k), n));
+  // One more than asked (kTieSlack): where it ties with the last, a ball fetches every tie.
+  const int want = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(got + kTieSlack), n));
+  std::vector<float> q(3 * count);
+  for (std::size_t i = 0; i < count; ++i) q[3 * i] = queries[i].x, q[3 * i + 1] = queries[i].y, q[3 * i + 2] = queries[i].z;
+  std::vector<std::size_t> found(count * static_cast<std::size_t>(want));
+  std::vector<float> sq(found.size());
+  flann::Matrix<float> qm(q.data(), count, 3);
+  flann::Matrix<std::size_t> fm(found.data(), count, static_cast<std::size_t>(want));
+  flann::Matrix<float> sm(sq.data(), count, static_cast<std::size_t>(want));
+  tree_->index.knnSearch(qm, fm, sm, static_cast<std::size_t>(want), flann::SearchParams(-1, 0.0f, false));
+  std::vector<Candidate> list;
+  for (std::size_t i = 0; i < count; ++i) {
+    list.clear();
+    for (std::size_t r = 0; r < static_cast<std::size_t>(want); ++r)
+      list.push_back({sq[i * want + r], static_cast<std::uint32_t>(found[i * want + r])});
+    std::sort(list.begin(), list.end());
+    if (want > got && list[static_cast<std::size_t>(want) - 1].first == list[static_cast<std::size_t>(got) - 1].first) {
+      std::vector<std::vector<std::size_t>> idx;
+      std::vector<std::vector<float>> dist;
+      flann::Matrix<float> one(q.data() + 3 * i, 1, 3);
+      tree_->index.radiusSearch(one, idx, dist, list[static_cast<std::size_t>(got) - 1].first * (1 + 1e-6f), flann::SearchParams(-1, 0.0f, false));
+      list.clear();
+      for (std::size_t r = 0; r < idx[0].size(); ++r) list.push_back({dist[0][r], static_cast<std::uint32_t>(idx[0][r])});
+      std::sort(list.begin(), list.end());
+    }
+    for (int j = 0; j < got; ++j) {
+      index[i * static_cast<std::size_t>(k) + static_cast<std::size_t>(j)] = list[static_cast<std::size_t>(j)].second;
+      d2[i * static_cast<std::size_t>(k) + static_cast<std::size_t>(j)] = list[static_cast<std::size_t>(j)].first;
+    }
+  }
+  return got;
 }
 
 std::size_t estimate_radii(PointSet& points, const RadiusEstimateOptions& options) {

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "core/types.h"
@@ -42,6 +43,26 @@ Neighborhoods compute_neighborhoods(const std::vector<Vec3f>& positions, const N
 
 // The min(k, n-1) nearest neighbours of every point (compute_neighborhoods without the ball).
 Neighborhoods k_nearest(const std::vector<Vec3f>& positions, int k);
+
+// The nearest of a fixed set of points to any query point, on the same kd-tree: the out-of-core
+// bake links each of its points to the subsample (pipeline/out_of_core.cpp). Exact, ties by lower
+// index, so answers do not depend on the threads asking (queries are const and may run at once).
+class NearestPoints {
+ public:
+  explicit NearestPoints(const std::vector<Vec3f>& points);
+  ~NearestPoints();
+  NearestPoints(const NearestPoints&) = delete;
+  NearestPoints& operator=(const NearestPoints&) = delete;
+
+  // The min(k, size) nearest points of each of `queries`: indices into the set and squared
+  // distances, nearest first, at index[q * k + j] and d2[q * k + j]; returns how many a query got.
+  int nearest(const Vec3f* queries, std::size_t count, int k, std::uint32_t* index, float* d2) const;
+
+ private:
+  struct Tree;
+  std::vector<float> cloud_;  // xyz interleaved
+  std::unique_ptr<Tree> tree_;
+};
 
 struct RadiusEstimateOptions {
   int k = 6;  // the radius reaches the k-th nearest neighbour: about the first ring of a sampling

@@ -71,118 +71,6 @@ PointSet pick_subsample(const PointSet& input, const std::vector<std::uint32_t>&
   return permuted(input, picked);
 }
 
-// ---------------------------------------------------------------------------------------------
-// Nearest subsample points of arbitrary query points: a uniform grid of cells about the
-// subsample's spacing, hashed (open addressing), searched in growing shells of cells until the
-// kLinks-th nearest found lies within the searched cube (exact k nearest, ties by index).
-class CellGrid {
- public:
-  CellGrid(const std::vector<Vec3f>& points, float cell, Vec3f origin) : cell_(cell), origin_(origin) {
-    const std::size_t m = points.size();
-    std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(m);
-    for (std::size_t j = 0; j < m; ++j) keyed[j] = {key(coords(points[j])), static_cast<std::uint32_t>(j)};
-    std::sort(keyed.begin(), keyed.end());
-    sorted_.resize(m);
-    positions_.resize(m);
-    for (std::size_t j = 0; j < m; ++j) sorted_[j] = keyed[j].second, positions_[j] = points[keyed[j].second];
-    std::size_t cells = 0;
-    for (std::size_t j = 0; j < m; ++j) cells += j == 0 || keyed[j].first != keyed[j - 1].first;
-    std::size_t capacity = 16;
-    while (capacity < 2 * cells) capacity *= 2;
-    mask_ = capacity - 1;
-    slot_key_.assign(capacity, kEmpty);
-    slot_begin_.assign(capacity, 0);
-    slot_end_.assign(capacity, 0);
-    for (std::size_t j = 0; j < m;) {
-      std::size_t e = j;
-      while (e < m && keyed[e].first == keyed[j].first) ++e;
-      std::size_t h = hash(keyed[j].first) & mask_;
-      while (slot_key_[h] != kEmpty) h = (h + 1) & mask_;
-      slot_key_[h] = keyed[j].first, slot_begin_[h] = static_cast<std::uint32_t>(j), slot_end_[h] = static_cast<std::uint32_t>(e);
-      j = e;
-    }
-  }
-
-  // The k nearest points of x (k <= kLinks, fewer only when the grid holds fewer): indices into
-  // the grid's points and squared distances, nearest first.
-  int nearest(Vec3f x, int k, std::uint32_t* index, float* d2) const {
-    const std::array<std::int64_t, 3> c = coords(x);
-    int found = 0;
-    for (std::int64_t ring = 0;; ++ring) {
-      for (std::int64_t dx = -ring; dx <= ring; ++dx)
-        for (std::int64_t dy = -ring; dy <= ring; ++dy)
-          for (std::int64_t dz = -ring; dz <= ring; ++dz) {
-            if (std::max({std::llabs(dx), std::llabs(dy), std::llabs(dz)}) != ring) continue;  // the shell only
-            const std::int64_t cx = c[0] + dx, cy = c[1] + dy, cz = c[2] + dz;
-            if (cx < 0 || cy < 0 || cz < 0 || cx >= kSide || cy >= kSide || cz >= kSide) continue;
-            std::uint32_t b, e;
-            if (!find(key({cx, cy, cz}), b, e)) continue;
-            for (std::uint32_t q = b; q < e; ++q) {
-              const Vec3f v = positions_[q] - x;
-              insert(dot(v, v), sorted_[q], k, found, index, d2);
-            }
-          }
-      // Every point outside the searched cube is at least ring cells away from x.
-      const float reach = float(ring) * cell_;
-      if (found == k && d2[k - 1] <= reach * reach) return found;
-      if (ring > 2 * kSide) return found;  // the whole grid searched
-      if (ring >= 48 && found > 0 && found == static_cast<int>(std::min<std::size_t>(k, sorted_.size()))) return found;
-    }
-  }
-
- private:
-  static constexpr std::int64_t kSide = std::int64_t{1} << 21;
-  static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
-
-  std::array<std::int64_t, 3> coords(Vec3f p) const {
-    std::array<std::int64_t, 3> c{};
-    for (int a = 0; a < 3; ++a)
-      c[static_cast<std::size_t>(a)] = std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((p[a] - origin_[a]) / cell_)), 0, kSide - 1);
-    return c;
-  }
-  static std::uint64_t key(const std::array<std::int64_t, 3>& c) {
-    return (std::uint64_t(c[0]) << 42) | (std::uint64_t(c[1]) << 21) | std::uint64_t(c[2]);
-  }
-  static std::uint64_t hash(std::uint64_t k) {
-    k ^= k >> 33, k *= 0xff51afd7ed558ccdULL, k ^= k >> 33;
-    return k;
-  }
-  bool find(std::uint64_t k, std::uint32_t& b, std::uint32_t& e) const {
-    for (std::size_t h = hash(k) & mask_;; h = (h + 1) & mask_) {
-      if (slot_key_[h] == kEmpty) return false;
-      if (slot_key_[h] == k) {
-        b = slot_begin_[h], e = slot_end_[h];
-        return true;
-      }
-    }
-  }
-  // Keeps the k best (distance, then index) in d2 / index, sorted.
-  static void insert(float d, std::uint32_t j, int k, int& found, std::uint32_t* index, float* d2) {
-    if (found == k && (d > d2[k - 1] || (d == d2[k - 1] && j > index[k - 1]))) return;
-    int at = found < k ? found++ : k - 1;
-    while (at > 0 && (d < d2[at - 1] || (d == d2[at - 1] && j < index[at - 1]))) {
-      d2[at] = d2[at - 1], index[at] = index[at - 1];
-      --at;
-    }
-    d2[at] = d, index[at] = j;
-  }
-
-  float cell_;
-  Vec3f origin_;
-  std::vector<std::uint32_t> sorted_;
-  std::vector<Vec3f> positions_;
-  std::size_t mask_ = 0;
-  std::vector<std::uint64_t> slot_key_;
-  std::vector<std::uint32_t> slot_begin_, slot_end_;
-};
-
-// The subsample's typical spacing: the median of its radii at its own density.
-float subsample_spacing(const StreamedPoints& s) {
-  std::vector<float> r = s.subsample.radii;
-  if (r.empty()) return s.bounds.diagonal() * 1e-3f + 1e-30f;
-  std::nth_element(r.begin(), r.begin() + static_cast<std::ptrdiff_t>(r.size() / 2), r.end());
-  return std::max(1e-30f, r[r.size() / 2] * float(std::sqrt(s.stride)));
-}
 
 }  // namespace
 
@@ -235,13 +123,30 @@ StreamedPoints spill_points(const PointSet& input, const std::vector<std::uint32
   return s;
 }
 
+namespace {
+
+// A point's weights over its `found` nearest subsample points (squared distances d2, nearest
+// first): inverse-square-distance (Shepard's), which interpolate, so a point of the subsample
+// takes exactly its own functions (coincident ones share equally) and a subsample of every point
+// gives the in-memory bake's alpha. Unused slots repeat the first index and weigh nothing.
+// Returns the distance to the farthest linked point.
+float link_weights(int found, std::uint32_t* idx, const float* d2, float* w) {
+  int zeros = 0;
+  while (zeros < found && d2[zeros] == 0.0f) ++zeros;
+  double sum = 0;
+  for (int q = 0; q < found; ++q) sum += zeros ? (q < zeros ? 1.0 : 0.0) : 1.0 / double(d2[q]);
+  for (int q = 0; q < found; ++q) w[q] = static_cast<float>((zeros ? (q < zeros ? 1.0 : 0.0) : 1.0 / double(d2[q])) / sum);
+  for (int q = found; q < kLinks; ++q) idx[q] = idx[0], w[q] = 0.0f;
+  return std::sqrt(d2[found - 1]);
+}
+
+}  // namespace
+
 void link_points(StreamedPoints& s) {
-  const float spacing = subsample_spacing(s);
-  const CellGrid grid(s.subsample.positions, spacing, s.bounds.min - Vec3f{spacing, spacing, spacing});
-  const int k = static_cast<int>(std::min<std::size_t>(kLinks, s.subsample.size()));
-  // Inverse-square-distance weights (Shepard's): they interpolate, so a point of the subsample
-  // takes exactly its own functions (and coincident ones share equally), and a subsample of every
-  // point gives the in-memory bake's alpha.
+  // FLANN's kd-tree (analysis/neighborhoods.h): a uniform grid of the subsample's median spacing
+  // took 10+ minutes on the scan-like set, whose density varies 100-fold and whose outliers lie
+  // hundreds of cells from any other point.
+  const NearestPoints tree(s.subsample.positions);
   progress::step("linking " + std::to_string(s.points) + " points to the subsample", s.tiles.size());
   TileData d;
   for (StreamedPoints::Tile& t : s.tiles) {
@@ -249,20 +154,16 @@ void link_points(StreamedPoints& s) {
     const std::size_t c = t.count;
     d.link_index.assign(c * kLinks, 0);
     d.link_weight.assign(c * kLinks, 0.0f);
+    std::vector<float> dist2(c * kLinks, 0.0f);
     float reach = 0;
-#pragma omp parallel for schedule(static) reduction(max : reach)
-    for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(c); ++i) {
-      std::uint32_t* idx = &d.link_index[static_cast<std::size_t>(i) * kLinks];
-      float* w = &d.link_weight[static_cast<std::size_t>(i) * kLinks];
-      float d2[kLinks];
-      const int found = grid.nearest(d.positions[static_cast<std::size_t>(i)], k, idx, d2);
-      int zeros = 0;
-      while (zeros < found && d2[zeros] == 0.0f) ++zeros;
-      double sum = 0;
-      for (int q = 0; q < found; ++q) sum += zeros ? (q < zeros ? 1.0 : 0.0) : 1.0 / double(d2[q]);
-      for (int q = 0; q < found; ++q) w[q] = static_cast<float>((zeros ? (q < zeros ? 1.0 : 0.0) : 1.0 / double(d2[q])) / sum);
-      for (int q = found; q < kLinks; ++q) idx[q] = idx[0], w[q] = 0.0f;  // unused slots weigh nothing
-      reach = std::max(reach, std::sqrt(d2[found - 1]));
+    // Blocks of consecutive points (the tile is in Morton order: nearby queries touch nearby nodes).
+    constexpr std::size_t kBlock = 512;
+    const std::ptrdiff_t blocks = static_cast<std::ptrdiff_t>((c + kBlock - 1) / kBlock);
+#pragma omp parallel for schedule(dynamic) reduction(max : reach)
+    for (std::ptrdiff_t b = 0; b < blocks; ++b) {
+      const std::size_t first = static_cast<std::size_t>(b) * kBlock, count = std::min(kBlock, c - first);
+      const int found = tree.nearest(&d.positions[first], count, kLinks, &d.link_index[first * kLinks], &dist2[first * kLinks]);
+      for (std::size_t i = first; i < first + count; ++i) reach = std::max(reach, link_weights(found, &d.link_index[i * kLinks], &dist2[i * kLinks], &d.link_weight[i * kLinks]));
     }
     t.reach = reach;
     t.links_offset = s.file->size();

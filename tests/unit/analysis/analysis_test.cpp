@@ -238,6 +238,43 @@ TEST(Analysis, BallNeighbourhoodsWiden) {
   expect_stiffness_invariants(a.stiffness);
 }
 
+// The nearest of a set to other points (the out-of-core links): brute force agrees, ties go to
+// the lower index (a grid of points queried at cell centres ties 8 ways), and a far query (an
+// outlier) gets its nearest all the same.
+TEST(Analysis, NearestPointsAreExactWithTiesByIndex) {
+  std::vector<Vec3f> set;
+  for (int x = 0; x < 20; ++x)
+    for (int y = 0; y < 20; ++y)
+      for (int z = 0; z < 5; ++z) set.push_back({float(x), float(y), float(z)});
+  const NearestPoints tree(set);
+  std::vector<Vec3f> queries;
+  for (int i = 0; i < 300; ++i) queries.push_back({0.5f + float(i % 19), 0.5f + float(i / 19 % 19), 0.5f + float(i % 4)});
+  queries.push_back({0.2f, 0.3f, 0.1f});
+  queries.push_back({1000, -500, 20});
+  constexpr int k = 4;
+  std::vector<std::uint32_t> index(queries.size() * k);
+  std::vector<float> d2(index.size());
+  ASSERT_EQ(tree.nearest(queries.data(), queries.size(), k, index.data(), d2.data()), k);
+  for (std::size_t q = 0; q < queries.size(); ++q) {
+    std::vector<std::pair<float, std::uint32_t>> all;
+    for (std::size_t j = 0; j < set.size(); ++j) {
+      const Vec3f v = set[j] - queries[q];
+      all.push_back({dot(v, v), static_cast<std::uint32_t>(j)});
+    }
+    std::sort(all.begin(), all.end());
+    for (int r = 0; r < k; ++r) {
+      EXPECT_EQ(index[q * k + r], all[r].second) << "query " << q << " rank " << r;
+      EXPECT_FLOAT_EQ(d2[q * k + r], all[r].first);
+    }
+  }
+  // A set smaller than k: every point, nearest first.
+  const NearestPoints two({{0, 0, 0}, {1, 0, 0}});
+  const Vec3f x{0.9f, 0, 0};
+  ASSERT_EQ(two.nearest(&x, 1, k, index.data(), d2.data()), 2);
+  EXPECT_EQ(index[0], 1u);
+  EXPECT_EQ(index[1], 0u);
+}
+
 TEST(Analysis, DegenerateInputsNeverCrashOrNaN) {
   auto check = [](const PointSet& p, const char* what) {
     SCOPED_TRACE(what);
