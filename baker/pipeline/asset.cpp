@@ -392,7 +392,7 @@ void lod_file_output(AssetBake& a, const AssetOptions& o, const std::string& ste
     coverage.push_back(canonical_double(static_cast<float>(c)));
     names.push_back(file);
   }
-  coverage.back() = 0.0;  // the coarsest kept is never culled
+  if (!coverage.empty()) coverage.back() = 0.0;  // the coarsest kept is never culled
   std::vector<std::uint8_t> combined = combine_lod_glb(parts, coverage, chain ? "chain" : "impostor");
   const std::string name = stem + "_lods.glb";
   a.files.push_back({name, std::move(combined)});
