@@ -18,20 +18,21 @@ struct Scene {
   SparseMatrix psi;
 };
 
-// Points on a grid in the plane z = 0 (spacing 0.05, radius 0.05), red = 255 x / 2; `keep` decides
+// Points on a grid over [0, 2]^2 in the plane z = 0 (radius = spacing), red = 255 x / 2; `keep` decides
 // which grid points exist. Psi: column 0 = 1 - x/2, column 1 = x/2 (two overlapping functions).
 template <class Keep>
-Scene grid(Keep keep) {
+Scene grid(Keep keep, float spacing = 0.05f) {
   Scene s;
   std::vector<std::int32_t> outer{0}, inner;
   std::vector<double> values;
-  for (int y = 0; y <= 40; ++y)
-    for (int x = 0; x <= 40; ++x) {
-      const float px = 0.05f * x, py = 0.05f * y;
+  const int steps = static_cast<int>(std::lround(2.0f / spacing));
+  for (int y = 0; y <= steps; ++y)
+    for (int x = 0; x <= steps; ++x) {
+      const float px = spacing * x, py = spacing * y;
       if (!keep(px, py)) continue;
       s.positions.push_back({px, py, 0});
       s.normals.push_back({0, 0, 1});
-      s.radii.push_back(0.05f);
+      s.radii.push_back(spacing);
       s.colors.push_back({static_cast<std::uint8_t>(std::lround(127.5f * px)), 50, 100});
       inner.push_back(0), values.push_back(1.0 - px / 2);
       inner.push_back(1), values.push_back(px / 2);
@@ -295,24 +296,7 @@ TEST(Texture, MaxSideLimitsTheGrid) {
 // at the grid's (0.05), both on texels of 0.1: ~30 points a texel against ~0.3.
 TEST(Texture, DenseDomainsShowTheirSurface) {
   const auto l_shape = [](float x, float y) { return !(x > 1.01f && y > 1.01f); };
-  const Scene sparse = grid(l_shape);
-  Scene dense;
-  {
-    std::vector<std::int32_t> outer{0}, inner;
-    std::vector<double> values;
-    for (int y = 0; y <= 400; ++y)
-      for (int x = 0; x <= 400; ++x) {
-        const float px = 0.005f * x, py = 0.005f * y;
-        if (!l_shape(px, py)) continue;
-        dense.positions.push_back({px, py, 0});
-        dense.normals.push_back({0, 0, 1});
-        dense.radii.push_back(0.005f);
-        dense.colors.push_back({static_cast<std::uint8_t>(std::lround(127.5f * px)), 50, 100});
-        inner.push_back(0), values.push_back(1.0 - px / 2);
-        outer.push_back(static_cast<std::int32_t>(inner.size()));
-      }
-    dense.psi = from_rows(static_cast<Eigen::Index>(dense.positions.size()), 1, outer, inner, values);
-  }
+  const Scene sparse = grid(l_shape), dense = grid(l_shape, 0.005f);
   TextureOptions o;
   o.min_texel = 0.1;
   const Domains dd = make_domains(dense.psi), ds = make_domains(sparse.psi);
