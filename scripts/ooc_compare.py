@@ -13,11 +13,11 @@ import sys
 import tempfile
 
 
-def evaluate(render, reference, glb, size, views, truth):
+def evaluate(render, reference, glb, size, views, truth, outliers):
     with tempfile.TemporaryDirectory() as tmp:
         out = os.path.join(tmp, "eval.json")
         subprocess.run([render, "eval", reference, glb, "--size", str(size), "--views", str(views), "--truth", str(truth),
-                        "-m", "engine", "-o", out], check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                        "--outliers", outliers, "-m", "engine", "-o", out], check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         return json.load(open(out))["mean"]["engine"]
 
 
@@ -35,14 +35,16 @@ def main():
     print(f"input {a.input}: {mem['points']} points; out of core on {ooc.get('out_of_core', {}).get('subsample_points', '?')} "
           f"subsample points, scratch {ooc.get('out_of_core', {}).get('scratch_bytes', 0) / 2**20:.0f} MiB; "
           f"peak {rm['memory']['peak_mb']:.0f} MB in memory, {ro['memory']['peak_mb']:.0f} MB out of core")
+    # The truth without the outliers the bakes dropped (both bakes' setting, report settings.outliers).
+    outliers = str(rm["settings"].get("outliers", 0))
     print()
     print("| level (mem / ooc) | quads mem | quads ooc | Δquads | size px | PSNR mem | PSNR ooc | ΔPSNR dB | IoU mem | IoU ooc | ΔIoU | bytes mem | bytes ooc |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     worst_psnr, worst_iou, worst_quads = 0.0, 0.0, 0.0
     for lm, lo in zip(mem["levels"], ooc["levels"]):
         size = int(min(512, max(16, lm.get("geometric_max_screen_pixels", lm["max_screen_pixels"]))))
-        em = evaluate(a.render, a.input, os.path.join(a.mem, lm["file"]), size, a.views, a.truth)
-        eo = evaluate(a.render, a.input, os.path.join(a.ooc, lo["file"]), size, a.views, a.truth)
+        em = evaluate(a.render, a.input, os.path.join(a.mem, lm["file"]), size, a.views, a.truth, outliers)
+        eo = evaluate(a.render, a.input, os.path.join(a.ooc, lo["file"]), size, a.views, a.truth, outliers)
         dq = (lo["primitives"] - lm["primitives"]) / lm["primitives"]
         dp, di = eo["psnr"] - em["psnr"], eo["iou"] - em["iou"]
         worst_psnr, worst_iou, worst_quads = min(worst_psnr, dp), max(worst_iou, abs(di)), max(worst_quads, abs(dq))

@@ -56,10 +56,10 @@ AnyScene from_baked(BakedScene b) {
 
 AnyScene load_scene(const std::vector<std::uint8_t>& glb, const std::string& name) { return from_baked(load_baked(glb, name)); }
 
-AnyScene load_scene(const std::string& path) {
+AnyScene load_scene(const std::string& path, const ReadOptions& read) {
   const std::string ext = file_extension(path);
   if (ext == "glb" || ext == "gltf") return from_baked(load_baked(path));
-  return load_input(path);
+  return load_input(path, read);
 }
 
 AnyScene load_input(const std::string& path, const ReadOptions& read) {

@@ -42,9 +42,9 @@ struct AnyScene {
   void attach(Renderer& r) const;    // makes it (and its engine view) the renderer's scene
 };
 
-// By extension: .glb/.gltf through load_baked, anything else through the model readers. Throws
-// InputError naming the file.
-AnyScene load_scene(const std::string& path);
+// By extension: .glb/.gltf through load_baked, anything else through the model readers (with
+// `read`). Throws InputError naming the file.
+AnyScene load_scene(const std::string& path, const ReadOptions& read = {});
 // An input file as the baker's readers read it (any format they take, glTF assets with their
 // materials too): a mesh, else a point set as splats.
 AnyScene load_input(const std::string& path, const ReadOptions& read = {});

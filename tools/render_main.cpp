@@ -245,6 +245,9 @@ CommandSpec eval_spec() {
         "score against the truth: the reference drawn at F x the size (at most 4096 px a side) and box-filtered\n"
         "down (what its pixels should show); the reference drawn at the size is scored against it too (as_drawn, engine method).\n"
         "1 = against the reference as drawn at the size"},
+       {"outliers", 0, "F", "0",
+        "a point-set REFERENCE without its outliers, the points farther than F x its median spacing from their 8\n"
+        "nearest neighbours, as qf-bake --outliers drops them before baking and measuring (its default: 10); 0 keeps every point"},
        {"diff", 0, "PREFIX", "REPORT's path without .json", "write PREFIX.exr and PREFIX.png: per-view |difference| sheets (PNG x4)"},
        {"no-engine", 0, "", "", "skip the engine-path evaluation"},
        {"cameras", 0, "FILE", "", "write the views' cameras and the engine lights as JSON (for renders made elsewhere)"},
@@ -425,7 +428,9 @@ int run_eval(const ParsedArgs& a) {
   DrawSettings settings = read_draw_settings(a);
   const Rgb8 background = a.has("background") ? settings.background : Rgb8{128, 128, 128};
   const int views = static_cast<int>(a.get_int("views", 26, 1, 10000));
-  const AnyScene reference = load_scene(a.positional[0]);
+  ReadOptions read;
+  read.outlier_factor = static_cast<float>(a.get_double("outliers", 0, 0, 1e6));
+  const AnyScene reference = load_scene(a.positional[0], read);
   AnyScene baked = load_scene(a.positional[1]);
   // A glTF reference (a textured game asset) has one look: its materials as an engine draws them,
   // so both sides are drawn and scored by the engine method alone.

@@ -124,16 +124,11 @@ std::vector<float> morton_cloud(const std::vector<Vec3f>& positions, const std::
   return cloud;
 }
 
-// Plain k nearest: every point has exactly min(k, n-1) neighbours, so each point's slots in the
-// final arrays are known and written directly (fresh pages are costly here).
-void k_nearest_lists(const Searcher& search, const std::vector<std::uint32_t>& order, int k, int max_neighbors, Neighborhoods& nb) {
-  const std::size_t n = order.size(), blocks = (n + kBlock - 1) / kBlock;
-  const std::size_t kk = std::min<std::size_t>(static_cast<std::size_t>(k), n - 1);
-  for (std::size_t i = 0; i <= n; ++i) nb.offsets[i] = static_cast<std::uint32_t>(i * kk);
-  reserve_huge(nb.indices, n * kk);
-  reserve_huge(nb.distances, n * kk);
-  nb.indices.resize(n * kk);
-  nb.distances.resize(n * kk);
+// Every cloud point's k nearest, block by block of the Morton order on every core:
+// visit(first, count, lists) for each block, concurrently for different blocks.
+template <class Visit>
+void for_each_nearest_block(const Searcher& search, std::size_t n, int k, int max_neighbors, Visit&& visit) {
+  const std::size_t blocks = (n + kBlock - 1) / kBlock;
 #pragma omp parallel
   {
     Searcher::Scratch sc;
@@ -142,15 +137,30 @@ void k_nearest_lists(const Searcher& search, const std::vector<std::uint32_t>& o
     for (std::ptrdiff_t b = 0; b < static_cast<std::ptrdiff_t>(blocks); ++b) {
       const std::size_t first = static_cast<std::size_t>(b) * kBlock, count = std::min(kBlock, n - first);
       search.query_block(first, count, k, 0.0f, max_neighbors, sc, unused, unused);
-      for (std::size_t q = 0; q < count; ++q) {
-        const std::size_t base = order[first + q] * kk;
-        for (std::size_t r = 0; r < kk; ++r) {
-          nb.indices[base + r] = sc.lists[q][r].second;
-          nb.distances[base + r] = std::sqrt(sc.lists[q][r].first);
-        }
-      }
+      visit(first, count, sc.lists);
     }
   }
+}
+
+// Plain k nearest: every point has exactly min(k, n-1) neighbours, so each point's slots in the
+// final arrays are known and written directly (fresh pages are costly here).
+void k_nearest_lists(const Searcher& search, const std::vector<std::uint32_t>& order, int k, int max_neighbors, Neighborhoods& nb) {
+  const std::size_t n = order.size();
+  const std::size_t kk = std::min<std::size_t>(static_cast<std::size_t>(k), n - 1);
+  for (std::size_t i = 0; i <= n; ++i) nb.offsets[i] = static_cast<std::uint32_t>(i * kk);
+  reserve_huge(nb.indices, n * kk);
+  reserve_huge(nb.distances, n * kk);
+  nb.indices.resize(n * kk);
+  nb.distances.resize(n * kk);
+  for_each_nearest_block(search, n, k, max_neighbors, [&](std::size_t first, std::size_t count, const std::vector<std::vector<Candidate>>& lists) {
+    for (std::size_t q = 0; q < count; ++q) {
+      const std::size_t base = order[first + q] * kk;
+      for (std::size_t r = 0; r < kk; ++r) {
+        nb.indices[base + r] = lists[q][r].second;
+        nb.distances[base + r] = std::sqrt(lists[q][r].first);
+      }
+    }
+  });
 }
 
 // Ball mode's answers, per block of the Morton order: the lists one after the other, and their sizes.
@@ -291,6 +301,34 @@ int NearestPoints::nearest(const Vec3f* queries, std::size_t count, int k, std::
     }
   }
   return got;
+}
+
+std::vector<char> find_outliers(const std::vector<Vec3f>& positions, const OutlierOptions& options) {
+  const std::size_t n = positions.size();
+  std::vector<char> outlier(n, 0);
+  if (!(options.factor > 0) || options.k < 1 || n <= static_cast<std::size_t>(options.k)) return outlier;
+  // 1. Every point's spacing, from block queries on the kd-tree (no neighbour lists are kept: at
+  //    100M points they would take 6.4 GB).
+  std::vector<float> spacing(n);
+  {
+    const std::vector<std::uint32_t> order = morton_order(positions);
+    const std::vector<float> cloud = morton_cloud(positions, order);
+    const Searcher search(cloud, order);
+    for_each_nearest_block(search, n, options.k, options.k, [&](std::size_t first, std::size_t count, const std::vector<std::vector<Candidate>>& lists) {
+      for (std::size_t q = 0; q < count; ++q) {
+        double sum = 0;  // nearest first: the same sum whatever the thread
+        for (const Candidate& c : lists[q]) sum += std::sqrt(double(c.first));
+        spacing[order[first + q]] = static_cast<float>(sum / double(lists[q].size()));
+      }
+    });
+  }
+  // 2. The rule, against the median spacing.
+  std::vector<float> sorted = spacing;
+  std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(n / 2), sorted.end());
+  if (!(sorted[n / 2] > 0)) return std::vector<char>(n, 0);  // most points coincide: no scale to judge by
+  const double limit = double(options.factor) * double(sorted[n / 2]);
+  for (std::size_t i = 0; i < n; ++i) outlier[i] = double(spacing[i]) > limit;
+  return outlier;
 }
 
 std::size_t estimate_radii(PointSet& points, const RadiusEstimateOptions& options) {

@@ -64,6 +64,22 @@ class NearestPoints {
   std::unique_ptr<Tree> tree_;
 };
 
+struct OutlierOptions {
+  int k = 8;            // the neighbours a point's spacing is the mean distance to
+  float factor = 0.0f;  // a point is an outlier past factor x the median spacing; 0 = none are
+};
+
+// The outliers of a point set (method.md stage 0): points whose spacing (mean distance to their k
+// nearest neighbours) is more than `factor` times the median spacing of the set, such as a
+// scanner's mixed pixels and strays, far from any surface. A global, robust rule: the classic
+// statistical one (mean + m standard deviations, PCL's StatisticalOutlierRemoval) drops the
+// sparse tail of every clean set (0.37% of a uniformly sampled torus at m = 3), and a local one
+// (spacing against the neighbours' spacing) misses strays that lie among other strays. Its limit:
+// a clean set whose spacing varies more than `factor`-fold (a terrestrial scan's far points)
+// loses its sparsest parts; factor 0 keeps everything. Returns one flag per point (1: outlier);
+// none with factor 0, at most k points, or a median spacing of 0. Every core; the same at any thread count.
+std::vector<char> find_outliers(const std::vector<Vec3f>& positions, const OutlierOptions& options);
+
 struct RadiusEstimateOptions {
   int k = 6;  // the radius reaches the k-th nearest neighbour: about the first ring of a sampling
 };

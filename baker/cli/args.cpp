@@ -3,6 +3,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <limits>
 
@@ -61,9 +62,14 @@ long long parse_int_option(const std::string& name, const std::string& v, long l
 
 double parse_double_option(const std::string& name, const std::string& v, double min, double max) {
   double out = 0;
+  // Bounds as written (%g: 0 and 1e+06, not 0.000000 and 1000000.000000).
+  const auto shown = [](double x) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%g", x);
+    return std::string(b);
+  };
   if (!parse_number(v, out) || !std::isfinite(out) || out < min || out > max)
-    throw UsageError("--" + name + " expects a number in [" + std::to_string(min) + ", " + std::to_string(max) +
-                     "], got '" + v + "'");
+    throw UsageError("--" + name + " expects a number in [" + shown(min) + ", " + shown(max) + "], got '" + v + "'");
   return out;
 }
 

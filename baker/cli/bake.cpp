@@ -93,6 +93,10 @@ CommandSpec bake_spec() {
                                                                          "back in tiles from a scratch file in $TMPDIR (removed at the end, on Ctrl-C and on\n"
                                                                          "SIGTERM); manifest out_of_core, report memory. A mesh past it is refused (bake.memory)"},
                     drop_nonfinite_option(),
+                    {"outliers", 0, "F", "10", "point sets: drop the points farther than F x the median spacing from their 8 nearest\n"
+                                              "neighbours (mean distance): strays and a scanner's mixed pixels, which would veil the\n"
+                                              "coarse levels; the measuring's truth drops them too (report dropped_outliers); 0 keeps\n"
+                                              "every point"},
                     {"quiet", 'q', "", "", "no progress and no summary on stderr (progress: on a terminal one line, redrawn;\n"
                                            "otherwise a line every 5 s or QF_PROGRESS_SECONDS: the step running and its count)"}},
                    1, 1};
@@ -169,6 +173,7 @@ AssetOptions read_asset_options(const OptionValues& args) {
   a.lod_file = args.flag("lod-file");
   a.lod_screen_height = args.get_double("lod-screen-height", a.lod_screen_height, 1.0, 100000.0);
   a.read.drop_nonfinite = args.flag("drop-nonfinite");
+  a.read.outlier_factor = static_cast<float>(args.get_double("outliers", 10.0, 0.0, 1e6));
   a.sample = read_sample_options(args);
   a.point_seed = static_cast<std::uint64_t>(args.get_int("point-seed", 1, 0, 1ll << 62));
   a.point_impostor = !args.flag("no-points");
@@ -203,6 +208,7 @@ void print_bake_summary(const AssetBake& a, const std::string& in, const std::st
   const BakeResult& r = a.result;
   std::fprintf(stderr, "qf-bake: %s (%zu points) -> %s, hierarchy of %zu levels (cache: %s)\n", in.c_str(), r.points,
                outdir.c_str(), r.hierarchy_levels, r.cache.c_str());
+  if (a.read.dropped_outliers) std::fprintf(stderr, "  %zu outliers dropped (--outliers)\n", a.read.dropped_outliers);
   if (r.memory.out_of_core)
     std::fprintf(stderr, "  out of core (about %s needed, %s of %s): decomposed on %zu of the points, textured from all of them "
                          "(scratch %s, removed)\n",

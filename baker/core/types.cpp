@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <map>
+#include <stdexcept>
 #include <tuple>
 
 namespace qf {
@@ -102,6 +103,29 @@ PointSet permuted(const PointSet& points, const std::vector<std::uint32_t>& orde
   out.comments = points.comments;
   return out;
 }
+namespace {
+
+template <class T>
+void erase_marked(std::vector<T>& v, const std::vector<char>& drop) {
+  if (v.empty()) return;
+  std::size_t w = 0;
+  for (std::size_t i = 0; i < v.size(); ++i)
+    if (!drop[i]) v[w++] = v[i];
+  v.resize(w);
+  v.shrink_to_fit();
+}
+
+}  // namespace
+
+void erase_points(PointSet& points, const std::vector<char>& drop) {
+  if (drop.size() != points.size()) throw std::logic_error("erase_points: one flag per point");
+  erase_marked(points.positions, drop);
+  erase_marked(points.normals, drop);
+  erase_marked(points.radii, drop);
+  erase_marked(points.colors, drop);
+  for (ScalarField& s : points.scalars) erase_marked(s.values, drop);
+}
+
 Bounds TriangleMesh::bounds() const { return bounds_of(positions); }
 
 std::vector<Vec3f> TriangleMesh::smooth_normals() const {

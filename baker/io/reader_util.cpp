@@ -36,11 +36,7 @@ void NonFiniteFilter::apply(PointSet& points, ReadReport* report) const {
   if (dropped_.empty()) return;
   std::vector<char> drop(points.size(), 0);
   for (std::size_t i : dropped_) drop[i] = 1;
-  erase_indices(points.positions, drop);
-  erase_indices(points.normals, drop);
-  erase_indices(points.radii, drop);
-  erase_indices(points.colors, drop);
-  for (ScalarField& s : points.scalars) erase_indices(s.values, drop);
+  erase_points(points, drop);
   if (report) report->dropped_nonfinite += dropped_.size();
 }
 

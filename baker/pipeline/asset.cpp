@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <ostream>
@@ -322,12 +323,14 @@ nlohmann::json asset_report(AssetBake& a, const AssetOptions& o, const std::stri
           {"format", a.read.format},
           {"points", r.points},
           {"dropped_nonfinite", a.read.dropped_nonfinite},
+          {"dropped_outliers", a.read.dropped_outliers},
           {"hierarchy_levels", r.hierarchy_levels},
           {"components", r.components},
           {"cache", r.cache},
           {"memory", memory_entry(r)},
           {"settings",
-           {{"k", o.bake.analysis.neighborhoods.k},
+           {{"outliers", canonical_double(o.read.outlier_factor)},
+            {"k", o.bake.analysis.neighborhoods.k},
             {"tau", o.bake.domains.tau},
             {"strict", o.bake.domains.strict},
             {"merge", o.bake.merge},
@@ -535,6 +538,15 @@ AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::
   MeshSurface surface;  // a mesh input's quads draw the mesh itself
   PointSet points = load_point_set(path, o.read, o.sample, "bake", a.read, &a.sampled, &mesh, &surface.point_triangles);
   const bool is_mesh = !a.sampled.backend.empty();
+  // Outliers past 1% may be a clean set's sparse parts (a terrestrial scan's far points).
+  std::string outlier_warning;
+  if (a.read.dropped_outliers * 100 > points.size() + a.read.dropped_outliers) {
+    char factor[32];
+    std::snprintf(factor, sizeof factor, "%g", double(o.read.outlier_factor));
+    outlier_warning = std::to_string(a.read.dropped_outliers) + " points (more than 1%) were dropped as outliers, farther than " + factor +
+                      " x the median spacing from their neighbours; if they are sparse parts of the surface, give a larger --outliers, or 0 "
+                      "to keep every point";
+  }
   // A mesh's normals: its own; else flat for glTF (as engines draw it), smooth for the others (as
   // the reference is drawn, tools/reference_scene.cpp). Its quads and mesh LODs are drawn so too.
   const bool gltf = a.read.format == "glb" || a.read.format == "gltf";
@@ -554,6 +566,7 @@ AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::
   // A point set is handed over: an out-of-core bake frees it once on disk (a mesh's points stay,
   // for its point impostor; a mesh is never baked out of core).
   a.result = is_mesh ? bake(points, bake_options, path, &surface) : bake(std::move(points), bake_options, path);
+  if (!outlier_warning.empty()) a.result.warnings.push_back(outlier_warning);
   if (!is_mesh && !o.mesh_only_given.empty()) {
     std::string names;
     for (const std::string& n : o.mesh_only_given) names += (names.empty() ? "" : ", ") + n;

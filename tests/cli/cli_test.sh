@@ -367,6 +367,18 @@ expect 1 "bake collinear points" -- "$bake" "$work/line.xyz" -o "$work/out4"
 [[ -z "$(ls -A "$work/out4" 2>/dev/null)" ]] && ok || bad "a failed bake left files"
 expect 2 "bake bad primitives" -- "$bake" "$work/oct.ply" -o "$work/out5" --primitives 10,x
 expect 2 "bake level out of range" -- "$bake" "$work/oct.ply" -o "$work/out5" --levels 99
+# Outliers (--outliers, default 10): the scan-like sample's strays (every 500th point, anywhere in
+# the scene's box; a few land near a surface and stay) are dropped and reported; 0 keeps them all.
+"$bake" generate scan -n 20000 -o "$work/scan.ply" -q
+lean=(--primitives 100,30 --no-measure --no-report-html --no-mesh-lods -q)
+expect 0 "bake a scan" -- "$bake" "$work/scan.ply" -o "$work/scan_out" "${lean[@]}"
+/usr/bin/python3 -c 'import json, sys; r = json.load(open(sys.argv[1]))
+assert 30 <= r["dropped_outliers"] <= 40 and r["points"] + r["dropped_outliers"] == 20000 and r["settings"]["outliers"] == 10, r["dropped_outliers"]' \
+  "$work/scan_out/report.json" 2>"$work/err" && ok || bad "the scan's strays dropped: $(tail -1 "$work/err")"
+expect 0 "bake a scan keeping its outliers" -- "$bake" "$work/scan.ply" -o "$work/scan_all" "${lean[@]}" --outliers 0
+/usr/bin/python3 -c 'import json, sys; r = json.load(open(sys.argv[1])); assert (r["dropped_outliers"], r["points"]) == (0, 20000), r["points"]' \
+  "$work/scan_all/report.json" 2>"$work/err" && ok || bad "--outliers 0 keeps every point: $(tail -1 "$work/err")"
+expect 2 "bake a negative outlier factor" -- "$bake" "$work/scan.ply" -o "$work/out5" --outliers -1
 unset QF_CACHE
 
 # --- LAS and LAZ (issue 35): info with the header's facts, convert carries the classification, bake end to end ---

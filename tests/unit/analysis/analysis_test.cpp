@@ -275,6 +275,34 @@ TEST(Analysis, NearestPointsAreExactWithTiesByIndex) {
   EXPECT_EQ(index[1], 0u);
 }
 
+// Outliers (a scan's strays): points in the air above a sampled plane are found, also where they
+// lie among each other, while the plane's sparse part (4x the spacing) and its edges are kept;
+// factor 0 and too few points find none; the answer does not depend on the thread count.
+TEST(Analysis, OutliersAreStraysNotSparseSurface) {
+  std::vector<Vec3f> p;
+  for (int x = 0; x < 80; ++x)
+    for (int y = 0; y < 80; ++y) p.push_back({float(x), float(y), 0});  // spacing 1
+  for (int x = 0; x < 10; ++x)
+    for (int y = 0; y < 10; ++y) p.push_back({84.0f + 4 * float(x), 4.0f * float(y), 0});  // spacing 4
+  const std::size_t surface = p.size();
+  for (int i = 0; i < 40; ++i)  // strays 20-60 above the plane, ~10 apart from each other
+    p.push_back({float((i * 37) % 80), float((i * 53) % 80), 20.0f + float(i)});
+  OutlierOptions o;
+  o.factor = 10;
+  const std::vector<char> flags = find_outliers(p, o);
+  ASSERT_EQ(flags.size(), p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) EXPECT_EQ(flags[i], i >= surface ? 1 : 0) << "point " << i;
+  omp_set_num_threads(1);
+  const std::vector<char> one = find_outliers(p, o);
+  omp_set_num_threads(2);
+  EXPECT_EQ(one, flags);
+  o.factor = 0;
+  EXPECT_EQ(find_outliers(p, o), std::vector<char>(p.size(), 0));
+  o.factor = 10;
+  const std::vector<Vec3f> few{{0, 0, 0}, {1, 0, 0}, {100, 0, 0}};
+  EXPECT_EQ(find_outliers(few, o), std::vector<char>(3, 0));
+}
+
 TEST(Analysis, DegenerateInputsNeverCrashOrNaN) {
   auto check = [](const PointSet& p, const char* what) {
     SCOPED_TRACE(what);
