@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <map>
 #include <numeric>
 #include <sstream>
@@ -128,13 +129,18 @@ std::vector<std::uint8_t> webp_bytes(const std::vector<std::uint8_t>& rgba, int 
   return encode_webp(rgb_of(rgba).data(), w, h, 3, o);
 }
 
-// Adds an image and a texture of it in the options' format; returns the texture's index.
-int add_texture(tinygltf::Model& m, const std::vector<std::uint8_t>& rgba, int w, int h, const std::string& name,
-                TextureClass cls, const GltfOptions& options, TextureCost* cost) {
+// A texture's image in the options' format.
+std::vector<std::uint8_t> encoded_image(const std::vector<std::uint8_t>& rgba, int w, int h, TextureClass cls, const GltfOptions& options) {
+  if (options.textures == GltfOptions::Textures::kKtx2) return ktx2_bytes(rgba, w, h, cls, options);
+  if (options.textures == GltfOptions::Textures::kWebp) return webp_bytes(rgba, w, h, cls, options);
+  return png_bytes(rgba, w, h, cls != TextureClass::kColor);
+}
+
+// Adds an encoded image (encoded_image's, w x h texels) and a texture of it; returns the
+// texture's index.
+int add_encoded_texture(tinygltf::Model& m, const std::vector<std::uint8_t>& bytes, int w, int h, const std::string& name,
+                        const GltfOptions& options, TextureCost* cost) {
   const bool ktx2 = options.textures == GltfOptions::Textures::kKtx2, webp = options.textures == GltfOptions::Textures::kWebp;
-  const std::vector<std::uint8_t> bytes = ktx2   ? ktx2_bytes(rgba, w, h, cls, options)
-                                          : webp ? webp_bytes(rgba, w, h, cls, options)
-                                                 : png_bytes(rgba, w, h, cls != TextureClass::kColor);
   tinygltf::Image img;
   img.name = name;
   img.mimeType = ktx2 ? "image/ktx2" : webp ? "image/webp" : "image/png";
@@ -161,6 +167,12 @@ int add_texture(tinygltf::Model& m, const std::vector<std::uint8_t>& rgba, int w
     }
   }
   return static_cast<int>(m.textures.size() - 1);
+}
+
+// Adds an image and a texture of it in the options' format; returns the texture's index.
+int add_texture(tinygltf::Model& m, const std::vector<std::uint8_t>& rgba, int w, int h, const std::string& name,
+                TextureClass cls, const GltfOptions& options, TextureCost* cost) {
+  return add_encoded_texture(m, encoded_image(rgba, w, h, cls, options), w, h, name, options, cost);
 }
 
 }  // namespace
@@ -232,34 +244,72 @@ tinygltf::Node& add_single_node_scene(tinygltf::Model& m, tinygltf::Mesh mesh) {
   return m.nodes.back();
 }
 
+// A level's textures, encoded side by side: one encoder a texture on each thread (ETC1S's
+// codebook stages run on one thread whatever its job pool holds), the whole pool for a lone one.
+// Each texture's bytes do not depend on the threads.
+struct LevelImage {
+  const std::vector<std::uint8_t>* rgba;
+  int w, h;
+  TextureClass cls;
+};
+std::vector<std::vector<std::uint8_t>> encoded_images(const std::vector<LevelImage>& images, const GltfOptions& options) {
+  std::vector<std::vector<std::uint8_t>> out(images.size());
+  GltfOptions each = options;
+  if (images.size() > 1) each.threads = 1;
+  std::vector<std::exception_ptr> failed(images.size());  // an encoder's error, thrown after the loop
+#pragma omp parallel for schedule(dynamic) num_threads(std::max(1, std::min<int>(options.threads, static_cast<int>(images.size()))))
+  for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(images.size()); ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    try {
+      out[k] = encoded_image(*images[k].rgba, images[k].w, images[k].h, images[k].cls, each);
+    } catch (...) {
+      failed[k] = std::current_exception();
+    }
+  }
+  for (const std::exception_ptr& e : failed)
+    if (e) std::rethrow_exception(e);
+  return out;
+}
+
 // A level's materials, one per atlas image (one draw call each in an engine); returns the first's
 // index.
 int add_level_materials(tinygltf::Model& m, const Atlas& atlas, const GltfOptions& options, const std::string& prefix,
                         TextureCost* cost) {
   const int first_material = static_cast<int>(m.materials.size());
+  // 1. Every texture of the level, encoded (in the order they are added below).
+  std::vector<LevelImage> images;
+  for (std::size_t i = 0; i < atlas.images.size(); ++i) {
+    const int w = atlas.widths[i], h = atlas.heights[i];
+    images.push_back({&atlas.images[i], w, h, TextureClass::kColor});
+    if (i < atlas.normal_images.size()) images.push_back({&atlas.normal_images[i], w, h, TextureClass::kNormal});
+    if (i < atlas.orm_images.size()) images.push_back({&atlas.orm_images[i], w, h, TextureClass::kData});
+    if (i < atlas.emissive_images.size()) images.push_back({&atlas.emissive_images[i], w, h, TextureClass::kEmissive});
+  }
+  const std::vector<std::vector<std::uint8_t>> encoded = encoded_images(images, options);
+  std::size_t next = 0;
+  const auto add = [&](const std::string& name) {
+    const LevelImage& x = images[next];
+    return add_encoded_texture(m, encoded[next++], x.w, x.h, name, options, cost);
+  };
+  // 2. The materials.
   for (std::size_t i = 0; i < atlas.images.size(); ++i) {
     tinygltf::Material mat;
     mat.name = prefix + "atlas_" + std::to_string(i);
-    mat.pbrMetallicRoughness.baseColorTexture.index =
-        add_texture(m, atlas.images[i], atlas.widths[i], atlas.heights[i], mat.name + "_color", TextureClass::kColor, options, cost);
+    mat.pbrMetallicRoughness.baseColorTexture.index = add(mat.name + "_color");
     // The material channels (atlas.h LevelChannels): factors where constant (a rough dielectric
     // without emission where the input has none), textures in the atlas layout where they vary.
     const LevelChannels& ch = atlas.channels;
     mat.pbrMetallicRoughness.metallicFactor = canonical_double(ch.metallic);
     mat.pbrMetallicRoughness.roughnessFactor = canonical_double(ch.roughness);
-    if (i < atlas.normal_images.size())
-      mat.normalTexture.index = add_texture(m, atlas.normal_images[i], atlas.widths[i], atlas.heights[i], mat.name + "_normal", TextureClass::kNormal,
-                                          options, cost);
+    if (i < atlas.normal_images.size()) mat.normalTexture.index = add(mat.name + "_normal");
     if (i < atlas.orm_images.size()) {
       // One image: glTF's metallicRoughnessTexture reads G and B, occlusionTexture R.
-      const int orm = add_texture(m, atlas.orm_images[i], atlas.widths[i], atlas.heights[i], mat.name + "_orm", TextureClass::kData, options, cost);
+      const int orm = add(mat.name + "_orm");
       mat.pbrMetallicRoughness.metallicRoughnessTexture.index = orm;
       if (ch.occlusion_texture) mat.occlusionTexture.index = orm;
     }
     mat.emissiveFactor = {canonical_double(ch.emissive[0]), canonical_double(ch.emissive[1]), canonical_double(ch.emissive[2])};
-    if (i < atlas.emissive_images.size())
-      mat.emissiveTexture.index = add_texture(m, atlas.emissive_images[i], atlas.widths[i], atlas.heights[i], mat.name + "_emissive",
-                                             TextureClass::kEmissive, options, cost);
+    if (i < atlas.emissive_images.size()) mat.emissiveTexture.index = add(mat.name + "_emissive");
     mat.alphaMode = options.alpha_mode;
     if (options.alpha_mode == "MASK") mat.alphaCutoff = options.alpha_cutoff;
     // Double-sided: seen from behind (an open surface's inside, a thin part's far side) a quad
