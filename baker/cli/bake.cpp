@@ -88,7 +88,7 @@ CommandSpec bake_spec() {
                                                   "256 px, per file bytes, texels, GPU bytes and measured error, the chain as bands, the\n"
                                                   "warnings; without a GL driver it has no images and says so)"},
                     {"max-memory", 0, "SIZE", "the memory available: the least of MemAvailable, the cgroup's limit, QF_MEMORY_LIMIT", "the memory the bake may take (bytes, or 512M, 4G: powers of 1024). A point set\n"
-                                                                         "whose estimated need (384 MB + (440 + 8 k) bytes a point) is larger bakes out of core:\n"
+                                                                         "whose estimated need (384 MB + 1.35 x (440 + 8 k) bytes a point) is larger bakes out of core:\n"
                                                                          "decomposed on a subsample that fits, its textures resampled from every point, read\n"
                                                                          "back in tiles from a scratch file in $TMPDIR (removed at the end, on Ctrl-C and on\n"
                                                                          "SIGTERM); manifest out_of_core, report memory. A mesh past it is refused (bake.memory)"},

@@ -168,6 +168,7 @@ std::size_t estimated_bake_bytes(std::size_t points, const AnalysisOptions& anal
 MemoryPlan plan_bake_memory(std::size_t points, const BakeOptions& o, bool mesh, const std::string& source_name) {
   MemoryPlan plan;
   plan.need = estimated_bake_bytes(points, o.analysis);
+  if (!mesh) plan.need = kBakeFixedBytes + static_cast<std::size_t>(kPointSetMargin * double(plan.need - kBakeFixedBytes));
   if (o.max_memory > 0) {
     plan.limit = o.max_memory, plan.limit_source = "--max-memory";
   } else {

@@ -10,7 +10,7 @@ set -u
 bake=$1
 source "$(dirname "$0")/test_lib.sh"
 
-# A small set (~384 MB estimated: the fixed part) and a big one (~200k x 840 bytes = ~160 MB more);
+# A small set (~384 MB estimated: the fixed part) and a big one (~1.35 x 200k x 840 bytes = ~220 MB more);
 # 390 MB leaves 6 MB above the fixed part, room for a subsample of ~5k points only.
 "$bake" generate sphere -n 600 -o "$work/small.ply" -q
 "$bake" generate torus -n 200000 -o "$work/big.ply" -q

@@ -10,7 +10,7 @@ set -u
 bake=$1 render=$2
 source "$(dirname "$0")/test_lib.sh"
 
-# 120k points need ~480 MB in memory (384 + 120k x 840 bytes); 440M leaves the subsample
+# 120k points need ~520 MB in memory (384 + 1.35 x 120k x 840 bytes); 440M leaves the subsample
 # 0.65 x 56 MB / 840 bytes = ~45k points (stride ~2.7).
 "$bake" generate torus -n 120000 -o "$work/torus.ply" -q
 limit=440M
