@@ -197,6 +197,7 @@ struct EngineDrawer::Impl {
   GLuint program = 0, dfg = 0;
   const EngineScene* scene = nullptr;
   std::vector<GLuint> srgb, linear;  // per image: as a base colour (sRGB) and as a normal map
+  GLint min_filter = GL_LINEAR_MIPMAP_LINEAR;  // of the colour and normal textures, per draw
   GLint loc(const char* name) const { return glGetUniformLocation(program, name); }
   void free_textures() {
     if (!srgb.empty()) glDeleteTextures(static_cast<GLsizei>(srgb.size()), srgb.data());
@@ -294,12 +295,14 @@ void EngineDrawer::Impl::draw_primitive(const EnginePrimitive& p, const EngineMa
   glBindTexture(GL_TEXTURE_2D, base_map ? srgb[static_cast<std::size_t>(mat.base_texture)] : 0);
   // Wraps are the material's sampler's (images may be shared by textures with other samplers).
   if (base_map) {
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, min_filter);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, mat.base_wrap_s);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, mat.base_wrap_t);
   }
   glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_2D, normal_map ? linear[static_cast<std::size_t>(mat.normal_texture)] : 0);
   if (normal_map) {
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, min_filter);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, mat.normal_wrap_s);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, mat.normal_wrap_t);
   }
@@ -353,9 +356,10 @@ void EngineDrawer::Impl::draw_primitive(const EnginePrimitive& p, const EngineMa
 }
 
 std::size_t EngineDrawer::draw(const Camera& camera, const EngineLights& lights, const std::optional<std::string>& alpha_mode,
-                               float alpha_cutoff) {
+                               float alpha_cutoff, bool mipmaps) {
   Impl& m = *impl_;
   if (!m.scene) return 0;
+  m.min_filter = mipmaps ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR;
   std::size_t drawn = 0;
   auto material_of = [&](const EnginePrimitive& p) {
     EngineMaterial mat = p.material;

@@ -33,9 +33,10 @@ class EngineDrawer {
   // Draws the scene over what the framebuffer holds (clear it first): opaque and masked
   // primitives in file order, then blended ones in file order with depth writes off.
   // `alpha_mode` ("OPAQUE", "MASK", "BLEND") and `alpha_cutoff` (>= 0) override every triangle
-  // material's, to measure what another choice would look like. Returns the primitives drawn.
+  // material's, to measure what another choice would look like. `mipmaps` false samples the
+  // colour and normal textures' base level alone (bilinear). Returns the primitives drawn.
   std::size_t draw(const Camera& camera, const EngineLights& lights, const std::optional<std::string>& alpha_mode = {},
-            float alpha_cutoff = -1);
+            float alpha_cutoff = -1, bool mipmaps = true);
 
  private:
   struct Impl;

@@ -553,7 +553,7 @@ DrawStats Renderer::draw(const Camera& camera, const DrawSettings& s) {
   glDisable(GL_ALPHA_TEST);
   m.setup_camera_and_light(camera, s.lighting);
   DrawStats stats;
-  if (engine) stats.color_draws = m.engine->draw(camera, s.lights, s.alpha_mode, s.alpha_cutoff);
+  if (engine) stats.color_draws = m.engine->draw(camera, s.lights, s.alpha_mode, s.alpha_cutoff, s.mipmaps);
   else if (m.impostor) m.draw_impostor(camera, s, stats);
   else if (m.points) m.draw_points(camera, stats);
   else if (m.splats) m.draw_splats();

@@ -22,6 +22,10 @@ struct DrawSettings {
   float depth_offset = 0;      // two-pass offset, world units; 0 = half the median quad half-diagonal
   std::optional<std::string> alpha_mode;  // engine method: override the material's alphaMode
   float alpha_cutoff = -1;     // engine method, MASK: < 0 = the material's alphaCutoff
+  // Engine method: textures sampled through their mip levels (trilinear, as engines sample glTF
+  // textures); false: the base level alone (bilinear). A level drawn both ways at a small size
+  // shows what its mip levels cost in coverage (docs/textures.md, holes).
+  bool mipmaps = true;
   // Overlap, two-pass and blend-all: where the summed basis functions cover a pixel by c >=
   // normalize, it shows their weighted mean colour, opaque; below, that colour at coverage
   // c / normalize. The basis sums to 1 on the surface only in theory: on curved parts not every

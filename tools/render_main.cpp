@@ -74,6 +74,8 @@ std::vector<OptionSpec> draw_option_specs() {
       {"depth-offset", 0, "D", "half the median quad half-diagonal", "two-pass: depth offset in world units"},
       {"alpha-mode", 0, "OPAQUE|MASK|BLEND", "the material's", "engine method: draw as this glTF alpha mode"},
       {"alpha-cutoff", 0, "V", "the material's", "engine method, MASK: the cutoff"},
+      {"no-mips", 0, "", "", "engine method: sample the textures' base level alone (bilinear), not their mip levels;\n"
+                              "a level drawn with and without it at a small size shows what its mip levels lose"},
       {"fov", 0, "DEG", "30", "vertical field of view"},
       {"lod", 0, "N", "by screen coverage", "combined LOD files (qf-bake --lod-file): draw level N (0 = finest) instead of the one\n"
                                              "MSFT_screencoverage picks for the (first) camera, as UnityGLTF would"},
@@ -103,6 +105,7 @@ DrawSettings read_draw_settings(const ParsedArgs& a) {
   if (a.has("normalize")) s.normalize = static_cast<float>(a.get_double("normalize", 0, 0, 1));
   if (a.has("alpha-mode")) s.alpha_mode = a.get_choice("alpha-mode", {"OPAQUE", "MASK", "BLEND"}, "");
   s.alpha_cutoff = static_cast<float>(a.get_double("alpha-cutoff", -1, 0, 1));
+  s.mipmaps = !a.flag("no-mips");
   refuse_unused_options(a, s.method);
   return s;
 }
@@ -173,7 +176,7 @@ int run_render(const ParsedArgs& a) {
   // Only the engine method reads the material's alpha mode and cutoff (eval's engine pass reads
   // them whatever --method says; a render draws one method).
   if (settings.method != Method::kEngine)
-    for (const char* name : {"alpha-mode", "alpha-cutoff"})
+    for (const char* name : {"alpha-mode", "alpha-cutoff", "no-mips"})
       if (a.has(name)) throw UsageError(std::string("--") + name + " applies to the engine method (-m engine) only");
   if (a.has("mesh")) {
     if (scene.kind != AnyScene::kPoints) throw UsageError("--mesh goes with a point impostor (.glb with QF_point_impostor)");
