@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "analysis/neighborhoods.h"
 #include "core/error.h"
 #include "core/file_io.h"
 #include "io/model_io.h"
@@ -73,6 +74,10 @@ AnyScene load_input(const std::string& path, const ReadOptions& read) {
     s.asset = has_material_look(m.mesh);
   } else {
     s.kind = AnyScene::kSplats;
+    // The bake's loader drops the same outliers (pipeline/asset.cpp load_point_set).
+    OutlierOptions outliers;
+    outliers.factor = read.outlier_factor;
+    if (read.outlier_factor > 0) drop_outliers(m.points, outliers);
     s.splats = splat_scene(std::move(m.points), path);
     s.engine = engine_scene(s.splats);
   }

@@ -331,6 +331,13 @@ std::vector<char> find_outliers(const std::vector<Vec3f>& positions, const Outli
   return outlier;
 }
 
+std::size_t drop_outliers(PointSet& points, const OutlierOptions& options) {
+  const std::vector<char> drop = find_outliers(points.positions, options);
+  const auto dropped = static_cast<std::size_t>(std::count(drop.begin(), drop.end(), 1));
+  if (dropped) erase_points(points, drop);
+  return dropped;
+}
+
 std::size_t estimate_radii(PointSet& points, const RadiusEstimateOptions& options) {
   const std::size_t n = points.size();
   const bool fill_all = !points.has_radii();

@@ -80,6 +80,10 @@ struct OutlierOptions {
 // none with factor 0, at most k points, or a median spacing of 0. Every core; the same at any thread count.
 std::vector<char> find_outliers(const std::vector<Vec3f>& positions, const OutlierOptions& options);
 
+// find_outliers, then those points erased from every per-point array (core/types.h
+// erase_points); returns how many went.
+std::size_t drop_outliers(PointSet& points, const OutlierOptions& options);
+
 struct RadiusEstimateOptions {
   int k = 6;  // the radius reaches the k-th nearest neighbour: about the first ring of a sampling
 };

@@ -1,12 +1,9 @@
 // Format dispatch by file extension: read_model, decode_model and write_point_set.
-#include <algorithm>
 #include <ostream>
 
 #include "core/error.h"
 #include "core/file_io.h"
 #include "io/model_io.h"
-
-#include "analysis/neighborhoods.h"
 
 namespace qf {
 
@@ -29,26 +26,10 @@ void write_point_set(const std::string& path, const PointSet& points) {
   throw UsageError("cannot write point sets as '." + ext + "' (" + path + "); supported: .ply .qs .xyz .pwn");
 }
 
-namespace {
-
-// A point set's outliers dropped as `options` say (the last step of every point-set read).
-Model without_outliers(Model m, const ReadOptions& options, ReadReport* report) {
-  if (m.is_mesh || !(options.outlier_factor > 0)) return m;
-  OutlierOptions o;
-  o.factor = options.outlier_factor;
-  const std::vector<char> drop = find_outliers(m.points.positions, o);
-  const auto dropped = static_cast<std::size_t>(std::count(drop.begin(), drop.end(), 1));
-  if (dropped) erase_points(m.points, drop);
-  if (report) report->dropped_outliers += dropped;
-  return m;
-}
-
-}  // namespace
-
 Model read_model(const std::string& path, const ReadOptions& options, ReadReport* report) {
   const std::string ext = file_extension(path);
   Model m;
-  if (ext == "ply") return without_outliers(read_ply(path, options, report), options, report);
+  if (ext == "ply") return read_ply(path, options, report);
   if (ext == "qs") m.points = read_qsplat(path, options, report);
   else if (ext == "xyz") m.points = read_xyz(path, false, options, report);
   else if (ext == "pwn") m.points = read_xyz(path, true, options, report);
@@ -59,13 +40,13 @@ Model read_model(const std::string& path, const ReadOptions& options, ReadReport
   else
     throw UsageError("unknown input format '." + ext + "' (" + path +
                      "); supported: .ply .qs .xyz .pwn .las .laz (point sets), .ply .off .obj .gltf .glb (meshes)");
-  return without_outliers(std::move(m), options, report);
+  return m;
 }
 
 Model decode_model(ByteView bytes, const std::string& path, const ReadOptions& options, ReadReport* report) {
   const std::string ext = file_extension(path);
   Model m;
-  if (ext == "ply") return without_outliers(decode_ply(bytes, path, options, report), options, report);
+  if (ext == "ply") return decode_ply(bytes, path, options, report);
   if (ext == "qs") m.points = decode_qsplat(bytes, path, report);
   else if (ext == "xyz") m.points = decode_xyz(bytes, path, false, options, report);
   else if (ext == "pwn") m.points = decode_xyz(bytes, path, true, options, report);
@@ -76,7 +57,7 @@ Model decode_model(ByteView bytes, const std::string& path, const ReadOptions& o
   else
     throw UsageError("unknown input format '." + ext + "' (" + path +
                      "); supported: .ply .qs .xyz .pwn .las .laz (point sets), .ply .off .obj .gltf .glb (meshes)");
-  return without_outliers(std::move(m), options, report);
+  return m;
 }
 
 const std::vector<std::string>& point_set_extensions() {

@@ -21,9 +21,11 @@ struct ReadOptions {
   // vertices, with the triangles using them) are dropped and counted in ReadReport.
   bool drop_nonfinite = false;
   // Point sets: drop the outliers, points more than this many times the set's median spacing from
-  // their 8 nearest neighbours (analysis/neighborhoods.h find_outliers: a scanner's mixed pixels and
-  // strays); 0 keeps every point. Readers leave it at 0; qf-bake sets 10 (--outliers), and its
-  // measuring and report.html read the input with the bake's options, so their truth is the same set.
+  // their 8 nearest neighbours (analysis/neighborhoods.h drop_outliers: a scanner's mixed pixels
+  // and strays); 0 keeps every point. Not the format readers' job (read_model ignores it): the
+  // bake's loader applies it (pipeline/asset.h load_point_set), and so does the loader of the
+  // measuring's and report.html's truth (tools/any_scene.h load_input), so both see one set.
+  // qf-bake sets 10 (--outliers).
   float outlier_factor = 0.0f;
 };
 
@@ -31,7 +33,7 @@ struct ReadReport {
   std::string format;               // e.g. "ply (binary_little_endian)", "qsplat", "off"
   std::size_t dropped_nonfinite = 0;  // points/vertices dropped under drop_nonfinite
   std::size_t dropped_triangles = 0;  // triangles dropped with them
-  std::size_t dropped_outliers = 0;   // points dropped under outlier_factor
+  std::size_t dropped_outliers = 0;   // points dropped under outlier_factor (by the loaders)
   std::size_t polygons_triangulated = 0;  // faces with more than 3 corners, split into fans
   std::size_t fragments = 0;        // QSplat: data fragments read
   std::size_t skipped_primitives = 0;  // glTF: point and line primitives (only triangles are baked)

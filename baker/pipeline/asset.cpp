@@ -12,6 +12,7 @@
 #include <functional>
 #include <limits>
 
+#include "analysis/neighborhoods.h"
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/memory.h"
@@ -36,6 +37,12 @@ PointSet load_point_set(const std::string& path, const ReadOptions& read, const 
     return points;
   }
   if (model.points.size() == 0) throw InputError(command + ".empty", path, "", "holds no points");
+  if (read.outlier_factor > 0) {
+    progress::step("outliers of " + std::to_string(model.points.size()) + " points");
+    OutlierOptions outliers;
+    outliers.factor = read.outlier_factor;
+    report.dropped_outliers += drop_outliers(model.points, outliers);
+  }
   return std::move(model.points);
 }
 

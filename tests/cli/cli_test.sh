@@ -379,6 +379,12 @@ expect 0 "bake a scan keeping its outliers" -- "$bake" "$work/scan.ply" -o "$wor
 /usr/bin/python3 -c 'import json, sys; r = json.load(open(sys.argv[1])); assert (r["dropped_outliers"], r["points"]) == (0, 20000), r["points"]' \
   "$work/scan_all/report.json" 2>"$work/err" && ok || bad "--outliers 0 keeps every point: $(tail -1 "$work/err")"
 expect 2 "bake a negative outlier factor" -- "$bake" "$work/scan.ply" -o "$work/out5" --outliers -1
+# A factor that takes clean points too (1.5 x the median spacing cuts into the scan's far, sparse
+# ground) is baked, with a warning that names the count and the way back.
+expect 0 "bake a scan with a tight outlier factor" -- "$bake" "$work/scan.ply" -o "$work/scan_tight" "${lean[@]}" --outliers 1.5
+/usr/bin/python3 -c 'import json, sys; r = json.load(open(sys.argv[1]))
+assert r["dropped_outliers"] > 200 and any("more than 1%" in w and "--outliers" in w for w in r["warnings"]), (r["dropped_outliers"], r["warnings"])' \
+  "$work/scan_tight/report.json" 2>"$work/err" && ok || bad "a tight --outliers warns past 1%: $(tail -1 "$work/err")"
 unset QF_CACHE
 
 # --- LAS and LAZ (issue 35): info with the header's facts, convert carries the classification, bake end to end ---
