@@ -303,8 +303,9 @@ int NearestPoints::nearest(const Vec3f* queries, std::size_t count, int k, std::
   return got;
 }
 
-std::vector<char> find_outliers(const std::vector<Vec3f>& positions, const OutlierOptions& options) {
+std::vector<char> find_outliers(const std::vector<Vec3f>& positions, const OutlierOptions& options, float* limit_out) {
   const std::size_t n = positions.size();
+  if (limit_out) *limit_out = INFINITY;
   std::vector<char> outlier(n, 0);
   if (!(options.factor > 0) || options.k < 1 || n <= static_cast<std::size_t>(options.k)) return outlier;
   // 1. Every point's spacing, from block queries on the kd-tree (no neighbour lists are kept: at
@@ -327,12 +328,13 @@ std::vector<char> find_outliers(const std::vector<Vec3f>& positions, const Outli
   std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(n / 2), sorted.end());
   if (!(sorted[n / 2] > 0)) return std::vector<char>(n, 0);  // most points coincide: no scale to judge by
   const double limit = double(options.factor) * double(sorted[n / 2]);
+  if (limit_out) *limit_out = static_cast<float>(limit);
   for (std::size_t i = 0; i < n; ++i) outlier[i] = double(spacing[i]) > limit;
   return outlier;
 }
 
-std::size_t drop_outliers(PointSet& points, const OutlierOptions& options) {
-  const std::vector<char> drop = find_outliers(points.positions, options);
+std::size_t drop_outliers(PointSet& points, const OutlierOptions& options, float* limit) {
+  const std::vector<char> drop = find_outliers(points.positions, options, limit);
   const auto dropped = static_cast<std::size_t>(std::count(drop.begin(), drop.end(), 1));
   if (dropped) erase_points(points, drop);
   return dropped;

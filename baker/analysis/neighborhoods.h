@@ -78,11 +78,13 @@ struct OutlierOptions {
 // a clean set whose spacing varies more than `factor`-fold (a terrestrial scan's far points)
 // loses its sparsest parts; factor 0 keeps everything. Returns one flag per point (1: outlier);
 // none with factor 0, at most k points, or a median spacing of 0. Every core; the same at any thread count.
-std::vector<char> find_outliers(const std::vector<Vec3f>& positions, const OutlierOptions& options);
+// `limit`, when given, gets the spacing past which a point went (factor x the median; infinity
+// where none could).
+std::vector<char> find_outliers(const std::vector<Vec3f>& positions, const OutlierOptions& options, float* limit = nullptr);
 
 // find_outliers, then those points erased from every per-point array (core/types.h
 // erase_points); returns how many went.
-std::size_t drop_outliers(PointSet& points, const OutlierOptions& options);
+std::size_t drop_outliers(PointSet& points, const OutlierOptions& options, float* limit = nullptr);
 
 struct RadiusEstimateOptions {
   int k = 6;  // the radius reaches the k-th nearest neighbour: about the first ring of a sampling

@@ -8,6 +8,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -18,7 +19,7 @@
 
 namespace qf {
 
-InputFile::InputFile(const std::string& path) {
+InputFile::InputFile(const std::string& path, Access access) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec))
     throw InputError("file.unreadable", path, "", "is a directory, expected a file");
@@ -27,9 +28,10 @@ InputFile::InputFile(const std::string& path) {
   struct stat st {};
   if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0) {
     size_ = static_cast<std::size_t>(st.st_size);
-    void* m = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0);
+    void* m = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE | (access == Access::kWhole ? MAP_POPULATE : 0), fd, 0);
     if (m != MAP_FAILED) {
       map_ = m;
+      if (access == Access::kStreamed) ::madvise(map_, size_, MADV_SEQUENTIAL);
       ::close(fd);
       return;
     }
@@ -52,6 +54,12 @@ InputFile::InputFile(const std::string& path) {
 
 InputFile::~InputFile() {
   if (map_) ::munmap(map_, size_);
+}
+
+void InputFile::release(std::size_t offset) const {
+  const std::size_t page = static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));
+  const std::size_t end = std::min(offset, size_) / page * page;
+  if (map_ && end > 0) ::madvise(map_, end, MADV_DONTNEED);
 }
 
 void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write) {

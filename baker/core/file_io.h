@@ -30,13 +30,19 @@ class ByteView {
 // project's VMs that is ~8x faster than read() into fresh memory, whose page faults dominate.
 // Other files (pipes) are read into a buffer. Throws InputError("file.unreadable").
 // Note: a regular file truncated by another process while mapped raises SIGBUS on access.
+// Streamed (a file read once, front to back, larger than memory may hold): mapped without
+// pre-faulting, read ahead, and release() drops the pages already read from the process' memory.
 class InputFile {
  public:
-  explicit InputFile(const std::string& path);
+  enum class Access { kWhole, kStreamed };
+  explicit InputFile(const std::string& path, Access access = Access::kWhole);
   ~InputFile();
   InputFile(const InputFile&) = delete;
   InputFile& operator=(const InputFile&) = delete;
   ByteView bytes() const { return map_ ? ByteView(static_cast<const std::uint8_t*>(map_), size_) : ByteView(buffer_); }
+  // Streamed: the bytes before `offset` will not be read again (their pages leave the process'
+  // resident memory; a read of them would fault them in anew). No-op for a buffer.
+  void release(std::size_t offset) const;
 
  private:
   void* map_ = nullptr;

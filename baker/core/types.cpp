@@ -49,8 +49,7 @@ static Bounds bounds_of(const std::vector<Vec3f>& points) {
 
 Bounds PointSet::bounds() const { return bounds_of(positions); }
 
-std::vector<std::uint32_t> morton_order(const std::vector<Vec3f>& positions) {
-  const Bounds box = bounds_of(positions);
+std::uint64_t morton_code(Vec3f p, const Bounds& box) {
   const Vec3f size = box.size();
   const float extent = std::max({size.x, size.y, size.z, 1e-30f});
   auto spread = [](std::uint64_t v) {  // 21 bits -> every third bit of 63
@@ -62,22 +61,19 @@ std::vector<std::uint32_t> morton_order(const std::vector<Vec3f>& positions) {
     v = (v | v << 2) & 0x1249249249249249ull;
     return v;
   };
+  std::uint64_t c[3];
+  for (int a = 0; a < 3; ++a) c[a] = static_cast<std::uint64_t>(std::clamp((p[a] - box.min[a]) / extent, 0.0f, 1.0f) * 2097151.0f);
+  return spread(c[0]) | spread(c[1]) << 1 | spread(c[2]) << 2;
+}
+
+std::vector<std::uint32_t> morton_order(const std::vector<Vec3f>& positions) {
+  const Bounds box = bounds_of(positions);
   std::vector<std::pair<std::uint64_t, std::uint32_t>> keys(positions.size());
-  for (std::size_t i = 0; i < positions.size(); ++i) {
-    std::uint64_t c[3];
-    for (int a = 0; a < 3; ++a)
-      c[a] = static_cast<std::uint64_t>(std::clamp((positions[i][a] - box.min[a]) / extent, 0.0f, 1.0f) * 2097151.0f);
-    keys[i] = {spread(c[0]) | spread(c[1]) << 1 | spread(c[2]) << 2, static_cast<std::uint32_t>(i)};
-  }
+  for (std::size_t i = 0; i < positions.size(); ++i) keys[i] = {morton_code(positions[i], box), static_cast<std::uint32_t>(i)};
   // Ties (points in one cell) by position, so that only points at the very same position keep
-  // their input order; then by index.
+  // their input order; then by index (MortonKey's order).
   std::sort(keys.begin(), keys.end(), [&](const auto& a, const auto& b) {
-    if (a.first != b.first) return a.first < b.first;
-    const Vec3f &p = positions[a.second], &q = positions[b.second];
-    if (p.x != q.x) return p.x < q.x;
-    if (p.y != q.y) return p.y < q.y;
-    if (p.z != q.z) return p.z < q.z;
-    return a.second < b.second;
+    return MortonKey{a.first, positions[a.second], a.second} < MortonKey{b.first, positions[b.second], b.second};
   });
   std::vector<std::uint32_t> order(positions.size());
   for (std::size_t i = 0; i < keys.size(); ++i) order[i] = keys[i].second;

@@ -88,6 +88,22 @@ struct PointSet {
 // for points at exactly the same position, which keep their input order.
 std::vector<std::uint32_t> morton_order(const std::vector<Vec3f>& positions);
 
+// morton_order's parts, for a set sorted in pieces (the out-of-core bake's spill): a point's code
+// in the box of the whole set, and the order of two points (code, position, index).
+struct MortonKey {
+  std::uint64_t code;
+  Vec3f position;
+  std::uint64_t index;
+  bool operator<(const MortonKey& o) const {
+    if (code != o.code) return code < o.code;
+    if (position.x != o.position.x) return position.x < o.position.x;
+    if (position.y != o.position.y) return position.y < o.position.y;
+    if (position.z != o.position.z) return position.z < o.position.z;
+    return index < o.index;
+  }
+};
+std::uint64_t morton_code(Vec3f p, const Bounds& box);
+
 // The points in `order` (out[i] = points[order[i]]), every per-point array with them.
 PointSet permuted(const PointSet& points, const std::vector<std::uint32_t>& order);
 

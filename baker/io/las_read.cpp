@@ -11,6 +11,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <memory>
 #include <sstream>
 
@@ -133,12 +134,22 @@ class LasReader {
   LasReader(const ByteSource& src, const std::string& path, ReadReport* report)
       : src_(src), path_(path), report_(report) {}
   PointSet read();
+  // The header's point count (the header alone read and checked).
+  std::uint64_t count() {
+    read_header();
+    return h_.count;
+  }
+  // The points a block at a time (model_io.h stream_point_set).
+  void stream(std::size_t block_points, const std::function<void(PointSet&)>& block);
 
  private:
   [[noreturn]] void fail(const char* code, std::uint64_t offset, const std::string& detail) const {
     throw InputError(code, path_, at_byte(offset), detail);
   }
   void read_header();
+  void read_meta();
+  void read_points();
+  void flush_block();
   void read_vlrs();
   void read_evlrs();
   void take_laszip_vlr(std::uint64_t data, std::uint64_t length);
@@ -165,6 +176,12 @@ class LasReader {
   std::vector<std::array<std::uint16_t, 3>> rgb16_;  // until every point is read: 8 or 16 bits?
   std::uint16_t rgb_max_ = 0;
   std::vector<float>* classes_ = nullptr;
+  // Streaming: blocks of block_points_ handed to block_; colours shifted by shift_ (known before
+  // the points are read: scanning_ is the pass that finds it, done_ when a value past 255 ends it).
+  const std::function<void(PointSet&)>* block_ = nullptr;
+  std::size_t block_points_ = 0;
+  int shift_ = 0;
+  bool scanning_ = false, done_ = false;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -321,15 +338,23 @@ void LasReader::choose_origin() {
 
 void LasReader::prepare_output() {
   // Reserve what the header counts only when the file can hold it (LAS: checked against the
-  // file's size before; LAZ: at most what its chunks can hold at the densest rate we accept).
-  const std::size_t n = static_cast<std::size_t>(h_.count);
+  // file's size before; LAZ: at most what its chunks can hold at the densest rate we accept);
+  // streaming, a block.
+  const std::size_t n = block_ ? std::min<std::size_t>(block_points_, static_cast<std::size_t>(h_.count)) : static_cast<std::size_t>(h_.count);
+  if (scanning_) return;
   reserve_huge(out_.positions, n);
-  if (kRgbOffset[h_.format]) reserve_huge(rgb16_, n);
+  if (kRgbOffset[h_.format]) block_ ? reserve_huge(out_.colors, n) : reserve_huge(rgb16_, n);
   out_.scalars.push_back({"classification", {}});
   reserve_huge(out_.scalars.back().values, n);
 }
 
 void LasReader::add_record(const std::uint8_t* rec) {
+  if (scanning_) {  // the colours' widest value only; a value past 255 settles it
+    const std::uint16_t o = kRgbOffset[h_.format];
+    rgb_max_ = std::max({rgb_max_, le16(rec + o), le16(rec + o + 2), le16(rec + o + 4)});
+    done_ = rgb_max_ > 255;
+    return;
+  }
   Vec3f p;
   for (int a = 0; a < 3; ++a)
     p[a] = static_cast<float>(double(le_i32(rec + 4 * a)) * h_.scale[a] + (h_.offset[a] - origin_[a]));
@@ -338,9 +363,24 @@ void LasReader::add_record(const std::uint8_t* rec) {
   out_.scalars[0].values.push_back(static_cast<float>(h_.format < 6 ? (rec[15] & 31) : rec[16]));
   if (const std::uint16_t o = kRgbOffset[h_.format]) {
     const std::array<std::uint16_t, 3> c{le16(rec + o), le16(rec + o + 2), le16(rec + o + 4)};
-    rgb_max_ = std::max({rgb_max_, c[0], c[1], c[2]});
-    rgb16_.push_back(c);
+    if (block_) {
+      out_.colors.push_back({static_cast<std::uint8_t>(c[0] >> shift_), static_cast<std::uint8_t>(c[1] >> shift_),
+                             static_cast<std::uint8_t>(c[2] >> shift_)});
+    } else {
+      rgb_max_ = std::max({rgb_max_, c[0], c[1], c[2]});
+      rgb16_.push_back(c);
+    }
   }
+  if (block_ && out_.positions.size() >= block_points_) flush_block();
+}
+
+void LasReader::flush_block() {
+  if (out_.positions.empty()) return;
+  (*block_)(out_);
+  out_.positions.clear(), out_.colors.clear();
+  out_.scalars.resize(1);
+  out_.scalars[0].name = "classification";
+  out_.scalars[0].values.clear();
 }
 
 void LasReader::finish_colors() {
@@ -367,10 +407,10 @@ void LasReader::read_las_points() {
   // Blocks of about 4 MiB: large enough that reads are cheap, small enough to stay out of RSS.
   const std::uint64_t per_block = std::max<std::uint64_t>(1, (std::uint64_t(4) << 20) / rl);
   std::vector<std::uint8_t> block(static_cast<std::size_t>(std::min(per_block, h_.count) * rl));
-  for (std::uint64_t first = 0; first < h_.count; first += per_block) {
+  for (std::uint64_t first = 0; first < h_.count && !done_; first += per_block) {
     const std::uint64_t n = std::min(per_block, h_.count - first);
     src_.read(h_.point_offset + first * rl, static_cast<std::size_t>(n * rl), block.data());
-    for (std::uint64_t i = 0; i < n; ++i) add_record(block.data() + i * rl);
+    for (std::uint64_t i = 0; i < n && !done_; ++i) add_record(block.data() + i * rl);
   }
 }
 
@@ -496,7 +536,7 @@ void LasReader::decode_chunk(std::size_t index, std::uint64_t offset, std::uint6
   const lazperf::las_decompressor::ptr decoder = lazperf::build_las_decompressor(
       [&in](unsigned char* out, std::size_t n) { in.take(out, n); }, h_.format, h_.extra_bytes());
   std::vector<char> rec(h_.record_length);
-  for (std::uint64_t i = 0; i < count; ++i) {
+  for (std::uint64_t i = 0; i < count && !done_; ++i) {
     decoder->decompress(rec.data());
     if (in.overrun)
       fail("laz.chunk", offset, "chunk " + std::to_string(index) + " (" + std::to_string(bytes) + " bytes) ends before point " +
@@ -531,7 +571,7 @@ void LasReader::read_laz_points() {
   const std::vector<std::uint64_t> sizes = read_chunk_table(first_chunk, table_offset, counts);
   prepare_output();
   std::uint64_t at = first_chunk;
-  for (std::size_t i = 0; i < sizes.size(); ++i) {
+  for (std::size_t i = 0; i < sizes.size() && !done_; ++i) {
     decode_chunk(i, at, sizes[i], counts[i]);
     at += sizes[i];
   }
@@ -569,16 +609,41 @@ void LasReader::report_facts() const {
                       (laz_.chunk_size == 0xFFFFFFFFu ? std::string("variable") : std::to_string(laz_.chunk_size)));
 }
 
-PointSet LasReader::read() {
+void LasReader::read_meta() {
   read_header();
   read_vlrs();
   read_evlrs();
   choose_origin();
+}
+
+void LasReader::read_points() {
   if (h_.compressed) read_laz_points();
   else read_las_points();
+}
+
+PointSet LasReader::read() {
+  read_meta();
+  read_points();
   finish_colors();
   report_facts();
   return std::move(out_);
+}
+
+void LasReader::stream(std::size_t block_points, const std::function<void(PointSet&)>& block) {
+  read_meta();
+  block_ = &block, block_points_ = std::max<std::size_t>(1, block_points);
+  // 1. The colours' width, as the whole read decides it (finish_colors), before any is stored.
+  if (kRgbOffset[h_.format]) {
+    scanning_ = true;
+    read_points();
+    scanning_ = done_ = false;
+    shift_ = rgb_max_ > 255 ? 8 : 0;
+    if (report_ && shift_ == 0) report_->warnings.push_back("colour values all <= 255: read as 8-bit, not scaled from 16-bit");
+  }
+  // 2. The points, a block at a time.
+  read_points();
+  flush_block();
+  report_facts();
 }
 
 }  // namespace
@@ -589,18 +654,46 @@ PointSet decode_las(ByteView bytes, const std::string& path, const ReadOptions&,
   return LasReader(src, path, report).read();
 }
 
-PointSet read_las(const std::string& path, const ReadOptions& options, ReadReport* report) {
-  // Regular files are read piecewise; anything else (a pipe) is read whole first, as InputFile does.
+namespace {
+
+// Runs f on the file's bytes: a regular file read piecewise, anything else (a pipe) read whole
+// first, as InputFile does.
+template <class F>
+auto with_las_source(const std::string& path, F&& f) {
   const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   struct stat st {};
   if (fd >= 0 && ::fstat(fd, &st) == 0 && S_ISREG(st.st_mode)) {
     ::posix_fadvise(fd, 0, 0, POSIX_FADV_SEQUENTIAL);
     const FileSource src(fd, static_cast<std::uint64_t>(st.st_size), path);
-    return LasReader(src, path, report).read();
+    return f(src);
   }
   if (fd >= 0) ::close(fd);
   const InputFile file(path);
-  return decode_las(file.bytes(), path, options, report);
+  const MemorySource src(file.bytes());
+  return f(src);
+}
+
+}  // namespace
+
+PointSet read_las(const std::string& path, const ReadOptions&, ReadReport* report) {
+  return with_las_source(path, [&](const ByteSource& src) { return LasReader(src, path, report).read(); });
+}
+
+std::uint64_t las_point_count(const std::string& path) {
+  return with_las_source(path, [&](const ByteSource& src) { return LasReader(src, path, nullptr).count(); });
+}
+
+void stream_las(const std::string& path, ReadReport* report, std::size_t block_points, const std::function<void(PointSet&)>& block) {
+  with_las_source(path, [&](const ByteSource& src) {
+    LasReader(src, path, report).stream(block_points, block);
+    return 0;
+  });
+}
+
+void stream_las(ByteView bytes, const std::string& path, ReadReport* report, std::size_t block_points,
+                const std::function<void(PointSet&)>& block) {
+  const MemorySource src(bytes);
+  LasReader(src, path, report).stream(block_points, block);
 }
 
 }  // namespace qf

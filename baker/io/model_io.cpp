@@ -60,6 +60,35 @@ Model decode_model(ByteView bytes, const std::string& path, const ReadOptions& o
   return m;
 }
 
+std::optional<std::size_t> streamed_point_count(const std::string& path) {
+  const std::string ext = file_extension(path);
+  try {
+    if (ext == "las" || ext == "laz") return static_cast<std::size_t>(las_point_count(path));
+    if (ext == "ply")
+      if (const std::optional<std::uint64_t> n = ply_point_count(path)) return static_cast<std::size_t>(*n);
+  } catch (const InputError&) {
+    // read whole: the reader says what is wrong
+  }
+  return std::nullopt;
+}
+
+void stream_point_set(ByteView bytes, const std::string& path, const ReadOptions& options, ReadReport* report,
+                      std::size_t block_points, const std::function<void(PointSet&)>& block) {
+  const std::string ext = file_extension(path);
+  if (ext == "las" || ext == "laz") return stream_las(bytes, path, report, block_points, block);
+  if (ext == "ply") return stream_ply(bytes, path, options, report, block_points, block);
+  throw UsageError(path + ": only LAS/LAZ and PLY point sets are read as a stream");
+}
+
+void stream_point_set(const std::string& path, const ReadOptions& options, ReadReport* report, std::size_t block_points,
+                      const std::function<void(PointSet&)>& block) {
+  const std::string ext = file_extension(path);
+  if (ext == "las" || ext == "laz") return stream_las(path, report, block_points, block);
+  if (ext != "ply") throw UsageError(path + ": only LAS/LAZ and PLY point sets are read as a stream");
+  const InputFile file(path, InputFile::Access::kStreamed);
+  stream_ply(file.bytes(), path, options, report, block_points, block, &file);
+}
+
 const std::vector<std::string>& point_set_extensions() {
   static const std::vector<std::string> e{"ply", "qs", "xyz", "pwn", "las", "laz"};
   return e;

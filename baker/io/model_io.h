@@ -7,6 +7,8 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -71,6 +73,16 @@ PointSet read_xyz(const std::string& path, bool require_normals, const ReadOptio
 // becomes the scalar field "classification". The file is read a block of records or one LAZ chunk
 // at a time. Errors: "las.*" (header, VLRs, body), "laz.*" (LASzip VLR, chunk table, chunks).
 PointSet read_las(const std::string& path, const ReadOptions& options = {}, ReadReport* report = nullptr);
+// The formats' parts of stream_point_set and streamed_point_count (below): LAS/LAZ, and PLY files
+// without faces (ply_point_count: nullopt for one with faces).
+std::uint64_t las_point_count(const std::string& path);
+void stream_las(const std::string& path, ReadReport* report, std::size_t block_points, const std::function<void(PointSet&)>& block);
+void stream_las(ByteView bytes, const std::string& path, ReadReport* report, std::size_t block_points,
+                const std::function<void(PointSet&)>& block);
+std::optional<std::uint64_t> ply_point_count(const std::string& path);
+// `file`, when the bytes are its (streamed), has the pages read released block by block.
+void stream_ply(ByteView bytes, const std::string& path, const ReadOptions& options, ReadReport* report, std::size_t block_points,
+                const std::function<void(PointSet&)>& block, const InputFile* file = nullptr);
 TriangleMesh read_off(const std::string& path, const ReadOptions& options = {}, ReadReport* report = nullptr);
 TriangleMesh read_obj(const std::string& path, const ReadOptions& options = {}, ReadReport* report = nullptr);
 // glTF 2.0 (.gltf with external or data-URI buffers and images, .glb): the default scene (else the
@@ -83,6 +95,23 @@ TriangleMesh read_obj(const std::string& path, const ReadOptions& options = {}, 
 // Skins are read in their bind pose and morph targets ignored, with a warning in the report.
 // Errors name the JSON path: "meshes[0].primitives[1].indices: index 12 out of range (8 vertices)".
 TriangleMesh read_gltf(const std::string& path, const ReadOptions& options = {}, ReadReport* report = nullptr);
+
+// Point sets too big to hold whole (the out-of-core bake, pipeline/out_of_core.h): LAS/LAZ files
+// and PLY files without faces are read a block at a time, each block of at most `block_points`
+// points (in file order) handed to `block`, which may take its arrays. The rules are the whole
+// read's: the same points, attributes and errors (non-finite points refused or dropped per block;
+// LAS colours 8- or 16-bit as the whole file says: where a file's colours are 16-bit their first
+// value past 255 settles it, where they are not the file is read twice). An error after some
+// blocks throws as the whole read does: whatever took the blocks must be discarded.
+// streamed_point_count: the points a file's header declares when it streams, else nullopt (other
+// formats, PLY meshes, files whose header does not parse: read those whole; read_model reports
+// what is wrong with them). stream_point_set throws UsageError for a file that does not stream.
+std::optional<std::size_t> streamed_point_count(const std::string& path);
+void stream_point_set(const std::string& path, const ReadOptions& options, ReadReport* report, std::size_t block_points,
+                      const std::function<void(PointSet&)>& block);
+// The same on bytes in memory (the fuzz targets).
+void stream_point_set(ByteView bytes, const std::string& path, const ReadOptions& options, ReadReport* report,
+                      std::size_t block_points, const std::function<void(PointSet&)>& block);
 
 // The same readers on bytes already in memory (the path readers map the file and call these; the
 // fuzz targets of tests/fuzz call them directly). `path` names the file in errors; decode_model

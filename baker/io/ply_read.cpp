@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <optional>
 
@@ -34,7 +35,33 @@ struct Sink {
   std::uint64_t vertex_count = 0;
   std::vector<Triangle> triangles;
   std::size_t polygons_triangulated = 0;
+  // Streaming (a file without faces): every block_points vertices go to `block` as a point set,
+  // `first` the file index of the block's first vertex.
+  const std::function<void(PointSet&)>* block = nullptr;
+  std::size_t block_points = 0, first = 0;
+  const std::vector<std::string>* comments = nullptr;
+  ReadReport* report = nullptr;
+  // A streamed file's pages before the current record (`at`, binary bodies) are released at each
+  // block: a 3 GB file does not stay resident while its points go to scratch.
+  const InputFile* file = nullptr;
+  std::size_t at = 0;
 };
+
+// Hands the vertices read so far to the block's taker (streaming), the non-finite ones dropped.
+void flush_block(Sink& s) {
+  if (s.positions.empty()) return;
+  const std::size_t read = s.positions.size();
+  PointSet p;
+  p.positions = std::move(s.positions), p.normals = std::move(s.normals);
+  p.colors = std::move(s.colors), p.radii = std::move(s.radii);
+  p.comments = *s.comments;
+  s.nonfinite.apply(p, s.report, s.first);
+  s.first += read;
+  if (p.size()) (*s.block)(p);
+  if (s.file) s.file->release(s.at);
+  s.positions.clear(), s.normals.clear(), s.colors.clear(), s.radii.clear();
+  s.positions.reserve(s.block_points);
+}
 
 // Converts a colour value of any PLY type to 8 bits (floats are taken as [0,1]).
 std::uint8_t to_color8(double v, Type t) {
@@ -76,6 +103,7 @@ void store_vertex(Sink& s, const VertexValues& vv, const Type* dest_types, std::
                            ", expected a finite value >= 0");
     s.radii.push_back(static_cast<float>(r));
   }
+  if (s.block && s.positions.size() >= s.block_points) flush_block(s);
 }
 
 constexpr long long kMaxListLength = 1 << 20;
@@ -195,6 +223,7 @@ class BinaryBody {
         for (const Property& p : e.props)
           if (p.dest != Dest::kSkip) vv.v[int(p.dest)] = columns[int(p.dest) * kBlock + j];
         const std::size_t record = pos_ + static_cast<std::size_t>(b0 + j) * stride;
+        s.at = record;
         store_vertex(s, vv, dest_types, static_cast<std::size_t>(b0 + j), [&] { return at_byte(record); });
       }
     }
@@ -459,16 +488,26 @@ Model to_model(Sink& sink, Header& h, bool mesh, io::NonFiniteFilter& nonfinite,
 
 }  // namespace
 
-Model decode_ply(ByteView bytes, const std::string& path, const ReadOptions& options, ReadReport* report) {
+namespace {
+
+// Steps 1-2 of decode_ply: the header, then the body into `sink` (made here, handed to `done`
+// with the header and whether the file holds faces).
+template <class Done>
+auto decode_ply_into(ByteView bytes, const std::string& path, const ReadOptions& options, ReadReport* report,
+                     const std::function<void(PointSet&)>* block, std::size_t block_points, const InputFile* file, Done&& done) {
   if (bytes.empty()) throw InputError("ply.header.magic", path, "", "file is empty, expected a PLY header");
   Header h = parse_header(bytes, path);
   const BodyLayout l = map_elements(h, path);
+  if (block && l.face) throw UsageError(path + ": a PLY file with faces (a mesh) is not read as a stream of points");
   io::NonFiniteFilter nonfinite(path, options);
   Sink sink{path, nonfinite, {}, {}, {}, {}, false, false, false, l.vertex->count, {}, 0};
   sink.want_normals = l.seen[int(Dest::kNX)] && l.seen[int(Dest::kNY)] && l.seen[int(Dest::kNZ)];
   sink.want_colors = l.seen[int(Dest::kRed)] && l.seen[int(Dest::kGreen)] && l.seen[int(Dest::kBlue)];
   sink.want_radii = l.seen[int(Dest::kRadius)];
-  const std::size_t reserve = static_cast<std::size_t>(std::min<std::uint64_t>(l.vertex->count, bytes.size()));
+  sink.block = block, sink.block_points = std::max<std::size_t>(1, block_points);
+  sink.comments = &h.comments, sink.report = report, sink.file = file;
+  const std::size_t reserve = block ? std::min<std::size_t>(sink.block_points, l.vertex->count)
+                                    : static_cast<std::size_t>(std::min<std::uint64_t>(l.vertex->count, bytes.size()));
   sink.positions.reserve(reserve);
   if (sink.want_normals) sink.normals.reserve(reserve);
   if (sink.want_colors) sink.colors.reserve(reserve);
@@ -480,7 +519,37 @@ Model decode_ply(ByteView bytes, const std::string& path, const ReadOptions& opt
                                                       : "ply (binary_big_endian)";
     report->polygons_triangulated += sink.polygons_triangulated;
   }
-  return to_model(sink, h, l.face != nullptr, nonfinite, report);
+  return done(sink, h, l.face != nullptr, nonfinite);
+}
+
+}  // namespace
+
+Model decode_ply(ByteView bytes, const std::string& path, const ReadOptions& options, ReadReport* report) {
+  return decode_ply_into(bytes, path, options, report, nullptr, 0, nullptr,
+                         [&](Sink& sink, Header& h, bool mesh, io::NonFiniteFilter& nonfinite) {
+                           return to_model(sink, h, mesh, nonfinite, report);
+                         });
+}
+
+std::optional<std::uint64_t> ply_point_count(const std::string& path) {
+  const InputFile file(path);
+  if (file.bytes().empty()) return std::nullopt;
+  try {
+    Header h = parse_header(file.bytes(), path);
+    const BodyLayout l = map_elements(h, path);
+    if (l.face) return std::nullopt;
+    return l.vertex->count;
+  } catch (const InputError&) {
+    return std::nullopt;  // read whole, which says what is wrong
+  }
+}
+
+void stream_ply(ByteView bytes, const std::string& path, const ReadOptions& options, ReadReport* report,
+                std::size_t block_points, const std::function<void(PointSet&)>& block, const InputFile* file) {
+  decode_ply_into(bytes, path, options, report, &block, block_points, file, [](Sink& sink, Header&, bool, io::NonFiniteFilter&) {
+    flush_block(sink);
+    return 0;
+  });
 }
 
 }  // namespace qf

@@ -32,12 +32,13 @@ static void erase_indices(std::vector<T>& v, const std::vector<char>& drop) {
   v.resize(w);
 }
 
-void NonFiniteFilter::apply(PointSet& points, ReadReport* report) const {
+void NonFiniteFilter::apply(PointSet& points, ReadReport* report, std::size_t first) {
   if (dropped_.empty()) return;
   std::vector<char> drop(points.size(), 0);
-  for (std::size_t i : dropped_) drop[i] = 1;
+  for (std::size_t i : dropped_) drop[i - first] = 1;
   erase_points(points, drop);
   if (report) report->dropped_nonfinite += dropped_.size();
+  dropped_.clear();
 }
 
 void NonFiniteFilter::apply(TriangleMesh& mesh, ReadReport* report) const {

@@ -107,8 +107,10 @@ class NonFiniteFilter {
     dropped_.push_back(index);
   }
   bool any() const { return !dropped_.empty(); }
-  // Removes the recorded points from every per-point array of `points`.
-  void apply(PointSet& points, ReadReport* report) const;
+  // Removes the recorded points from every per-point array of `points`, whose first point is
+  // point `first` of the file (a streamed block; 0 for a whole read), and forgets them: a block
+  // read after holds none of them.
+  void apply(PointSet& points, ReadReport* report, std::size_t first = 0);
   // Removes the recorded vertices and every triangle that uses one; reindexes the rest.
   void apply(TriangleMesh& mesh, ReadReport* report) const;
 

@@ -293,6 +293,7 @@ nlohmann::json point_impostor_output(const PointSet& points, const AssetOptions&
 nlohmann::json memory_entry(const BakeResult& r) {
   const auto mb = [](double bytes) { return round_to(bytes / 1048576.0, 1); };
   nlohmann::json m{{"path", r.memory.out_of_core ? "out-of-core" : "in-memory"},
+                   {"input", r.streamed ? "streamed" : "read whole"},
                    {"estimated_mb", mb(double(r.memory.need))},
                    {"limit_mb", r.memory.limit == SIZE_MAX ? nlohmann::json(nullptr) : nlohmann::json(mb(double(r.memory.limit)))},
                    {"limit_source", r.memory.limit_source},
@@ -535,25 +536,28 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// 1'. A point set too big to hold whole, whose header gives its count (io/model_io.h
+// streamed_point_count): the plan for its count, when it says out of core; nothing otherwise.
+std::optional<MemoryPlan> streamed_plan(const std::string& path, const BakeOptions& bake) {
+  const std::optional<std::size_t> count = streamed_point_count(path);
+  if (!count) return std::nullopt;
+  const MemoryPlan plan = plan_bake_memory(*count, bake, false, path);
+  return plan.out_of_core ? std::optional<MemoryPlan>(plan) : std::nullopt;
+}
+
 }  // namespace
 
 AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::string& input_name) {
   AssetBake a;
   const std::string stem = std::filesystem::path(input_name).stem().string();
-  // 1. Points (a mesh is sampled).
+  BakeOptions bake_options = o.bake;
+  // 1. Points (a mesh is sampled), unless they stream straight to the out-of-core bake.
+  const std::optional<MemoryPlan> streamed = streamed_plan(path, bake_options);
   TriangleMesh mesh;
   MeshSurface surface;  // a mesh input's quads draw the mesh itself
-  PointSet points = load_point_set(path, o.read, o.sample, "bake", a.read, &a.sampled, &mesh, &surface.point_triangles);
+  PointSet points;
+  if (!streamed) points = load_point_set(path, o.read, o.sample, "bake", a.read, &a.sampled, &mesh, &surface.point_triangles);
   const bool is_mesh = !a.sampled.backend.empty();
-  // Outliers past 1% may be a clean set's sparse parts (a terrestrial scan's far points).
-  std::string outlier_warning;
-  if (a.read.dropped_outliers * 100 > points.size() + a.read.dropped_outliers) {
-    char factor[32];
-    std::snprintf(factor, sizeof factor, "%g", double(o.read.outlier_factor));
-    outlier_warning = std::to_string(a.read.dropped_outliers) + " points (more than 1%) were dropped as outliers, farther than " + factor +
-                      " x the median spacing from their neighbours; if they are sparse parts of the surface, give a larger --outliers, or 0 "
-                      "to keep every point";
-  }
   // A mesh's normals: its own; else flat for glTF (as engines draw it), smooth for the others (as
   // the reference is drawn, tools/reference_scene.cpp). Its quads and mesh LODs are drawn so too.
   const bool gltf = a.read.format == "glb" || a.read.format == "gltf";
@@ -561,19 +565,41 @@ AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::
     surface.mesh = &mesh;
     surface.normals = mesh.normals.size() == mesh.positions.size() ? mesh.normals : gltf ? std::vector<Vec3f>{} : mesh.smooth_normals();
   }
-  // 2-4. The outputs: mesh LODs, impostor levels, the point impostor.
-  const auto lods_start = std::chrono::steady_clock::now();
-  progress::step(is_mesh ? "mesh LODs" : "mesh LODs of the reconstructed surface");
+  // 2-4. The outputs: mesh LODs, impostor levels, the point impostor. A streamed set's mesh LODs
+  // are reconstructed from the subsample it was decomposed on, once baked.
   std::vector<std::string> lod_warnings;
-  nlohmann::json mesh_lods = is_mesh ? mesh_lod_outputs(mesh, o, stem, a.files, !gltf)
-                                     : reconstructed_lod_outputs(points, o, stem, a.files, lod_warnings);
-  const double lods_seconds = seconds_since(lods_start);
-  BakeOptions bake_options = o.bake;
+  const auto mesh_lod_outputs_of = [&](const PointSet& reconstructed) {
+    progress::step(is_mesh ? "mesh LODs" : "mesh LODs of the reconstructed surface");
+    return is_mesh ? mesh_lod_outputs(mesh, o, stem, a.files, !gltf) : reconstructed_lod_outputs(reconstructed, o, stem, a.files, lod_warnings);
+  };
+  auto lods_start = std::chrono::steady_clock::now();
+  nlohmann::json mesh_lods = streamed ? nullptr : mesh_lod_outputs_of(points);
+  double lods_seconds = seconds_since(lods_start);
   use_surface_edges(bake_options, is_mesh);
-  // A point set is handed over: an out-of-core bake frees it once on disk (a mesh's points stay,
-  // for its point impostor; a mesh is never baked out of core).
-  a.result = is_mesh ? bake(points, bake_options, path, &surface) : bake(std::move(points), bake_options, path);
-  if (!outlier_warning.empty()) a.result.warnings.push_back(outlier_warning);
+  if (streamed) {
+    progress::step("reading " + path + " a block at a time (out of core)");
+    bake_options.outlier_factor = o.read.outlier_factor;
+    a.result = bake(
+        [&](const std::function<void(PointSet&)>& each) { stream_point_set(path, o.read, &a.read, kTilePoints, each); }, *streamed,
+        bake_options, path);
+    a.read.dropped_outliers = a.result.dropped_outliers;
+    lods_start = std::chrono::steady_clock::now();
+    mesh_lods = mesh_lod_outputs_of(a.result.subsample);
+    a.result.subsample = PointSet();
+    lods_seconds = seconds_since(lods_start);
+  } else {
+    // A point set is handed over: an out-of-core bake frees it once on disk (a mesh's points stay,
+    // for its point impostor; a mesh is never baked out of core).
+    a.result = is_mesh ? bake(points, bake_options, path, &surface) : bake(std::move(points), bake_options, path);
+  }
+  // Outliers past 1% may be a clean set's sparse parts (a terrestrial scan's far points).
+  if (a.read.dropped_outliers * 100 > a.result.points + a.read.dropped_outliers) {
+    char factor[32];
+    std::snprintf(factor, sizeof factor, "%g", double(o.read.outlier_factor));
+    a.result.warnings.push_back(std::to_string(a.read.dropped_outliers) + " points (more than 1%) were dropped as outliers, farther than " + factor +
+                      " x the median spacing from their neighbours; if they are sparse parts of the surface, give a larger --outliers, or 0 "
+                      "to keep every point");
+  }
   if (!is_mesh && !o.mesh_only_given.empty()) {
     std::string names;
     for (const std::string& n : o.mesh_only_given) names += (names.empty() ? "" : ", ") + n;

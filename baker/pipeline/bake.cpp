@@ -203,6 +203,7 @@ MemoryPlan plan_bake_memory(std::size_t points, const BakeOptions& o, bool mesh,
   plan.out_of_core = true;
   plan.subsample = std::min(points, fits);
   plan.batch_points = std::max<std::size_t>(1, static_cast<std::size_t>(kOutOfCoreBatchShare * room / kOutOfCoreBytesPerMember));
+  plan.sort_points = std::max(kTilePoints, static_cast<std::size_t>(kOutOfCoreSortShare * room / kSpillBytesPerPoint));
   return plan;
 }
 
@@ -369,35 +370,39 @@ void bake_in_memory(const PointSet& input, const BakeOptions& o, const std::stri
   r.levels = baked_levels(h, o, points, normals, r.diagonal, drawn, watch);
 }
 
-// The out-of-core bake (pipeline/out_of_core.h): the points to scratch in Morton tiles (`owned`,
-// when given, is freed then), the decomposition on the subsample, each level's textures from
-// every point read back tile by tile.
-void bake_out_of_core(const PointSet& input, PointSet* owned, const BakeOptions& o, const std::string& source_name,
-                      BakeResult& r, Stopwatch& watch) {
-  // 2. Scratch and subsample.
-  progress::step("ordering " + std::to_string(input.size()) + " points");
+// The out-of-core bake (pipeline/out_of_core.h): the points to scratch in Morton tiles, the
+// decomposition on the subsample, each level's textures from every point read back tile by tile.
+// `spilled` is called once the points are on disk (a set in memory is freed then).
+void bake_out_of_core(const PointBlocks& blocks, const BakeOptions& o, const std::string& source_name, BakeResult& r,
+                      Stopwatch& watch, const std::function<void()>& spilled = nullptr) {
+  // 2. Scratch and subsample; the subsample's outliers.
   StreamedPoints s;
-  {
-    const std::vector<std::uint32_t> order = morton_order(input.positions);
-    try {
-      s = spill_points(input, order, r.memory.subsample, o.scratch_dir);
-    } catch (const std::runtime_error& e) {  // no room on disk: the setting or the machine, not the input
-      throw UsageError(std::string("out-of-core bake: ") + e.what());
-    }
+  try {
+    s = spill_points(blocks, {r.memory.subsample, r.memory.sort_points, o.scratch_dir});
+  } catch (const InputError&) {
+    throw;  // the reader's
+  } catch (const std::runtime_error& e) {  // no room on disk: the setting or the machine, not the input
+    throw UsageError(std::string("out-of-core bake: ") + e.what());
   }
-  if (s.needs_radii && input.has_radii()) r.warnings.push_back("some radii were 0 and were estimated");
-  if (owned) *owned = PointSet();  // on disk now; its memory goes to the decomposition
+  if (spilled) spilled();
+  if (s.needs_radii && s.radii) r.warnings.push_back("some radii were 0 and were estimated");
+  r.points = s.points;
   r.diagonal = s.bounds.diagonal();
+  if (o.outlier_factor > 0) {
+    progress::step("outliers of the subsample of " + std::to_string(s.subsample.size()) + " points");
+    drop_subsample_outliers(s, o.outlier_factor);
+  }
   watch.lap("spill");
   // 3. Hierarchy of the subsample; every point linked to it.
   std::vector<Vec3f> estimated;
   const AmgHierarchy h = decomposed(s.subsample, o, source_name, r, watch, estimated);
   const std::vector<Vec3f>& normals = s.subsample.has_normals() ? s.subsample.normals : estimated;
   try {
-    link_points(s);
+    r.dropped_outliers = link_points(s);
   } catch (const std::runtime_error& e) {
     throw UsageError(std::string("out-of-core bake: ") + e.what());
   }
+  r.points -= r.dropped_outliers;
   watch.lap("link");
   // 4. Every chosen level, decomposed on the subsample, textured from every point.
   const LevelTexturer streamed = [&](const SparseMatrix& psi, const Domains& d, std::vector<SupportRect>& rects,
@@ -409,7 +414,8 @@ void bake_out_of_core(const PointSet& input, PointSet* owned, const BakeOptions&
     return t;
   };
   r.levels = baked_levels(h, o, s.subsample, normals, r.diagonal, nullptr, watch, &streamed);
-  r.scratch_bytes = s.file->size();
+  r.scratch_bytes = std::max<std::uint64_t>(s.scratch_peak, s.file->size());
+  r.subsample = std::move(s.subsample);
 }
 
 BakeResult bake_points(const PointSet& input, PointSet* owned, const BakeOptions& o, const std::string& source_name,
@@ -425,8 +431,16 @@ BakeResult bake_points(const PointSet& input, PointSet* owned, const BakeOptions
   // 1. The path that fits in memory; a failure early, with the figures, where none does (not an
   //    OOM kill).
   r.memory = plan_bake_memory(input.size(), o, surface && surface->mesh, source_name);
-  if (r.memory.out_of_core) bake_out_of_core(input, owned, o, source_name, r, watch);
-  else bake_in_memory(input, o, source_name, surface, r, watch);
+  if (!r.memory.out_of_core) {
+    bake_in_memory(input, o, source_name, surface, r, watch);
+    return r;
+  }
+  BakeOptions read_whole = o;
+  read_whole.outlier_factor = 0;  // a set read whole had its outliers dropped as it was loaded
+  bake_out_of_core(blocks_of(input), read_whole, source_name, r, watch, [&] {
+    if (owned) *owned = PointSet();  // on disk now; its memory goes to the decomposition
+  });
+  r.subsample = PointSet();
   return r;
 }
 
@@ -438,6 +452,16 @@ BakeResult bake(const PointSet& input, const BakeOptions& o, const std::string& 
 
 BakeResult bake(PointSet&& input, const BakeOptions& o, const std::string& source_name) {
   return bake_points(input, &input, o, source_name, nullptr);
+}
+
+BakeResult bake(const PointBlocks& blocks, const MemoryPlan& plan, const BakeOptions& o, const std::string& source_name) {
+  if (!plan.out_of_core) throw std::logic_error("bake: a stream of points is baked out of core");
+  BakeResult r;
+  Stopwatch watch(r.times);
+  r.memory = plan;
+  r.streamed = true;
+  bake_out_of_core(blocks, o, source_name, r, watch);
+  return r;
 }
 
 }  // namespace qf

@@ -13,6 +13,7 @@
 #include "domains/domains.h"
 #include "domains/merge.h"
 #include "gltf/glb.h"
+#include "pipeline/out_of_core.h"
 #include "primitives/atlas.h"
 #include "primitives/support.h"
 #include "primitives/texture.h"
@@ -62,6 +63,7 @@ struct MemoryPlan {
   std::string limit_source;    // "--max-memory", or available_memory's source
   std::size_t subsample = 0;   // out of core: points the decomposition runs on
   std::size_t batch_points = 0;  // out of core: full-density points gathered per batch of quads
+  std::size_t sort_points = 0;   // out of core: points sorted in memory at once as they go to scratch
 };
 
 // The share of the limit above the fixed part that the out-of-core subsample's decomposition may
@@ -70,6 +72,9 @@ struct MemoryPlan {
 // textures.
 constexpr double kOutOfCoreSubsampleShare = 0.65;
 constexpr double kOutOfCoreBatchShare = 0.15;
+// The share the spill's sort may take, at kSpillBytesPerPoint (out_of_core.h): it runs before the
+// decomposition, beside nothing but the points' blocks in flight.
+constexpr double kOutOfCoreSortShare = 0.5;
 // A member: 47 bytes gathered (position, normal, radius, colour, alpha, Psi), up to 10% over its
 // quad's reservation, and the texture stage's copies for the quads in hand (index lists and n x 1
 // matrices, ~40 bytes). It was 64, counting neither; with that and the Delaunay of every point
@@ -116,6 +121,10 @@ struct BakeOptions {
   // it a point set bakes out of core (plan_bake_memory).
   std::size_t max_memory = 0;
   std::string scratch_dir;  // the out-of-core bake's scratch file; empty = $TMPDIR, else /tmp
+  // Out of core from a stream (the overload taking PointBlocks): outliers are judged there, as the
+  // set is never whole in memory (pipeline/out_of_core.h); 0 = none. A set read whole has had its
+  // outliers dropped by the loader (pipeline/asset.h load_point_set) and does not use this.
+  float outlier_factor = 0.0f;
 };
 
 // The quads' alpha edges, cut to the texel where the input's surface ends
@@ -191,7 +200,10 @@ struct StageTime {
 
 struct BakeResult {
   MemoryPlan memory;
-  std::uint64_t scratch_bytes = 0;  // out of core: the scratch file at its largest
+  std::uint64_t scratch_bytes = 0;  // out of core: the scratch files at their largest
+  std::size_t dropped_outliers = 0;  // out of core from a stream: points judged outliers
+  bool streamed = false;             // the points came a block at a time (never whole in memory)
+  PointSet subsample;                // out of core from a stream: the points decomposed (the reconstruction's input)
   std::size_t batches = 0;          // out of core: the most batches of quads a level took
   std::vector<BakedLevel> levels;
   std::size_t points = 0, hierarchy_levels = 0, components = 0;
@@ -225,5 +237,9 @@ std::vector<MergedLevel> choose_merged_levels(const AmgHierarchy& h, const BakeO
 BakeResult bake(const PointSet& points, const BakeOptions& options, const std::string& source_name,
                 const MeshSurface* surface = nullptr);
 BakeResult bake(PointSet&& points, const BakeOptions& options, const std::string& source_name);
+// A point set read a block at a time (io/model_io.h stream_point_set), baked out of core under
+// `plan` (plan_bake_memory of the count its header declares; out_of_core). The blocks' errors
+// (a reader's InputError) pass through, nothing written but scratch, which is removed.
+BakeResult bake(const PointBlocks& blocks, const MemoryPlan& plan, const BakeOptions& options, const std::string& source_name);
 
 }  // namespace qf

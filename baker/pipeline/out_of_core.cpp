@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <queue>
 #include <stdexcept>
 
 #include "analysis/neighborhoods.h"
@@ -44,80 +45,260 @@ void read_tile(const StreamedPoints& s, const StreamedPoints::Tile& t, TileData&
   if (links) read_array(*s.file, out.link_weight, c * kLinks, read_array(*s.file, out.link_index, c * kLinks, t.links_offset));
 }
 
-// The subsample: stratum j holds the points [j n / m, (j + 1) n / m) of the Morton order, spatially
-// compact runs of the same number of points, so the subsample follows the input's density as the
-// in-memory bake sees it (an even voxel grid would thin dense parts more than sparse ones). Each
-// stratum keeps its point nearest the stratum's centroid (a real point, with its own attributes;
-// the lowest Morton index on ties).
-PointSet pick_subsample(const PointSet& input, const std::vector<std::uint32_t>& order, std::size_t m) {
-  const std::size_t n = order.size();
-  std::vector<std::uint32_t> picked(m);
+// A run of the external sort, or the points as they arrived: each record array in turn.
+struct Extent {
+  std::uint64_t offset = 0;
+  std::size_t count = 0;
+};
+
+void append_records(ScratchFile& f, const StreamedPoints& s, const PointSet& p) {
+  append_array(f, p.positions);
+  if (s.normals) append_array(f, p.normals);
+  if (s.radii) append_array(f, p.radii);
+  if (s.colors) append_array(f, p.colors);
+}
+
+// Records [first, first + n) of an extent written by append_records (of e.count points).
+void read_records(const ScratchFile& f, const StreamedPoints& s, const Extent& e, std::size_t first, std::size_t n, PointSet& out) {
+  std::uint64_t at = e.offset;
+  read_array(f, out.positions, n, at + first * sizeof(Vec3f));
+  at += e.count * sizeof(Vec3f);
+  if (s.normals) read_array(f, out.normals, n, at + first * sizeof(Vec3f)), at += e.count * sizeof(Vec3f);
+  if (s.radii) read_array(f, out.radii, n, at + first * sizeof(float)), at += e.count * sizeof(float);
+  if (s.colors) read_array(f, out.colors, n, at + first * sizeof(Rgb8));
+}
+
+template <class T>
+void append_to(std::vector<T>& out, const std::vector<T>& v) {
+  out.insert(out.end(), v.begin(), v.end());
+}
+
+// Spill step 1: the blocks as they come to `raw`, and what the set holds: its count, bounds,
+// attributes (the first block's; a reader gives every block the same) and whether radii are missing.
+std::vector<Extent> raw_blocks(const PointBlocks& blocks, ScratchFile& raw, StreamedPoints& s) {
+  std::vector<Extent> out;
+  bool first = true;
+  s.needs_radii = false;
+  blocks([&](PointSet& b) {
+    if (b.size() == 0) return;
+    if (first) s.normals = b.has_normals(), s.radii = b.has_radii(), s.colors = b.has_colors();
+    if (b.has_normals() != s.normals || b.has_radii() != s.radii || b.has_colors() != s.colors)
+      throw std::logic_error("spill_points: blocks with different attributes");
+    first = false;
+    s.needs_radii |= !s.radii || std::find(b.radii.begin(), b.radii.end(), 0.0f) != b.radii.end();
+    for (const Vec3f& p : b.positions) s.bounds.add(p);
+    out.push_back({raw.size(), b.size()});
+    append_records(raw, s, b);
+    s.points += b.size();
+  });
+  return out;
+}
+
+// Spill step 2: runs of at most `sort_points` points (whole blocks, at least one) read back,
+// sorted by MortonKey in the whole set's box and written to `runs` with their keys (codes, then
+// arrival indices) after the records.
+std::vector<Extent> sorted_runs(const ScratchFile& raw, const std::vector<Extent>& blocks, std::size_t sort_points,
+                                const StreamedPoints& s, ScratchFile& runs) {
+  std::vector<Extent> out;
+  std::uint64_t index = 0;  // arrival index of the run's first point
+  for (std::size_t b = 0; b < blocks.size();) {
+    std::size_t end = b, n = 0;
+    while (end < blocks.size() && (end == b || n + blocks[end].count <= sort_points)) n += blocks[end++].count;
+    progress::step("sorting points " + std::to_string(index) + " to " + std::to_string(index + n) + " of " + std::to_string(s.points) +
+                   " in Morton order");
+    PointSet run;
+    run.positions.reserve(n);
+    if (s.normals) run.normals.reserve(n);
+    if (s.radii) run.radii.reserve(n);
+    if (s.colors) run.colors.reserve(n);
+    for (; b < end; ++b) {
+      PointSet part;
+      read_records(raw, s, blocks[b], 0, blocks[b].count, part);
+      append_to(run.positions, part.positions), append_to(run.normals, part.normals);
+      append_to(run.radii, part.radii), append_to(run.colors, part.colors);
+    }
+    std::vector<MortonKey> keys(n);
 #pragma omp parallel for schedule(static)
-  for (std::ptrdiff_t j = 0; j < static_cast<std::ptrdiff_t>(m); ++j) {
-    const std::size_t begin = static_cast<std::size_t>(j) * n / m, end = (static_cast<std::size_t>(j) + 1) * n / m;
+    for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(n); ++i) {
+      const Vec3f p = run.positions[static_cast<std::size_t>(i)];
+      keys[static_cast<std::size_t>(i)] = {morton_code(p, s.bounds), p, index + static_cast<std::uint64_t>(i)};
+    }
+    std::sort(keys.begin(), keys.end());
+    std::vector<std::uint32_t> order(n);
+    std::vector<std::uint64_t> codes(n), indices(n);
+    for (std::size_t i = 0; i < n; ++i)
+      order[i] = static_cast<std::uint32_t>(keys[i].index - index), codes[i] = keys[i].code, indices[i] = keys[i].index;
+    std::vector<MortonKey>().swap(keys);
+    run = permuted(run, order);
+    out.push_back({runs.size(), n});
+    append_records(runs, s, run);
+    append_array(runs, codes);
+    append_array(runs, indices);
+    index += n;
+  }
+  return out;
+}
+
+// One run's points in order, a buffer at a time.
+class RunCursor {
+ public:
+  RunCursor(const ScratchFile& f, const StreamedPoints& s, const Extent& e, std::size_t buffer) : f_(&f), s_(&s), e_(e), buffer_(buffer) {
+    fill();
+  }
+  bool done() const { return next_ >= e_.count; }
+  MortonKey key() const { return {codes_[at_], buf_.positions[at_], indices_[at_]}; }
+  // Appends the current point to `out` (the arrays the set holds) and moves on.
+  void take(TileData& out) {
+    out.positions.push_back(buf_.positions[at_]);
+    if (s_->normals) out.normals.push_back(buf_.normals[at_]);
+    if (s_->radii) out.radii.push_back(buf_.radii[at_]);
+    if (s_->colors) out.colors.push_back(buf_.colors[at_]);
+    ++next_;
+    if (++at_ == buf_.positions.size() && !done()) fill();
+  }
+
+ private:
+  void fill() {
+    const std::size_t n = std::min(buffer_, e_.count - next_);
+    read_records(*f_, *s_, e_, next_, n, buf_);
+    const std::size_t record = sizeof(Vec3f) * (s_->normals ? 2 : 1) + (s_->radii ? sizeof(float) : 0) + (s_->colors ? sizeof(Rgb8) : 0);
+    const std::uint64_t keys_at = e_.offset + e_.count * record;
+    read_array(*f_, codes_, n, keys_at + next_ * sizeof(std::uint64_t));
+    read_array(*f_, indices_, n, keys_at + (e_.count + next_) * sizeof(std::uint64_t));
+    at_ = 0;
+  }
+  const ScratchFile* f_;
+  const StreamedPoints* s_;
+  Extent e_;
+  std::size_t buffer_, next_ = 0, at_ = 0;
+  PointSet buf_;
+  std::vector<std::uint64_t> codes_, indices_;
+};
+
+// The subsample, picked as the merged points go by: stratum j holds the points
+// [j n / m, (j + 1) n / m) of the Morton order, spatially compact runs of the same number of
+// points, so the subsample follows the input's density as the in-memory bake sees it (an even
+// voxel grid would thin dense parts more than sparse ones). Each stratum keeps its point nearest
+// the stratum's centroid (a real point, with its own attributes; the first in Morton order on ties).
+class StratumPicker {
+ public:
+  StratumPicker(const StreamedPoints& s, std::size_t m) : s_(s), n_(s.points), m_(m) {}
+  void add(const TileData& t, std::size_t i) {
+    stratum_.positions.push_back(t.positions[i]);
+    if (s_.normals) stratum_.normals.push_back(t.normals[i]);
+    if (s_.radii) stratum_.radii.push_back(t.radii[i]);
+    if (s_.colors) stratum_.colors.push_back(t.colors[i]);
+    if (++seen_ == (j_ + 1) * n_ / m_) pick();
+  }
+  PointSet take() { return std::move(out_); }
+
+ private:
+  void pick() {
+    const std::vector<Vec3f>& p = stratum_.positions;
     double c[3] = {0, 0, 0};
-    for (std::size_t i = begin; i < end; ++i)
-      for (int a = 0; a < 3; ++a) c[a] += input.positions[order[i]][a];
-    const Vec3f centroid{float(c[0] / double(end - begin)), float(c[1] / double(end - begin)), float(c[2] / double(end - begin))};
-    std::size_t best = begin;
+    for (const Vec3f& v : p)
+      for (int a = 0; a < 3; ++a) c[a] += v[a];
+    const double k = double(p.size());
+    const Vec3f centroid{float(c[0] / k), float(c[1] / k), float(c[2] / k)};
+    std::size_t best = 0;
     float best_d = INFINITY;
-    for (std::size_t i = begin; i < end; ++i) {
-      const Vec3f v = input.positions[order[i]] - centroid;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const Vec3f v = p[i] - centroid;
       const float d = dot(v, v);
       if (d < best_d) best_d = d, best = i;
     }
-    picked[static_cast<std::size_t>(j)] = order[best];
+    out_.positions.push_back(p[best]);
+    if (s_.normals) out_.normals.push_back(stratum_.normals[best]);
+    if (s_.radii) out_.radii.push_back(stratum_.radii[best]);
+    if (s_.colors) out_.colors.push_back(stratum_.colors[best]);
+    stratum_.positions.clear(), stratum_.normals.clear(), stratum_.radii.clear(), stratum_.colors.clear();
+    ++j_;
   }
-  return permuted(input, picked);
-}
+  const StreamedPoints& s_;
+  std::size_t n_, m_, seen_ = 0, j_ = 0;
+  TileData stratum_;
+  PointSet out_;
+};
 
-
-}  // namespace
-
-StreamedPoints spill_points(const PointSet& input, const std::vector<std::uint32_t>& order, std::size_t subsample,
-                            const std::string& scratch_dir) {
-  if (subsample < 1 || subsample > input.size() || order.size() != input.size())
-    throw std::logic_error("spill_points: a subsample of 1 .. n points of a Morton order of the input");
-  StreamedPoints s;
-  s.points = input.size();
-  s.normals = input.has_normals(), s.radii = input.has_radii(), s.colors = input.has_colors();
-  s.needs_radii = !s.radii || std::find(input.radii.begin(), input.radii.end(), 0.0f) != input.radii.end();
-  s.stride = double(s.points) / double(subsample);
-  s.file = std::make_unique<ScratchFile>("bake", scratch_dir);
-  // 1. The tiles: runs of kTilePoints points of the Morton order, each record array in turn.
-  progress::step("writing " + std::to_string(s.points) + " points to scratch (" + s.file->path() + ")", (s.points + kTilePoints - 1) / kTilePoints);
+// Spill step 3: the runs merged into the bake's file, in tiles of kTilePoints; the subsample
+// picked on the way.
+void merged_tiles(const ScratchFile& runs, const std::vector<Extent>& extents, std::size_t subsample, StreamedPoints& s) {
+  constexpr std::size_t kCursorPoints = 1u << 15;
+  std::vector<RunCursor> cursors;
+  for (const Extent& e : extents) cursors.emplace_back(runs, s, e, kCursorPoints);
+  using Head = std::pair<MortonKey, std::size_t>;
+  const auto later = [](const Head& a, const Head& b) { return b.first < a.first; };
+  std::priority_queue<Head, std::vector<Head>, decltype(later)> heads(later);
+  for (std::size_t r = 0; r < cursors.size(); ++r)
+    if (!cursors[r].done()) heads.push({cursors[r].key(), r});
+  StratumPicker picker(s, subsample);
+  progress::step("writing " + std::to_string(s.points) + " points to scratch in Morton order (" + s.file->path() + ")",
+                 (s.points + kTilePoints - 1) / kTilePoints);
   for (std::size_t first = 0; first < s.points; first += kTilePoints) {
     StreamedPoints::Tile t;
     t.first = static_cast<std::uint32_t>(first);
     t.count = static_cast<std::uint32_t>(std::min(kTilePoints, s.points - first));
     TileData d;
-    for (std::size_t i = first; i < first + t.count; ++i) {
-      const std::uint32_t p = order[i];
-      d.positions.push_back(input.positions[p]);
-      t.bounds.add(input.positions[p]);
-      if (s.normals) d.normals.push_back(input.normals[p]);
-      if (s.radii) d.radii.push_back(input.radii[p]);
-      if (s.colors) d.colors.push_back(input.colors[p]);
+    for (std::size_t i = 0; i < t.count; ++i) {
+      const std::size_t r = heads.top().second;
+      heads.pop();
+      cursors[r].take(d);
+      if (!cursors[r].done()) heads.push({cursors[r].key(), r});
+      t.bounds.add(d.positions.back());
+      picker.add(d, i);
     }
     t.offset = s.file->size();
     append_array(*s.file, d.positions);
     append_array(*s.file, d.normals);
     append_array(*s.file, d.radii);
     append_array(*s.file, d.colors);
-    s.bounds.add(t.bounds.min), s.bounds.add(t.bounds.max);
     s.tiles.push_back(t);
     progress::advance();
   }
-  // 2. The subsample, its radii at the full density where the input has none.
-  progress::step("subsample of " + std::to_string(subsample) + " points");
-  s.subsample = pick_subsample(input, order, subsample);
+  s.subsample = picker.take();
+}
+
+}  // namespace
+
+PointBlocks blocks_of(const PointSet& points) {
+  return [&points](const std::function<void(PointSet&)>& each) {
+    for (std::size_t first = 0; first < points.size(); first += kTilePoints) {
+      std::vector<std::uint32_t> part(std::min(kTilePoints, points.size() - first));
+      for (std::size_t i = 0; i < part.size(); ++i) part[i] = static_cast<std::uint32_t>(first + i);
+      PointSet b = permuted(points, part);
+      each(b);
+    }
+  };
+}
+
+StreamedPoints spill_points(const PointBlocks& blocks, const SpillOptions& o) {
+  StreamedPoints s;
+  s.file = std::make_unique<ScratchFile>("bake", o.scratch_dir);
+  std::vector<Extent> runs;
+  auto run_file = std::make_unique<ScratchFile>("sort", o.scratch_dir);
+  {
+    // 1. The blocks as they come, then 2. sorted in runs; the raw file goes once sorted.
+    ScratchFile raw("read", o.scratch_dir);
+    progress::step("reading points to scratch (" + raw.path() + ")");
+    const std::vector<Extent> arrived = raw_blocks(blocks, raw, s);
+    if (s.points == 0) throw std::logic_error("spill_points: no points");
+    runs = sorted_runs(raw, arrived, std::max<std::size_t>(1, o.sort_points), s, *run_file);
+    s.scratch_peak = raw.size() + run_file->size();
+  }
+  // 3. The runs merged into tiles, the subsample picked on the way.
+  const std::size_t m = std::clamp<std::size_t>(o.subsample, 1, s.points);
+  s.stride = double(s.points) / double(m);
+  merged_tiles(*run_file, runs, m, s);
+  s.scratch_peak = std::max<std::uint64_t>(s.scratch_peak, run_file->size() + s.file->size());
+  run_file.reset();
+  // 4. The subsample's radii at the full density where the input has none.
   if (s.needs_radii) {
     PointSet own;
     own.positions = s.subsample.positions;
     estimate_radii(own);
     const float scale = 1.0f / static_cast<float>(std::sqrt(s.stride));
-    if (s.subsample.radii.empty()) s.subsample.radii.assign(subsample, 0.0f);
-    for (std::size_t j = 0; j < subsample; ++j)
+    if (s.subsample.radii.empty()) s.subsample.radii.assign(m, 0.0f);
+    for (std::size_t j = 0; j < m; ++j)
       if (s.subsample.radii[j] == 0.0f) s.subsample.radii[j] = own.radii[j] * scale;
   }
   return s;
@@ -142,13 +323,21 @@ float link_weights(int found, std::uint32_t* idx, const float* d2, float* w) {
 
 }  // namespace
 
-void link_points(StreamedPoints& s) {
+std::size_t drop_subsample_outliers(StreamedPoints& s, float factor) {
+  OutlierOptions o;
+  o.factor = factor;
+  s.outlier_limit = INFINITY;
+  return drop_outliers(s.subsample, o, &s.outlier_limit);
+}
+
+std::size_t link_points(StreamedPoints& s) {
   // FLANN's kd-tree (analysis/neighborhoods.h): a uniform grid of the subsample's median spacing
   // took 10+ minutes on the scan-like set, whose density varies 100-fold and whose outliers lie
   // hundreds of cells from any other point.
   const NearestPoints tree(s.subsample.positions);
   progress::step("linking " + std::to_string(s.points) + " points to the subsample", s.tiles.size());
   TileData d;
+  std::size_t outliers = 0;
   for (StreamedPoints::Tile& t : s.tiles) {
     read_tile(s, t, d, false);
     const std::size_t c = t.count;
@@ -159,11 +348,20 @@ void link_points(StreamedPoints& s) {
     // Blocks of consecutive points (the tile is in Morton order: nearby queries touch nearby nodes).
     constexpr std::size_t kBlock = 512;
     const std::ptrdiff_t blocks = static_cast<std::ptrdiff_t>((c + kBlock - 1) / kBlock);
-#pragma omp parallel for schedule(dynamic) reduction(max : reach)
+#pragma omp parallel for schedule(dynamic) reduction(max : reach) reduction(+ : outliers)
     for (std::ptrdiff_t b = 0; b < blocks; ++b) {
       const std::size_t first = static_cast<std::size_t>(b) * kBlock, count = std::min(kBlock, c - first);
       const int found = tree.nearest(&d.positions[first], count, kLinks, &d.link_index[first * kLinks], &dist2[first * kLinks]);
-      for (std::size_t i = first; i < first + count; ++i) reach = std::max(reach, link_weights(found, &d.link_index[i * kLinks], &dist2[i * kLinks], &d.link_weight[i * kLinks]));
+      for (std::size_t i = first; i < first + count; ++i) {
+        double mean = 0;  // nearest first: the same sum whatever the thread
+        for (int q = 0; q < found; ++q) mean += std::sqrt(double(dist2[i * kLinks + static_cast<std::size_t>(q)]));
+        if (mean / found > double(s.outlier_limit)) {
+          ++outliers;  // linked to nothing: weights stay 0
+          for (int q = 1; q < kLinks; ++q) d.link_index[i * kLinks + static_cast<std::size_t>(q)] = d.link_index[i * kLinks];
+          continue;
+        }
+        reach = std::max(reach, link_weights(found, &d.link_index[i * kLinks], &dist2[i * kLinks], &d.link_weight[i * kLinks]));
+      }
     }
     t.reach = reach;
     t.links_offset = s.file->size();
@@ -171,6 +369,7 @@ void link_points(StreamedPoints& s) {
     append_array(*s.file, d.link_weight);
     progress::advance();
   }
+  return outliers;
 }
 
 namespace {

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <optional>
 #include <stdexcept>
 #include <tuple>
 
@@ -180,6 +181,39 @@ TEST(Las, FileAndMemoryReadersAgree) {
   }
 }
 
+TEST(Las, StreamedBlocksAreTheWholeRead) {
+  // Colours over 16 bits, and 8-bit colours (the whole file must be scanned to say so); LAS and
+  // LAZ; blocks smaller than a LAZ chunk and larger.
+  test::TempDir dir;
+  std::vector<LasPoint> pts = test::random_las_points(3000, 13, kCentre, 40.0);
+  std::vector<LasPoint> dark = pts;
+  for (LasPoint& p : dark) p.r &= 0xff, p.g &= 0xff, p.b &= 0xff;
+  for (const bool laz : {false, true})
+    for (const bool eight : {false, true})
+      for (const std::size_t block : {std::size_t{700}, std::size_t{5000}}) {
+        SCOPED_TRACE(std::string(laz ? "laz" : "las") + (eight ? " 8-bit" : " 16-bit") + " blocks of " + std::to_string(block));
+        LasWriteOptions o;
+        o.compress = laz, o.chunk_size = 1000;
+        const std::string path = dir.write(laz ? "s.laz" : "s.las", test::las_bytes(eight ? dark : pts, o));
+        ReadReport whole_report, report;
+        const PointSet whole = read_las(path, {}, &whole_report);
+        EXPECT_EQ(streamed_point_count(path), std::optional<std::size_t>(3000));
+        PointSet got;
+        std::size_t blocks = 0;
+        stream_point_set(path, {}, &report, block, [&](PointSet& b) {
+          ++blocks;
+          EXPECT_LE(b.size(), block);
+          got.positions.insert(got.positions.end(), b.positions.begin(), b.positions.end());
+          got.colors.insert(got.colors.end(), b.colors.begin(), b.colors.end());
+        });
+        EXPECT_EQ(blocks, (3000 + block - 1) / block);
+        EXPECT_TRUE(got.positions == whole.positions);
+        EXPECT_TRUE(got.colors == whole.colors);
+        EXPECT_EQ(report.warnings, whole_report.warnings);
+        EXPECT_EQ(report.format, whole_report.format);
+      }
+}
+
 // ---------------------------------------------------------------------------------------------
 // Malformed files: each broken field gives its own code, with the file and a byte offset.
 
@@ -274,12 +308,26 @@ TEST(LasMalformed, TruncationsAndBitFlipsNeverCrash) {
     std::memcpy(&point_offset, &good[96], 4);
     const std::size_t head = point_offset + 8;
     const auto text = [](std::size_t i) { return i >= 26 && i < 90; };
+    // Streamed (stream_point_set, in blocks of 7), a cut file is read or refused as a whole read
+    // is: the same error code, else the same points.
     for (std::size_t n = 0; n < good.size(); n += n < head ? 1 : 7) {
       if (text(n)) continue;
+      const std::string cut = good.substr(0, n);
+      std::string whole_code = "accepted", stream_code = "accepted";
+      std::vector<Vec3f> whole, streamed;
       try {
-        decode(good.substr(0, n), "cut.las");
-      } catch (const InputError&) {
+        whole = decode(cut, "cut.las").positions;
+      } catch (const InputError& e) {
+        whole_code = e.code();
       }
+      try {
+        const ByteView v(reinterpret_cast<const std::uint8_t*>(cut.data()), cut.size());
+        stream_point_set(v, "cut.las", {}, nullptr, 7, [&](PointSet& b) { streamed.insert(streamed.end(), b.positions.begin(), b.positions.end()); });
+      } catch (const InputError& e) {
+        stream_code = e.code();
+      }
+      ASSERT_EQ(stream_code, whole_code) << "cut at " << n;
+      if (whole_code == "accepted") ASSERT_TRUE(streamed == whole) << "cut at " << n;
     }
     for (std::size_t i = 0; i < good.size(); i += i < head ? 1 : 5) {
       if (text(i)) continue;

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <optional>
 
 #include "core/error.h"
 #include "io/model_io.h"
@@ -164,6 +165,64 @@ TEST(PlyRead, DropNonFiniteOnRequest) {
   EXPECT_EQ(report.dropped_nonfinite, 2u);
   ASSERT_EQ(m.points.size(), 2u);
   EXPECT_TRUE(m.points.colors[1] == (Rgb8{4, 4, 4}));
+}
+
+// The points a stream hands over, its blocks concatenated; `sizes` gets each block's size.
+PointSet streamed(const std::string& path, const ReadOptions& o, ReadReport* report, std::size_t block,
+                  std::vector<std::size_t>& sizes) {
+  PointSet all;
+  stream_point_set(path, o, report, block, [&](PointSet& b) {
+    sizes.push_back(b.size());
+    all.positions.insert(all.positions.end(), b.positions.begin(), b.positions.end());
+    all.normals.insert(all.normals.end(), b.normals.begin(), b.normals.end());
+    all.colors.insert(all.colors.end(), b.colors.begin(), b.colors.end());
+    all.radii.insert(all.radii.end(), b.radii.begin(), b.radii.end());
+    all.comments = b.comments;
+  });
+  return all;
+}
+
+TEST(PlyRead, StreamedBlocksAreTheWholeRead) {
+  test::TempDir dir;
+  PointSet p = generate_shape("sphere", {5000, 3});
+  p.radii.assign(p.size(), 0.01f);
+  p.colors.assign(p.size(), Rgb8{1, 2, 3});
+  p.comments = {"made by a test"};
+  write_ply(dir.path("s.ply"), p);
+  EXPECT_EQ(streamed_point_count(dir.path("s.ply")), std::optional<std::size_t>(5000));
+  const PointSet whole = read_ply(dir.path("s.ply")).points;
+  std::vector<std::size_t> sizes;
+  ReadReport report;
+  const PointSet got = streamed(dir.path("s.ply"), {}, &report, 1200, sizes);
+  EXPECT_EQ(sizes, (std::vector<std::size_t>{1200, 1200, 1200, 1200, 200}));
+  EXPECT_TRUE(got.positions == whole.positions);
+  EXPECT_TRUE(got.normals == whole.normals);
+  EXPECT_TRUE(got.radii == whole.radii);
+  EXPECT_TRUE(got.colors == whole.colors);
+  EXPECT_EQ(got.comments, whole.comments);
+  EXPECT_EQ(report.format, "ply (binary_little_endian)");
+  // Non-finite points dropped block by block, counted; refused without --drop-nonfinite.
+  const std::string f = dir.write("n.ply",
+                                  "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\n"
+                                  "property float z\nend_header\n0 0 0\nnan 0 0\n1 1 0\n1 inf 0\n1 1 1\n");
+  sizes.clear();
+  EXPECT_THROW(streamed(f, {}, nullptr, 2, sizes), InputError);
+  ReadOptions drop;
+  drop.drop_nonfinite = true;
+  ReadReport dropped;
+  sizes.clear();
+  const PointSet finite = streamed(f, drop, &dropped, 2, sizes);
+  EXPECT_EQ(dropped.dropped_nonfinite, 2u);
+  EXPECT_EQ(sizes, (std::vector<std::size_t>{1, 1, 1}));
+  EXPECT_TRUE(finite.positions == (std::vector<Vec3f>{{0, 0, 0}, {1, 1, 0}, {1, 1, 1}}));
+  // A mesh does not stream; its count is not offered.
+  const std::string mesh = dir.write("m.ply",
+                                     "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                     "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                                     "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  EXPECT_EQ(streamed_point_count(mesh), std::nullopt);
+  EXPECT_THROW(streamed(mesh, {}, nullptr, 2, sizes), UsageError);
+  EXPECT_EQ(streamed_point_count(dir.write("x.xyz", "0 0 0\n")), std::nullopt);
 }
 
 TEST(PlyRead, DropNonFiniteMeshVerticesTakesTheirTriangles) {

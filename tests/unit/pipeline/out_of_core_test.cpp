@@ -6,6 +6,7 @@
 #include <omp.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -82,7 +83,7 @@ TEST(OutOfCore, EveryPointAsSubsampleGivesTheInMemoryTextures) {
   const PointSet input = generate_shape("torus", {6000, 3});
   const Level l = in_memory_level(input, 30);
   const std::string dir = temp_folder("textures");
-  StreamedPoints s = spill_points(input, morton_order(input.positions), input.size(), dir);
+  StreamedPoints s = spill_points(blocks_of(input), {input.size(), input.size(), dir});
   ASSERT_EQ(s.subsample.size(), input.size());
   EXPECT_TRUE(s.subsample.positions == l.sorted.positions);
   EXPECT_GT(s.tiles.size(), 0u);
@@ -119,15 +120,82 @@ TEST(OutOfCore, EveryPointAsSubsampleGivesTheInMemoryTextures) {
 TEST(OutOfCore, SubsampleIsEvenAndLinksInterpolate) {
   const PointSet input = generate_shape("sphere", {8000, 2});
   const std::string dir = temp_folder("links");
-  StreamedPoints s = spill_points(input, morton_order(input.positions), 2000, dir);
+  StreamedPoints s = spill_points(blocks_of(input), {2000, input.size(), dir});
   EXPECT_EQ(s.subsample.size(), 2000u);
   EXPECT_DOUBLE_EQ(s.stride, 4.0);
-  link_points(s);
+  EXPECT_EQ(link_points(s), 0u);
   // Every tile's reach is about the subsample's spacing, far below the sphere's size.
   for (const StreamedPoints::Tile& t : s.tiles) {
     EXPECT_GT(t.reach, 0.0f);
     EXPECT_LT(t.reach, 0.1f * s.bounds.diagonal());
   }
+  std::filesystem::remove_all(dir);
+}
+
+// The points read back from the scratch file's tiles, in file order.
+std::vector<Vec3f> tile_positions(const StreamedPoints& s) {
+  std::vector<Vec3f> out;
+  for (const StreamedPoints::Tile& t : s.tiles) {
+    std::vector<Vec3f> p(t.count);
+    s.file->read(p.data(), p.size() * sizeof(Vec3f), t.offset);
+    out.insert(out.end(), p.begin(), p.end());
+  }
+  return out;
+}
+
+// Blocks of `size` points (copies), as a reader hands them over.
+PointBlocks blocks_of_size(const PointSet& points, std::size_t size) {
+  return [&points, size](const std::function<void(PointSet&)>& each) {
+    for (std::size_t first = 0; first < points.size(); first += size) {
+      std::vector<std::uint32_t> part;
+      for (std::size_t i = first; i < std::min(points.size(), first + size); ++i) part.push_back(static_cast<std::uint32_t>(i));
+      PointSet b = permuted(points, part);
+      each(b);
+    }
+  };
+}
+
+TEST(OutOfCore, SpillSortedOnDiskIsTheMortonOrderWhateverTheRunsAndBlocks) {
+  // A shuffled set with coincident points (ties by arrival) and more points than a tile.
+  PointSet input = generate_shape("sphere", {100000, 4});
+  for (std::size_t i = 0; i < 5000; ++i) input.positions[i + 50000] = input.positions[i];
+  const std::vector<Vec3f> expected = permuted(input, morton_order(input.positions)).positions;
+  const std::string dir = temp_folder("sort");
+  const StreamedPoints one = spill_points(blocks_of(input), {3000, input.size(), dir});
+  EXPECT_TRUE(tile_positions(one) == expected);
+  EXPECT_GT(one.tiles.size(), 1u);
+  // Blocks of 777 points sorted in runs of about 10k, 7 points: the same tiles and subsample.
+  for (std::size_t run : {std::size_t{10000}, std::size_t{7}}) {
+    SCOPED_TRACE("runs of " + std::to_string(run));
+    const StreamedPoints many = spill_points(blocks_of_size(input, 777), {3000, run, dir});
+    EXPECT_TRUE(tile_positions(many) == expected);
+    EXPECT_TRUE(many.subsample.positions == one.subsample.positions);
+    EXPECT_TRUE(many.subsample.normals == one.subsample.normals);
+    EXPECT_GT(many.scratch_peak, std::uint64_t{2} * input.size() * sizeof(Vec3f));
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST(OutOfCore, OutliersAreJudgedOnTheSubsampleAndTheLinks) {
+  // A sphere with 200 strays far out: the subsample's strays go, and every stray full point is
+  // linked to nothing; factor 0 keeps them all.
+  PointSet input = generate_shape("sphere", {40000, 6});
+  for (std::size_t i = 0; i < 200; ++i) {
+    const float a = 0.7f * float(i);
+    input.positions[i * 199] = Vec3f{3.0f * std::cos(a), 3.0f * std::sin(a), 0.01f * float(i)};
+  }
+  const std::string dir = temp_folder("outliers");
+  StreamedPoints s = spill_points(blocks_of(input), {10000, input.size(), dir});
+  const std::size_t sub = s.subsample.size();
+  const std::size_t gone = drop_subsample_outliers(s, 10.0f);
+  EXPECT_GT(gone, 0u);
+  EXPECT_LE(gone, 200u);
+  EXPECT_EQ(s.subsample.size(), sub - gone);
+  EXPECT_TRUE(std::isfinite(s.outlier_limit));
+  EXPECT_EQ(link_points(s), 200u);
+  StreamedPoints kept = spill_points(blocks_of(input), {10000, input.size(), dir});
+  EXPECT_EQ(drop_subsample_outliers(kept, 0.0f), 0u);
+  EXPECT_EQ(link_points(kept), 0u);
   std::filesystem::remove_all(dir);
 }
 
@@ -162,6 +230,13 @@ TEST(OutOfCore, BakePastTheLimitRunsOutOfCoreAndIsDeterministic) {
     EXPECT_NEAR(double(a.levels[k].primitives), double(m.levels[k].primitives), 0.05 * double(m.levels[k].primitives));
     EXPECT_TRUE(a.levels[k].glb == b.levels[k].glb) << "level " << k << " differs between 1 and 2 threads";
   }
+  // From a stream, as a reader hands the blocks over: the same bake (no outliers to drop).
+  o.outlier_factor = 10;
+  const BakeResult c = bake(blocks_of_size(input, 4321), a.memory, o, "torus");
+  EXPECT_EQ(c.points, 40000u);
+  EXPECT_EQ(c.dropped_outliers, 0u);
+  ASSERT_EQ(c.levels.size(), 2u);
+  for (std::size_t k = 0; k < 2; ++k) EXPECT_TRUE(c.levels[k].glb == a.levels[k].glb) << "level " << k << " differs from a stream";
   EXPECT_TRUE(std::filesystem::is_empty(o.scratch_dir)) << "the scratch file is left behind";
   std::filesystem::remove_all(o.scratch_dir);
 }
