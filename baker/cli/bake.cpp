@@ -91,12 +91,13 @@ CommandSpec bake_spec() {
                                                                          "whose estimated need (384 MB + 1.35 x (440 + 8 k) bytes a point) is larger bakes out of core:\n"
                                                                          "decomposed on a subsample that fits, its textures resampled from every point, read\n"
                                                                          "back in tiles from a scratch file in $TMPDIR (removed at the end, on Ctrl-C and on\n"
-                                                                         "SIGTERM); manifest out_of_core, report memory. A mesh past it is refused (bake.memory)"},
+                                                                         "SIGTERM); LAS/LAZ and point-only PLY are read a block at a time, never whole; manifest\n"
+                                                                         "out_of_core, report memory. A mesh past it is refused (bake.memory)"},
                     drop_nonfinite_option(),
                     {"outliers", 0, "F", "10", "point sets: drop the points farther than F x the median spacing from their 8 nearest\n"
                                               "neighbours (mean distance): strays and a scanner's mixed pixels, which would veil the\n"
-                                              "coarse levels; the measuring's truth drops them too (report dropped_outliers); 0 keeps\n"
-                                              "every point"},
+                                              "coarse levels; the measuring's truth drops them too (report dropped_outliers); out of\n"
+                                              "core judged on the subsample and each point's links to it; 0 keeps every point"},
                     {"quiet", 'q', "", "", "no progress and no summary on stderr (progress: on a terminal one line, redrawn;\n"
                                            "otherwise a line every 5 s or QF_PROGRESS_SECONDS: the step running and its count)"}},
                    1, 1};

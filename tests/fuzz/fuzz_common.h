@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <string>
 
 #include "core/error.h"
@@ -82,6 +83,45 @@ inline void read_and_check(const std::uint8_t* data, std::size_t size, const std
     }
   }
   QF_FUZZ_CHECK(!"a file read with drop_nonfinite still reports a non-finite coordinate");
+}
+
+// A file that streams (LAS/LAZ, a PLY of points) read 7 points at a time: the blocks are the
+// whole read's points in order, with the same attributes, or the stream fails with InputError
+// where the whole read did (`whole`: the whole read's set; nullopt where it threw InputError).
+// UsageError says the file does not stream (a PLY with faces), which only a set read whole as a
+// point set contradicts.
+inline void check_streamed(ByteView bytes, const std::string& path, const ReadOptions& options, const std::optional<PointSet>& whole) {
+  constexpr std::size_t kBlock = 7;
+  PointSet got;
+  bool failed = false;
+  try {
+    stream_point_set(bytes, path, options, nullptr, kBlock, [&](PointSet& b) {
+      QF_FUZZ_CHECK(b.size() > 0 && b.size() <= kBlock);
+      check_points(b);
+      got.positions.insert(got.positions.end(), b.positions.begin(), b.positions.end());
+      got.normals.insert(got.normals.end(), b.normals.begin(), b.normals.end());
+      got.radii.insert(got.radii.end(), b.radii.begin(), b.radii.end());
+      got.colors.insert(got.colors.end(), b.colors.begin(), b.colors.end());
+      if (got.scalars.empty()) got.scalars = std::vector<ScalarField>(b.scalars.size());
+      QF_FUZZ_CHECK(got.scalars.size() == b.scalars.size());
+      for (std::size_t k = 0; k < b.scalars.size(); ++k)
+        got.scalars[k].values.insert(got.scalars[k].values.end(), b.scalars[k].values.begin(), b.scalars[k].values.end());
+    });
+  } catch (const InputError& e) {
+    QF_FUZZ_CHECK(e.file() == path);
+    failed = true;
+  } catch (const UsageError&) {
+    QF_FUZZ_CHECK(!whole);
+    return;
+  }
+  QF_FUZZ_CHECK(failed == !whole);
+  if (!whole) return;
+  QF_FUZZ_CHECK(got.positions == whole->positions);
+  QF_FUZZ_CHECK(got.normals == whole->normals);
+  QF_FUZZ_CHECK(got.radii == whole->radii);
+  QF_FUZZ_CHECK(got.colors == whole->colors);
+  QF_FUZZ_CHECK(got.scalars.size() == whole->scalars.size());
+  for (std::size_t k = 0; k < got.scalars.size(); ++k) QF_FUZZ_CHECK(got.scalars[k].values == whole->scalars[k].values);
 }
 
 }  // namespace qf::fuzz
