@@ -347,14 +347,34 @@ void plain_items(const tinygltf::Model& m, const std::vector<TriangleGroup>& gro
   }
 }
 
+// The accessor one of the extension's arrays names; -1 when the key is absent. Files baked by
+// quasiflat 0.7 and earlier held the arrays in the JSON itself.
+int extension_accessor(const tinygltf::Value& ext, const char* key, const std::string& path) {
+  if (!ext.Has(key)) return -1;
+  const tinygltf::Value& v = ext.Get(key);
+  if (!v.IsInt())
+    fail(path, "extension", std::string(kImpostorExtension) + " " + key +
+                                " is not an accessor index (a file baked by quasiflat 0.7 or earlier, which held it as a JSON array: bake the asset again)");
+  return v.GetNumberAsInt();
+}
+std::vector<std::uint32_t> extension_integers(const AccessorReader& read, const tinygltf::Value& ext, const char* key, const std::string& path) {
+  const int accessor = extension_accessor(ext, key, path);
+  return accessor < 0 ? std::vector<std::uint32_t>() : read.indices(accessor);
+}
+
 // Step 2 with the extension: quad k is the k-th pair of triangles of the mesh's primitives taken
 // in order (the writer emits one primitive per atlas image, 4 vertices and 2 triangles a quad);
 // its plane comes from its corners as for plain glTF, the domains and the graph from the extension.
 void extension_items(const tinygltf::Model& m, const tinygltf::Value& ext, const std::string& path,
                      const std::vector<TriangleGroup>& groups, std::uint32_t white, ImpostorScene& s) {
   const auto quads = static_cast<std::size_t>(to_integer<std::uint32_t>(ext.Get("quadCount").GetNumberAsDouble(), path, "quadCount"));
-  s.offsets = number_array<std::uint32_t>(ext, "neighborOffsets", path);
-  s.neighbors = number_array<std::uint32_t>(ext, "neighbors", path);
+  const AccessorReader read{m, path};
+  s.offsets = extension_integers(read, ext, "neighborOffsets", path);
+  s.neighbors = extension_integers(read, ext, "neighbors", path);
+  s.domains = extension_integers(read, ext, "domain", path);
+  if (const int errors = extension_accessor(ext, "error", path); errors >= 0) s.errors = read.floats(errors, 1);
+  if ((!s.domains.empty() && s.domains.size() != quads) || s.errors.size() != s.domains.size())
+    fail(path, "extension", std::string(kImpostorExtension) + " domain and error do not hold quadCount " + std::to_string(quads) + " entries each");
   if (s.offsets.size() != quads + 1 || s.offsets.back() != s.neighbors.size())
     fail(path, "extension", std::string(kImpostorExtension) + " neighbour rows do not match quadCount " + std::to_string(quads));
   for (std::size_t k = 0; k < quads; ++k)

@@ -38,6 +38,10 @@ struct ImpostorScene {
   // The neighbour graph as compressed rows over items: neighbours of item k are
   // neighbors[offsets[k] .. offsets[k+1]). Empty offsets when the file has no extension.
   std::vector<std::uint32_t> offsets, neighbors;
+  // Per item, from the extension (empty without it): its basis function's index at the level, and
+  // the mean distance of its domain's points to its plane.
+  std::vector<std::uint32_t> domains;
+  std::vector<float> errors;
   bool has_extension = false;
   int level = -1;               // AMG level, from the extension
   float alpha_ref = 0.1f;       // lock-by-depth alpha test (the extension's alphaRef)

@@ -103,28 +103,23 @@ struct Quads {
   std::set<std::pair<long long, long long>> edges;  // by domain, smaller first
 };
 
-// The quads of an impostor level: domains, errors and graph from its extension, planes from the
-// runtime's reading of its vertices (`scene`: quad k is item k).
-std::optional<Quads> impostor_quads(const Json& j, const AnyScene& scene) {
-  if (!j.contains("extensions") || !j["extensions"].contains(kImpostorExtension)) return std::nullopt;
-  const Json& e = j["extensions"][kImpostorExtension];
+// The quads of an impostor level as the runtime read them (`scene`: quad k is item k): domains,
+// errors and graph from its extension, planes from its vertices.
+std::optional<Quads> impostor_quads(const AnyScene& scene) {
+  if (scene.kind != AnyScene::kImpostor || !scene.impostor.has_extension) return std::nullopt;
+  const ImpostorScene& s = scene.impostor;
   Quads q;
-  q.level = e.value("level", -1LL);
-  const std::size_t n = e.value("quadCount", std::size_t{0});
-  const std::vector<Item>& items = scene.impostor.items;
-  if (!e.contains("domain") || e["domain"].size() != n || !e.contains("error") || e["error"].size() != n || scene.kind != AnyScene::kImpostor ||
-      items.size() != n)
-    return q;
-  for (std::size_t k = 0; k < n; ++k) {
-    q.domain.push_back(e["domain"][k].get<long long>());
-    q.center.push_back(items[k].center);
-    q.normal.push_back(items[k].normal);
-    q.error.push_back(e["error"][k].get<double>());
+  q.level = s.level;
+  if (s.domains.size() != s.items.size()) return q;
+  for (std::size_t k = 0; k < s.items.size(); ++k) {
+    q.domain.push_back(s.domains[k]);
+    q.center.push_back(s.items[k].center);
+    q.normal.push_back(s.items[k].normal);
+    q.error.push_back(s.errors[k]);
   }
-  const Json& off = e["neighborOffsets"];
-  for (std::size_t k = 0; k + 1 < off.size() && k < n; ++k)
-    for (std::size_t i = off[k].get<std::size_t>(); i < off[k + 1].get<std::size_t>(); ++i) {
-      const long long a = q.domain[k], b = q.domain[e["neighbors"][i].get<std::size_t>()];
+  for (std::size_t k = 0; k + 1 < s.offsets.size() && k < s.items.size(); ++k)
+    for (std::uint32_t i = s.offsets[k]; i < s.offsets[k + 1]; ++i) {
+      const long long a = q.domain[k], b = q.domain[s.neighbors[i]];
       q.edges.insert({std::min(a, b), std::max(a, b)});
     }
   return q;
@@ -427,11 +422,10 @@ void json_changes(const Json& a, const Json& b, const std::string& at, OJson& ou
 
 // A changed .glb the runtime draws: its structure (quads matched by domain, else what it holds),
 // its texels and its renders, into `r`. Returns whether it stays within the thresholds.
-bool drawn_glb_diff(OJson& r, const std::string& name, const std::string& pa, const std::string& pb, const Json& ja, const Json& jb,
-                    const DiffOptions& o) {
+bool drawn_glb_diff(OJson& r, const std::string& name, const std::string& pa, const std::string& pb, const DiffOptions& o) {
   bool within = true;
   const AnyScene sa = load_scene(pa), sb = load_scene(pb);
-  const std::optional<Quads> qa = impostor_quads(ja, sa), qb = impostor_quads(jb, sb);
+  const std::optional<Quads> qa = impostor_quads(sa), qb = impostor_quads(sb);
   if (qa && qb) {
     double change = 0;
     r["structure"] = quad_diff(*qa, *qb, sa.bounds().diagonal(), change);
@@ -496,7 +490,7 @@ OJson diff_pair(const std::string& name, const std::string& pa, const std::strin
     r["within_thresholds"] = false;
     return r;
   }
-  r["within_thresholds"] = drawn_glb_diff(r, name, pa, pb, ja, jb, o);
+  r["within_thresholds"] = drawn_glb_diff(r, name, pa, pb, o);
   return r;
 }
 

@@ -40,9 +40,11 @@ int add_view(tinygltf::Model& m, const void* data, std::size_t bytes, int target
 }
 
 // A float VECn accessor with exact min/max (of the float32 values as stored).
-int add_floats(tinygltf::Model& m, const std::vector<float>& v, int components, int type, bool bounds) {
+// `target`: the bufferView's (vertex data; 0 for other data).
+int add_floats(tinygltf::Model& m, const std::vector<float>& v, int components, int type, bool bounds,
+               int target = TINYGLTF_TARGET_ARRAY_BUFFER) {
   tinygltf::Accessor a;
-  a.bufferView = add_view(m, v.data(), v.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
+  a.bufferView = add_view(m, v.data(), v.size() * sizeof(float), target);
   a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
   a.count = v.size() / static_cast<std::size_t>(components);
   a.type = type;
@@ -74,15 +76,25 @@ int add_normalized(tinygltf::Model& m, const void* bytes, std::size_t count, int
   return static_cast<int>(m.accessors.size() - 1);
 }
 
-Value number_array(const std::vector<float>& v) {
-  Value::Array a;
-  for (float x : v) a.push_back(Value(canonical_double(x)));
-  return Value(a);
+// A SCALAR accessor of unsigned integers that are neither vertices nor indices (the extension's
+// per-quad arrays): the narrowest component type that holds every value, so a level of a few
+// hundred quads pays 1-2 bytes an entry; returns its index.
+template <class T>
+int add_scalars_as(tinygltf::Model& m, const std::vector<std::uint32_t>& v, int component_type) {
+  const std::vector<T> narrow(v.begin(), v.end());
+  tinygltf::Accessor a;
+  a.bufferView = add_view(m, narrow.data(), narrow.size() * sizeof(T), 0);
+  a.componentType = component_type;
+  a.count = v.size();
+  a.type = TINYGLTF_TYPE_SCALAR;
+  m.accessors.push_back(a);
+  return static_cast<int>(m.accessors.size() - 1);
 }
-Value int_array(const std::vector<std::uint32_t>& v) {
-  Value::Array a;
-  for (std::uint32_t x : v) a.push_back(Value(static_cast<int>(x)));
-  return Value(a);
+int add_unsigned(tinygltf::Model& m, const std::vector<std::uint32_t>& v) {
+  const std::uint32_t top = v.empty() ? 0 : *std::max_element(v.begin(), v.end());
+  if (top <= 0xff) return add_scalars_as<std::uint8_t>(m, v, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE);
+  if (top <= 0xffff) return add_scalars_as<std::uint16_t>(m, v, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+  return add_scalars_as<std::uint32_t>(m, v, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT);
 }
 
 // What a texture holds: how its mip levels are made and how it is encoded.
@@ -402,10 +414,12 @@ int add_level(tinygltf::Model& m, const ImpostorLevel& level, const GltfOptions&
 }
 
 // The extension's object: per quad its domain and error, and the neighbour graph as compressed
-// rows, quads in the file's order (quad_file_order). A quad's plane and atlas rectangle are in its
-// vertices (positions, UVs) and its primitive's material, so the extension does not repeat them
-// (they were two thirds of its bytes). Empty arrays are left out (tinygltf 2.7 writes them as null).
-Value impostor_extension(const ImpostorLevel& level) {
+// rows, quads in the file's order (quad_file_order), the four arrays as accessors of the file's
+// buffer (in JSON they were ~12 bytes an entry, 55 KB of bunny00's 873-quad level). A quad's
+// plane and atlas rectangle are in its vertices (positions, UVs) and its primitive's material, so
+// the extension does not repeat them. An array with no entries is left out (an accessor counts
+// at least one).
+Value impostor_extension(tinygltf::Model& m, const ImpostorLevel& level) {
   const std::vector<std::size_t> order = quad_file_order(level);
   std::vector<std::uint32_t> rank(order.size());
   for (std::size_t i = 0; i < order.size(); ++i) rank[order[i]] = static_cast<std::uint32_t>(i);
@@ -425,13 +439,13 @@ Value impostor_extension(const ImpostorLevel& level) {
                     {"quadCount", Value(static_cast<int>(level.quads.size()))},
                     {"blend", Value(std::string("additive_sorted_lock_by_depth"))},
                     {"alphaRef", Value(canonical_double(level.alpha_ref))},
-                    {"neighborOffsets", int_array(offsets)}};
+                    {"neighborOffsets", Value(add_unsigned(m, offsets))}};
   if (level.alpha_exponent != 1) ext["alphaExponent"] = Value(canonical_double(level.alpha_exponent));
   if (!level.quads.empty()) {
-    ext["domain"] = int_array(domain);
-    ext["error"] = number_array(errors);
+    ext["domain"] = Value(add_unsigned(m, domain));
+    ext["error"] = Value(add_floats(m, errors, 1, TINYGLTF_TYPE_SCALAR, false, 0));
   }
-  if (!neighbors.empty()) ext["neighbors"] = int_array(neighbors);
+  if (!neighbors.empty()) ext["neighbors"] = Value(add_unsigned(m, neighbors));
   return Value(ext);
 }
 
@@ -462,7 +476,7 @@ std::vector<std::uint8_t> encode_glb(const ImpostorLevel& level, const GltfOptio
   scene.nodes.push_back(add_level(m, level, options, "impostor_", cost));
   m.scenes.push_back(scene);
   m.defaultScene = 0;
-  m.extensions[kImpostorExtension] = impostor_extension(level);
+  m.extensions[kImpostorExtension] = impostor_extension(m, level);
   m.extensionsUsed.push_back(kImpostorExtension);
   return write_glb(m);
 }

@@ -51,18 +51,51 @@ void shift(int& index, std::size_t base) {
 
 // Appends part `p` to `m` (one buffer, every index shifted; its materials, images and textures
 // named PREFIX + their name, so that an importer keeps the parts' assets apart); returns the index
-// of its scene's root node in `m`.
+// of its scene's root node in `m`. Only the accessors its meshes use and the bufferViews of those
+// and of its images are copied: a level's QF_impostor_level arrays, accessors that the extension
+// alone names, stay behind with it.
 int append_part(tinygltf::Model& m, tinygltf::Model p, const std::string& prefix) {
-  const std::size_t views = m.bufferViews.size(), accessors = m.accessors.size(), images = m.images.size(),
-                    samplers = m.samplers.size(), textures = m.textures.size(), materials = m.materials.size(),
-                    meshes = m.meshes.size(), nodes = m.nodes.size();
+  const std::size_t images = m.images.size(), samplers = m.samplers.size(), textures = m.textures.size(),
+                    materials = m.materials.size(), meshes = m.meshes.size(), nodes = m.nodes.size();
+  // 1. What the part's meshes and images use.
+  std::vector<int> accessor_of(p.accessors.size(), -1), view_of(p.bufferViews.size(), -1);
+  const auto use = [&](int accessor) {
+    if (accessor < 0) return;
+    accessor_of.at(static_cast<std::size_t>(accessor)) = 0;
+    if (const int v = p.accessors[static_cast<std::size_t>(accessor)].bufferView; v >= 0) view_of.at(static_cast<std::size_t>(v)) = 0;
+  };
+  for (const tinygltf::Mesh& mesh : p.meshes)
+    for (const tinygltf::Primitive& prim : mesh.primitives) {
+      for (const auto& [name, accessor] : prim.attributes) use(accessor);
+      use(prim.indices);
+    }
+  for (const tinygltf::Image& i : p.images)
+    if (i.bufferView >= 0) view_of.at(static_cast<std::size_t>(i.bufferView)) = 0;
+  // 2. Those views' bytes, each 4-byte aligned, then the accessors over them.
   std::vector<unsigned char>& buffer = m.buffers[0].data;
-  buffer.resize((buffer.size() + 3) / 4 * 4, 0);
-  const std::size_t offset = buffer.size();
-  if (!p.buffers.empty()) buffer.insert(buffer.end(), p.buffers[0].data.begin(), p.buffers[0].data.end());
-  for (tinygltf::BufferView& v : p.bufferViews) v.buffer = 0, v.byteOffset += offset, m.bufferViews.push_back(v);
-  for (tinygltf::Accessor& a : p.accessors) shift(a.bufferView, views), m.accessors.push_back(a);
-  for (tinygltf::Image& i : p.images) shift(i.bufferView, views), i.name = prefix + i.name, m.images.push_back(i);
+  for (std::size_t k = 0; k < p.bufferViews.size(); ++k) {
+    if (view_of[k] < 0) continue;
+    tinygltf::BufferView v = p.bufferViews[k];
+    buffer.resize((buffer.size() + 3) / 4 * 4, 0);
+    if (p.buffers.empty() || v.byteOffset + v.byteLength > p.buffers[0].data.size()) throw std::invalid_argument("a part's bufferView reaches past its buffer");
+    const auto* bytes = p.buffers[0].data.data() + v.byteOffset;
+    v.buffer = 0;
+    v.byteOffset = buffer.size();
+    buffer.insert(buffer.end(), bytes, bytes + v.byteLength);
+    view_of[k] = static_cast<int>(m.bufferViews.size());
+    m.bufferViews.push_back(v);
+  }
+  const auto remap = [](int& index, const std::vector<int>& to) {
+    if (index >= 0) index = to.at(static_cast<std::size_t>(index));
+  };
+  for (std::size_t k = 0; k < p.accessors.size(); ++k) {
+    if (accessor_of[k] < 0) continue;
+    tinygltf::Accessor a = p.accessors[k];
+    remap(a.bufferView, view_of);
+    accessor_of[k] = static_cast<int>(m.accessors.size());
+    m.accessors.push_back(a);
+  }
+  for (tinygltf::Image& i : p.images) remap(i.bufferView, view_of), i.name = prefix + i.name, m.images.push_back(i);
   for (tinygltf::Sampler& s : p.samplers) m.samplers.push_back(s);
   for (tinygltf::Texture& t : p.textures) {
     shift(t.source, images), shift(t.sampler, samplers), t.name = prefix + t.name;
@@ -83,8 +116,8 @@ int append_part(tinygltf::Model& m, tinygltf::Model p, const std::string& prefix
   }
   for (tinygltf::Mesh& mesh : p.meshes) {
     for (tinygltf::Primitive& prim : mesh.primitives) {
-      for (auto& [name, accessor] : prim.attributes) shift(accessor, accessors);
-      shift(prim.indices, accessors);
+      for (auto& [name, accessor] : prim.attributes) remap(accessor, accessor_of);
+      remap(prim.indices, accessor_of);
       shift(prim.material, materials);
     }
     m.meshes.push_back(mesh);

@@ -106,8 +106,18 @@ for f in files:
     ext = doc["extensions"]["QF_impostor_level"]
     errors = list(check.iter_errors(ext))
     n = ext["quadCount"]
-    if len(ext["neighborOffsets"]) != n + 1 or (n and len(ext["domain"]) != n) or (n and len(ext["error"]) != n):
+    # The arrays are accessors of the file's buffer: unsigned integers (floats for the errors),
+    # SCALAR, in bufferViews with no target, as many as quadCount says.
+    def array(key, float_ok=False):
+        a = doc["accessors"][ext[key]]
+        kinds = (5126,) if float_ok else (5121, 5123, 5125)
+        if a["type"] != "SCALAR" or a["componentType"] not in kinds or "target" in doc["bufferViews"][a["bufferView"]]:
+            errors.append(f"{key}: not a SCALAR accessor of the right type outside vertex and index data")
+        return a["count"]
+    if array("neighborOffsets") != n + 1 or (n and array("domain") != n) or (n and array("error", True) != n):
         errors.append("array lengths do not match quadCount")
+    if "neighbors" in ext:
+        array("neighbors")
     # Quad k is the k-th pair of triangles of the mesh's primitives: six indices a quad.
     indices = sum(doc["accessors"][p["indices"]]["count"] for m in doc["meshes"] for p in m["primitives"])
     if indices != 6 * n:

@@ -5,10 +5,12 @@
 
 #include <algorithm>
 #include <set>
+#include <sstream>
 
 #include "amg/basis.h"
 #include "amg/hierarchy.h"
 #include "analysis/analysis.h"
+#include "core/error.h"
 #include "domains/merge.h"
 #include "gltf/glb.h"
 #include "primitives/texture.h"
@@ -36,6 +38,29 @@ tinygltf::Model load(const std::vector<std::uint8_t>& glb) {
   EXPECT_TRUE(loader.LoadBinaryFromMemory(&m, &err, &warn, glb.data(), static_cast<unsigned>(glb.size()))) << err;
   EXPECT_TRUE(err.empty()) << err;
   return m;
+}
+
+// One of the extension's arrays: the values of the accessor its key names (unsigned integers of
+// the narrowest type, or floats), in a bufferView with no target (neither vertices nor indices).
+std::vector<double> extension_array(const tinygltf::Model& m, const char* key) {
+  const tinygltf::Value& index = m.extensions.at(kImpostorExtension).Get(key);
+  EXPECT_TRUE(index.IsInt()) << key;
+  const tinygltf::Accessor& a = m.accessors.at(static_cast<std::size_t>(index.GetNumberAsInt()));
+  const tinygltf::BufferView& v = m.bufferViews.at(static_cast<std::size_t>(a.bufferView));
+  EXPECT_EQ(v.target, 0) << key;
+  EXPECT_EQ(a.type, TINYGLTF_TYPE_SCALAR) << key;
+  const unsigned char* p = m.buffers.at(0).data.data() + v.byteOffset + a.byteOffset;
+  std::vector<double> out;
+  for (std::size_t i = 0; i < a.count; ++i) {
+    switch (a.componentType) {
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: out.push_back(p[i]); break;
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: out.push_back(reinterpret_cast<const std::uint16_t*>(p)[i]); break;
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: out.push_back(reinterpret_cast<const std::uint32_t*>(p)[i]); break;
+      case TINYGLTF_COMPONENT_TYPE_FLOAT: out.push_back(reinterpret_cast<const float*>(p)[i]); break;
+      default: ADD_FAILURE() << key << ": component type " << a.componentType;
+    }
+  }
+  return out;
 }
 
 TEST(Glb, QuadsMaterialsAndExtension) {
@@ -87,14 +112,26 @@ TEST(Glb, QuadsMaterialsAndExtension) {
   EXPECT_EQ(ext.Get("quadCount").GetNumberAsInt(), 8);
   EXPECT_EQ(ext.Get("blend").Get<std::string>(), "additive_sorted_lock_by_depth");
   EXPECT_DOUBLE_EQ(ext.Get("alphaRef").GetNumberAsDouble(), 0.1);
-  EXPECT_EQ(ext.Get("domain").ArrayLen(), 8u);
-  EXPECT_EQ(ext.Get("error").ArrayLen(), 8u);
+  // Its arrays are accessors: domains of a few quads in bytes, errors as floats.
+  const std::vector<double> domain = extension_array(m, "domain"), error = extension_array(m, "error");
+  EXPECT_EQ(m.accessors.at(static_cast<std::size_t>(ext.Get("domain").GetNumberAsInt())).componentType, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE);
+  ASSERT_EQ(domain.size(), 8u);
+  ASSERT_EQ(error.size(), 8u);
+  for (std::size_t k = 0; k < 8; ++k) {
+    const auto q = std::find_if(level.quads.begin(), level.quads.end(), [&](const SupportRect& r) { return r.domain == domain[k]; });
+    ASSERT_NE(q, level.quads.end());
+    EXPECT_EQ(error[k], static_cast<float>(q->error));
+  }
   // The planes and atlas rectangles are in the vertices, not repeated in the extension.
   EXPECT_FALSE(ext.Has("center"));
   EXPECT_FALSE(ext.Has("normal"));
   EXPECT_FALSE(ext.Has("atlasRect"));
-  EXPECT_EQ(ext.Get("neighborOffsets").ArrayLen(), 9u);
-  EXPECT_EQ(ext.Get("neighbors").ArrayLen(), 24u);
+  const std::vector<double> offsets = extension_array(m, "neighborOffsets"), neighbors = extension_array(m, "neighbors");
+  ASSERT_EQ(offsets.size(), 9u);
+  EXPECT_EQ(offsets.front(), 0);
+  EXPECT_EQ(offsets.back(), 24);
+  EXPECT_EQ(neighbors.size(), 24u);  // every face of the octahedron has three neighbours
+  for (std::size_t k = 0; k < 8; ++k) EXPECT_EQ(offsets[k + 1] - offsets[k], 3) << k;
   EXPECT_FALSE(ext.Has("alphaExponent"));  // Psi itself
   // Same input, same bytes.
   EXPECT_EQ(encode_glb(level), glb);
@@ -102,6 +139,56 @@ TEST(Glb, QuadsMaterialsAndExtension) {
   ImpostorLevel sharp = level;
   sharp.alpha_exponent = 2;
   EXPECT_DOUBLE_EQ(load(encode_glb(sharp)).extensions.at(kImpostorExtension).Get("alphaExponent").GetNumberAsDouble(), 2.0);
+}
+
+// The runtime reads the graph from the accessors; a file of quasiflat 0.7 or earlier, whose arrays
+// were JSON, or one whose accessor index names nothing, is refused with a clear error.
+TEST(Glb, RuntimeReadsTheGraphAccessorsAndRefusesTheJsonArrays) {
+  const ImpostorLevel level = octahedron_faces();
+  const render::BakedScene scene = render::load_baked(encode_glb(level), "level.glb");
+  EXPECT_EQ(scene.impostor.offsets.size(), 9u);
+  EXPECT_EQ(scene.impostor.neighbors.size(), 24u);
+  const auto rewritten = [&](const char* key, tinygltf::Value value) {
+    tinygltf::Model m = load(encode_glb(level));
+    tinygltf::Value::Object ext = m.extensions.at(kImpostorExtension).Get<tinygltf::Value::Object>();
+    ext[key] = std::move(value);
+    m.extensions[kImpostorExtension] = tinygltf::Value(ext);
+    std::ostringstream out;
+    tinygltf::TinyGLTF().WriteGltfSceneToStream(&m, out, false, true);
+    const std::string bytes = out.str();
+    return std::vector<std::uint8_t>(bytes.begin(), bytes.end());
+  };
+  tinygltf::Value::Array old_rows;
+  for (int k = 0; k <= 8; ++k) old_rows.push_back(tinygltf::Value(3 * k));
+  try {
+    render::load_baked(rewritten("neighborOffsets", tinygltf::Value(old_rows)), "old.glb");
+    ADD_FAILURE() << "a JSON array was read";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.code(), "render.gltf.extension");
+    EXPECT_NE(std::string(e.what()).find("bake the asset again"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(render::load_baked(rewritten("neighbors", tinygltf::Value(999)), "bad.glb"), InputError);
+}
+
+// A file of several levels (MSFT_lod) carries their meshes and images, not the extension's arrays,
+// which only a level's own file has: no accessor is left that nothing uses.
+TEST(Glb, CombinedLevelsLeaveTheExtensionArraysBehind) {
+  const std::vector<std::uint8_t> level = encode_glb(octahedron_faces());
+  const tinygltf::Model part = load(level);
+  const tinygltf::Model m = load(combine_lod_glb({&level, &level}, {0.1, 0}, "two"));
+  std::set<int> used;
+  for (const tinygltf::Mesh& mesh : m.meshes)
+    for (const tinygltf::Primitive& prim : mesh.primitives) {
+      for (const auto& [name, accessor] : prim.attributes) used.insert(accessor);
+      used.insert(prim.indices);
+    }
+  EXPECT_EQ(used.size(), m.accessors.size());
+  EXPECT_EQ(m.accessors.size(), 2 * (part.accessors.size() - 4));  // domain, error, offsets, neighbours
+  EXPECT_EQ(m.images.size(), 2 * part.images.size());
+  EXPECT_FALSE(m.extensions.count(kImpostorExtension));
+  const render::BakedScene scene = render::load_baked(combine_lod_glb({&level, &level}, {0.1, 0}, "two"), "two_lods.glb");
+  ASSERT_EQ(scene.lods.size(), 2u);
+  for (const render::BakedScene& lod : scene.lods) EXPECT_EQ(lod.impostor.items.size(), 8u);
 }
 
 // Quad k of the extension is the k-th quad of the mesh's primitives, also when the atlas spans
@@ -131,13 +218,13 @@ TEST(Glb, ExtensionQuadsFollowThePrimitives) {
   ASSERT_NE(level.atlas.tiles[0].atlas, level.atlas.tiles[1].atlas);  // interleaved
   const render::BakedScene scene = render::load_baked(encode_glb(level), "interleaved.glb");
   const tinygltf::Model model = load(encode_glb(level));
-  const tinygltf::Value& ext = model.extensions.at(kImpostorExtension);
+  const std::vector<double> domains = extension_array(model, "domain");
   ASSERT_EQ(scene.impostor.items.size(), level.quads.size());
   std::vector<bool> seen(level.quads.size(), false);
   std::uint32_t last_image = 0;
   for (std::size_t k = 0; k < level.quads.size(); ++k) {
     // The level's quad with this domain: its plane is what the runtime read for quad k.
-    const auto domain = static_cast<std::uint32_t>(ext.Get("domain").Get(static_cast<int>(k)).GetNumberAsInt());
+    const auto domain = static_cast<std::uint32_t>(domains.at(k));
     std::size_t q = 0;
     while (q < level.quads.size() && level.quads[q].domain != domain) ++q;
     ASSERT_LT(q, level.quads.size());
@@ -156,8 +243,8 @@ TEST(Glb, ExtensionQuadsFollowThePrimitives) {
   std::set<std::pair<std::uint32_t, std::uint32_t>> file_edges, level_edges;
   for (std::size_t k = 0; k < level.quads.size(); ++k)
     for (std::uint32_t i = off[k]; i < off[k + 1]; ++i) {
-      const auto a = static_cast<std::uint32_t>(ext.Get("domain").Get(static_cast<int>(k)).GetNumberAsInt());
-      const auto b = static_cast<std::uint32_t>(ext.Get("domain").Get(static_cast<int>(scene.impostor.neighbors[i])).GetNumberAsInt());
+      const auto a = static_cast<std::uint32_t>(domains.at(k));
+      const auto b = static_cast<std::uint32_t>(domains.at(scene.impostor.neighbors[i]));
       file_edges.insert({std::min(a, b), std::max(a, b)});
     }
   for (const auto& e : level.edges) {
