@@ -267,7 +267,7 @@ NearestPoints::NearestPoints(const std::vector<Vec3f>& points) {
 
 NearestPoints::~NearestPoints() = default;
 
-int NearestPoints::nearest(const Vec3f* queries, std::size_t count, int k, std::uint32_t* index, float* d2) const {
+int NearestPoints::nearest(const Vec3f* queries, std::size_t count, int k, std::uint32_t* index, float* d2, float max_d2) const {
   const std::size_t n = cloud_.size() / 3;
   const int got = static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(k), n));
   // One more than asked (kTieSlack): where it ties with the last, a ball fetches every tie.
@@ -279,14 +279,23 @@ int NearestPoints::nearest(const Vec3f* queries, std::size_t count, int k, std::
   flann::Matrix<float> qm(q.data(), count, 3);
   flann::Matrix<std::size_t> fm(found.data(), count, static_cast<std::size_t>(want));
   flann::Matrix<float> sm(sq.data(), count, static_cast<std::size_t>(want));
-  tree_->index.knnSearch(qm, fm, sm, static_cast<std::size_t>(want), flann::SearchParams(-1, 0.0f, false));
+  if (std::isinf(max_d2)) {
+    tree_->index.knnSearch(qm, fm, sm, static_cast<std::size_t>(want), flann::SearchParams(-1, 0.0f, false));
+  } else {
+    // The `want` nearest within the bound (FLANN's radius is a squared distance for L2); the slot
+    // after the last found holds index -1.
+    flann::SearchParams bounded(-1, 0.0f, false);
+    bounded.max_neighbors = want;
+    tree_->index.radiusSearch(qm, fm, sm, max_d2, bounded);
+  }
   std::vector<Candidate> list;
   for (std::size_t i = 0; i < count; ++i) {
     list.clear();
-    for (std::size_t r = 0; r < static_cast<std::size_t>(want); ++r)
+    for (std::size_t r = 0; r < static_cast<std::size_t>(want) && found[i * want + r] != static_cast<std::size_t>(-1); ++r)
       list.push_back({sq[i * want + r], static_cast<std::uint32_t>(found[i * want + r])});
     std::sort(list.begin(), list.end());
-    if (want > got && list[static_cast<std::size_t>(want) - 1].first == list[static_cast<std::size_t>(got) - 1].first) {
+    if (list.size() == static_cast<std::size_t>(want) && want > got &&
+        list[static_cast<std::size_t>(want) - 1].first == list[static_cast<std::size_t>(got) - 1].first) {
       std::vector<std::vector<std::size_t>> idx;
       std::vector<std::vector<float>> dist;
       flann::Matrix<float> one(q.data() + 3 * i, 1, 3);
@@ -296,8 +305,10 @@ int NearestPoints::nearest(const Vec3f* queries, std::size_t count, int k, std::
       std::sort(list.begin(), list.end());
     }
     for (int j = 0; j < got; ++j) {
-      index[i * static_cast<std::size_t>(k) + static_cast<std::size_t>(j)] = list[static_cast<std::size_t>(j)].second;
-      d2[i * static_cast<std::size_t>(k) + static_cast<std::size_t>(j)] = list[static_cast<std::size_t>(j)].first;
+      const auto at = static_cast<std::size_t>(j);
+      const bool in = at < list.size();
+      index[i * static_cast<std::size_t>(k) + at] = in ? list[at].second : list.empty() ? 0 : list[0].second;
+      d2[i * static_cast<std::size_t>(k) + at] = in ? list[at].first : INFINITY;
     }
   }
   return got;

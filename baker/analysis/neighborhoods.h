@@ -3,6 +3,7 @@
 // inside neighborhoods.cpp.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -56,7 +57,11 @@ class NearestPoints {
 
   // The min(k, size) nearest points of each of `queries`: indices into the set and squared
   // distances, nearest first, at index[q * k + j] and d2[q * k + j]; returns how many a query got.
-  int nearest(const Vec3f* queries, std::size_t count, int k, std::uint32_t* index, float* d2) const;
+  // Only points within squared distance `max_d2` are looked for: a query with fewer there gets
+  // d2 = infinity (and the index of its nearest, else 0) in the slots past them. The bound is what
+  // keeps a query far from every point cheap: unbounded, a kd-tree visits most of its nodes for it.
+  int nearest(const Vec3f* queries, std::size_t count, int k, std::uint32_t* index, float* d2,
+              float max_d2 = INFINITY) const;
 
  private:
   struct Tree;

@@ -336,6 +336,10 @@ std::size_t link_points(StreamedPoints& s) {
   // hundreds of cells from any other point.
   const NearestPoints tree(s.subsample.positions);
   progress::step("linking " + std::to_string(s.points) + " points to the subsample", s.tiles.size());
+  // A point is an outlier where the mean distance to its kLinks nearest passes the limit, which is
+  // sure once the farthest of them is past kLinks x the limit: the search looks no farther, so the
+  // strays far from every subsample point (dropped from it) cost no more than the others.
+  const float bound = std::isinf(s.outlier_limit) ? INFINITY : kLinks * s.outlier_limit;
   TileData d;
   std::size_t outliers = 0;
   for (StreamedPoints::Tile& t : s.tiles) {
@@ -351,7 +355,7 @@ std::size_t link_points(StreamedPoints& s) {
 #pragma omp parallel for schedule(dynamic) reduction(max : reach) reduction(+ : outliers)
     for (std::ptrdiff_t b = 0; b < blocks; ++b) {
       const std::size_t first = static_cast<std::size_t>(b) * kBlock, count = std::min(kBlock, c - first);
-      const int found = tree.nearest(&d.positions[first], count, kLinks, &d.link_index[first * kLinks], &dist2[first * kLinks]);
+      const int found = tree.nearest(&d.positions[first], count, kLinks, &d.link_index[first * kLinks], &dist2[first * kLinks], bound * bound);
       for (std::size_t i = first; i < first + count; ++i) {
         double mean = 0;  // nearest first: the same sum whatever the thread
         for (int q = 0; q < found; ++q) mean += std::sqrt(double(dist2[i * kLinks + static_cast<std::size_t>(q)]));

@@ -267,6 +267,22 @@ TEST(Analysis, NearestPointsAreExactWithTiesByIndex) {
       EXPECT_FLOAT_EQ(d2[q * k + r], all[r].first);
     }
   }
+  // Bounded at a squared distance of 2: the same answer where all k lie within it (ties too); past
+  // it, infinity and the nearest found; a query with none within it (the far outlier) gets
+  // infinity in every slot and a valid index.
+  std::vector<std::uint32_t> bounded_index(index.size());
+  std::vector<float> bounded_d2(index.size());
+  ASSERT_EQ(tree.nearest(queries.data(), queries.size(), k, bounded_index.data(), bounded_d2.data(), 2.0f), k);
+  for (std::size_t i = 0; i < index.size(); ++i) {
+    if (d2[i] <= 2.0f) {
+      EXPECT_EQ(bounded_index[i], index[i]) << i;
+      EXPECT_EQ(bounded_d2[i], d2[i]) << i;
+    } else {
+      EXPECT_TRUE(std::isinf(bounded_d2[i])) << i;
+      EXPECT_EQ(bounded_index[i], d2[i - i % k] <= 2.0f ? index[i - i % k] : 0u) << i;
+    }
+  }
+  EXPECT_TRUE(std::isinf(bounded_d2[(queries.size() - 1) * k]));
   // A set smaller than k: every point, nearest first.
   const NearestPoints two({{0, 0, 0}, {1, 0, 0}});
   const Vec3f x{0.9f, 0, 0};
