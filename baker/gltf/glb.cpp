@@ -288,12 +288,17 @@ std::vector<std::vector<std::uint8_t>> encoded_images(const std::vector<LevelIma
 int add_level_materials(tinygltf::Model& m, const Atlas& atlas, const GltfOptions& options, const std::string& prefix,
                         TextureCost* cost) {
   const int first_material = static_cast<int>(m.materials.size());
-  // 1. Every texture of the level, encoded (in the order they are added below).
+  // 1. Every texture of the level, encoded (in the order they are added below). Normal maps are
+  // stored at half the atlas's size, a quarter of its texels, in the same texture coordinates
+  // (docs/textures.md): lighting varies more slowly over a quad than its colour and alpha edge do.
+  std::vector<TextureImage> normals;
+  for (std::size_t i = 0; i < atlas.normal_images.size(); ++i)
+    normals.push_back(half_level(TextureImage{atlas.widths[i], atlas.heights[i], atlas.normal_images[i]}, {MipOptions::Kind::kNormal}));
   std::vector<LevelImage> images;
   for (std::size_t i = 0; i < atlas.images.size(); ++i) {
     const int w = atlas.widths[i], h = atlas.heights[i];
     images.push_back({&atlas.images[i], w, h, TextureClass::kColor});
-    if (i < atlas.normal_images.size()) images.push_back({&atlas.normal_images[i], w, h, TextureClass::kNormal});
+    if (i < normals.size()) images.push_back({&normals[i].rgba, normals[i].width, normals[i].height, TextureClass::kNormal});
     if (i < atlas.orm_images.size()) images.push_back({&atlas.orm_images[i], w, h, TextureClass::kData});
     if (i < atlas.emissive_images.size()) images.push_back({&atlas.emissive_images[i], w, h, TextureClass::kEmissive});
   }

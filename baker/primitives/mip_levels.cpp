@@ -161,6 +161,10 @@ double alpha_coverage(const TextureImage& image, float cutoff) {
   return image.rgba.empty() ? 0.0 : static_cast<double>(n) / static_cast<double>(image.rgba.size() / 4);
 }
 
+TextureImage half_level(const TextureImage& image, const MipOptions& options) {
+  return to_bytes(half(to_float(bleed(image), options.kind), options.kind), options.kind, 1.0);
+}
+
 std::vector<TextureImage> mip_levels(const TextureImage& base, const MipOptions& options) {
   std::vector<TextureImage> chain{bleed(base)};
   const double base_coverage = options.alpha_cutoff > 0 ? alpha_coverage(chain[0], options.alpha_cutoff) : 0.0;

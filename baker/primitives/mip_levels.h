@@ -32,6 +32,10 @@ struct MipOptions {
 // level's coverage. Same input, same bytes.
 std::vector<TextureImage> mip_levels(const TextureImage& base, const MipOptions& options = {});
 
+// The chain's second element alone: `image` at half its size by the same steps (bleeding, box
+// filtering per kind), its alpha box-filtered and not scaled. Normal maps are stored so (glb.cpp).
+TextureImage half_level(const TextureImage& image, const MipOptions& options = {});
+
 // The share of `image`'s texels a MASK material with `cutoff` shows (alpha / 255 >= cutoff, as a
 // shader compares the texel's float value).
 double alpha_coverage(const TextureImage& image, float cutoff);

@@ -105,6 +105,10 @@ TEST(Glb, QuadsMaterialsAndExtension) {
   EXPECT_EQ(img.mimeType, "image/png");
   EXPECT_EQ(img.width, level.atlas.widths[0]);
   EXPECT_EQ(img.height, level.atlas.heights[0]);
+  // The normal map at half the atlas's size, in the same texture coordinates.
+  const tinygltf::Image& normal = m.images[static_cast<std::size_t>(m.textures[static_cast<std::size_t>(mat.normalTexture.index)].source)];
+  EXPECT_EQ(normal.width, level.atlas.widths[0] / 2);
+  EXPECT_EQ(normal.height, level.atlas.heights[0] / 2);
   // The extension: optional, with one entry per quad and the octahedron's 12 edges (24 half-edges).
   ASSERT_EQ(m.extensionsUsed, (std::vector<std::string>{kQuantizationExtension, kImpostorExtension}));
   EXPECT_EQ(m.extensionsRequired, std::vector<std::string>{kQuantizationExtension});

@@ -117,7 +117,8 @@ TEST(MipLevels, ColourAveragesInLinearLight) {
   EXPECT_EQ(mip_levels(t, {MipOptions::Kind::kLinear, 0})[1].rgba[0], 128);
 }
 
-TEST(MipLevels, NormalsStayUnitLength) {
+// A wavy tangent-space normal map, 16 x 16.
+TextureImage normal_map() {
   TextureImage n;
   n.width = n.height = 16;
   for (int y = 0; y < 16; ++y)
@@ -127,13 +128,26 @@ TEST(MipLevels, NormalsStayUnitLength) {
       for (double v : {ax / len, ay / len, 1 / len}) n.rgba.push_back(static_cast<std::uint8_t>(std::lround((v * 0.5 + 0.5) * 255)));
       n.rgba.push_back(255);
     }
-  for (const TextureImage& level : mip_levels(n, {MipOptions::Kind::kNormal, 0}))
+  return n;
+}
+
+TEST(MipLevels, NormalsStayUnitLength) {
+  for (const TextureImage& level : mip_levels(normal_map(), {MipOptions::Kind::kNormal, 0}))
     for (std::size_t i = 0; i < level.rgba.size(); i += 4) {
       double len2 = 0;
       for (int c = 0; c < 3; ++c) len2 += std::pow(level.rgba[i + static_cast<std::size_t>(c)] / 127.5 - 1, 2);
       EXPECT_NEAR(std::sqrt(len2), 1.0, 0.02) << level.width;
       EXPECT_EQ(level.rgba[i + 3], 255);
     }
+}
+
+// A normal map is stored at half size (glb.cpp): the chain's second level, made alone.
+TEST(MipLevels, HalfLevelIsTheChainsSecond) {
+  const TextureImage n = normal_map();
+  const TextureImage half = half_level(n, {MipOptions::Kind::kNormal, 0});
+  EXPECT_EQ(half.width, 8);
+  EXPECT_EQ(half.height, 8);
+  EXPECT_EQ(half.rgba, mip_levels(n, {MipOptions::Kind::kNormal, 0})[1].rgba);
 }
 
 TEST(MipLevels, Deterministic) {
