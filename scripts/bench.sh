@@ -49,11 +49,12 @@ what=("$@")
 for w in "${what[@]}"; do
   case $w in
     io) build/bin/qf-bench-io ;;
-    las)  # issue 35: 10M points as LAS and LAZ (formats 3 and 7), each read in a fresh process
+    las)  # issue 35: 10M points as LAS and LAZ (formats 3 and 7), each read whole and streamed, in fresh processes
       tmp=$(mktemp -d)
       for f in f3.laz f7.laz f3.las f7.las; do
         build/bin/qf-bench-las write "$tmp/$f" 10000000 "${f:1:1}"
         build/bin/qf-bench-las read "$tmp/$f"
+        build/bin/qf-bench-las stream "$tmp/$f"
         rm -f "$tmp/$f"
       done
       rmdir "$tmp" ;;
