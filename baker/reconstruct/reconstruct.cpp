@@ -4,12 +4,15 @@
 #include <CGAL/Advancing_front_surface_reconstruction.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Random.h>
+#include <boost/iterator/function_output_iterator.hpp>
 
 #include <algorithm>
 #include <array>
 #include <iterator>
 #include <stdexcept>
 #include <vector>
+
+#include "core/deterministic_heap.h"
 
 namespace qf {
 namespace {
@@ -36,28 +39,26 @@ Reconstruction reconstruct_surface(const PointSet& points, const ReconstructOpti
   if (used.size() < 4) throw std::invalid_argument("a reconstruction needs at least 4 points");
   // 2. Advancing front over the 3D Delaunay triangulation of the points (CGAL's defaults: radius
   // ratio bound 5, beta 0.52): facets as triples of indices into `cgal_points`.
-  // Each point nudged by a hash of its index, 1e-7 of the diagonal at most: the front's queue
-  // orders candidates of equal radius by their memory address, so a symmetric set (a generated
-  // torus: many equal radii) gave different meshes as the heap was laid out differently (1 or 2
-  // threads, a batch's -j). Nudged, radii tie only by chance; the mesh keeps the exact positions.
-  const double nudge = 1e-7 * points.bounds().diagonal();
   std::vector<Kernel::Point_3> cgal_points;
   cgal_points.reserve(used.size());
-  for (std::uint32_t i : used) {
-    const Vec3f& p = points.positions[i];
-    std::uint64_t h = (std::uint64_t{i} + 1) * 0x9E3779B97F4A7C15ull;
-    double d[3];
-    for (double& c : d) {
-      h ^= h >> 29, h *= 0xBF58476D1CE4E5B9ull, h ^= h >> 32;
-      c = (double(h >> 11) / double(1ull << 53) - 0.5) * nudge;
-    }
-    cgal_points.emplace_back(p.x + d[0], p.y + d[1], p.z + d[2]);
-  }
+  for (std::uint32_t i : used) cgal_points.emplace_back(points.positions[i].x, points.positions[i].y, points.positions[i].z);
   std::vector<std::array<std::size_t, 3>> facets;
   // The triangulation's insertion order is shuffled by CGAL's default random generator, which is
   // seeded from the clock: a fixed seed makes the same points give the same mesh on every run.
   CGAL::get_default_random() = CGAL::Random(0);
-  CGAL::advancing_front_surface_reconstruction(cgal_points.begin(), cgal_points.end(), std::back_inserter(facets));
+  {
+    // The front orders its candidates by (priority, address): equal radii (a symmetric set such
+    // as the generated torus) and the constant stand-by priorities tie. The reconstruction runs in
+    // a heap of its own, so those addresses, and the mesh, do not depend on the process's earlier
+    // allocations (oni.pwn's mesh differed between 1 and 2 threads, a generated torus's between a
+    // batch's -j). The facets are kept on the process heap.
+    DeterministicHeap heap;
+    CGAL::advancing_front_surface_reconstruction(
+        cgal_points.begin(), cgal_points.end(), boost::make_function_output_iterator([&](const std::array<std::size_t, 3>& f) {
+          DeterministicHeap::Pause outside;
+          facets.push_back(f);
+        }));
+  }
   if (facets.empty()) throw std::invalid_argument("the points form no surface to reconstruct");
   // 3. The mesh: the used points as vertices, their colours carried.
   r.points_used = used.size();
