@@ -10,6 +10,7 @@
 #include <array>
 #include <iterator>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "core/deterministic_heap.h"
@@ -53,11 +54,20 @@ Reconstruction reconstruct_surface(const PointSet& points, const ReconstructOpti
     // allocations (oni.pwn's mesh differed between 1 and 2 threads, a generated torus's between a
     // batch's -j). The facets are kept on the process heap.
     DeterministicHeap heap;
-    CGAL::advancing_front_surface_reconstruction(
-        cgal_points.begin(), cgal_points.end(), boost::make_function_output_iterator([&](const std::array<std::size_t, 3>& f) {
-          DeterministicHeap::Pause outside;
-          facets.push_back(f);
-        }));
+    try {
+      CGAL::advancing_front_surface_reconstruction(
+          cgal_points.begin(), cgal_points.end(), boost::make_function_output_iterator([&](const std::array<std::size_t, 3>& f) {
+            DeterministicHeap::Pause outside;
+            facets.push_back(f);
+          }));
+    } catch (const std::bad_alloc&) {
+      throw;
+    } catch (const std::exception& e) {
+      // CGAL's failures carry strings allocated in the scope's region: their message is copied
+      // out before the region goes.
+      DeterministicHeap::Pause outside;
+      throw std::invalid_argument(std::string("CGAL's advancing front failed: ") + e.what());
+    }
   }
   if (facets.empty()) throw std::invalid_argument("the points form no surface to reconstruct");
   // 3. The mesh: the used points as vertices, their colours carried.

@@ -25,9 +25,9 @@ struct Reconstruction {
   std::size_t points_used = 0;
 };
 
-// The reconstructed surface of `points`. Deterministic (same points, same mesh). Throws
-// std::invalid_argument when fewer than 4 points, or no triangle, remain (all collinear or coplanar
-// in a line).
+// The reconstructed surface of `points`. Deterministic (same points, same mesh, whatever ran before
+// and on whichever thread). Throws std::invalid_argument when fewer than 4 points, or no triangle,
+// remain (all on one line; a flat grid reconstructs), or when CGAL fails on them.
 Reconstruction reconstruct_surface(const PointSet& points, const ReconstructOptions& options = {});
 
 }  // namespace qf

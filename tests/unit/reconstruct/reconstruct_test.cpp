@@ -49,6 +49,18 @@ TEST(Reconstruct, SameMeshWhateverTheHeapsHistoryAndThread) {
   }
 }
 
+TEST(Reconstruct, FlatGridsReconstructLinesAndTooFewPointsAreRefused) {
+  PointSet grid, line;
+  for (int i = 0; i < 400; ++i) {
+    grid.positions.push_back({float(i % 20), float(i / 20), 0.0f});
+    line.positions.push_back({float(i), 2.0f * float(i), 0.0f});
+  }
+  EXPECT_EQ(reconstruct_surface(grid).mesh.triangles.size(), 2u * 19u * 19u);
+  EXPECT_THROW(reconstruct_surface(line), std::invalid_argument);
+  line.positions.resize(3);
+  EXPECT_THROW(reconstruct_surface(line), std::invalid_argument);
+}
+
 // The addresses handed out in a scope, as offsets from its first block.
 std::vector<std::ptrdiff_t> scope_layout() {
   std::vector<std::ptrdiff_t> offsets;  // the result: on the process heap
