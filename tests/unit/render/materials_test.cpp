@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <system_error>
 
 #include <unistd.h>
 
@@ -26,11 +27,24 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The fixture written as a glTF asset in a fresh folder; returns its path.
+// This process's folder for the fixtures, removed when the process ends (each test runs in a
+// process of its own under ctest).
+const fs::path& fixture_folder() {
+  struct Folder {
+    fs::path dir = fs::temp_directory_path() / ("qf_materials_" + std::to_string(::getpid()));
+    ~Folder() {
+      std::error_code ec;
+      fs::remove_all(dir, ec);
+    }
+  };
+  static const Folder folder;
+  return folder.dir;
+}
+
+// The fixture written as a glTF asset in the process's folder; returns its path.
 std::string write_plate(bool varying, const std::string& name, bool occluded = false) {
-  const fs::path dir = fs::temp_directory_path() / ("qf_materials_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const std::string path = (dir / (name + ".glb")).string();
+  fs::create_directories(fixture_folder());
+  const std::string path = (fixture_folder() / (name + ".glb")).string();
   write_bytes_atomically(path, encode_textured_mesh_glb(generate_material_plate(varying, occluded)));
   return path;
 }
