@@ -115,10 +115,10 @@ void* allocate_nothrow(std::size_t bytes, std::size_t align) noexcept {
 DeterministicHeap::DeterministicHeap(std::size_t reserve_bytes) : region_(nullptr) {
   if (t_owned != nullptr) throw std::logic_error("DeterministicHeap scopes do not nest");
   // Address space, not memory: a smaller reserve where the system refuses the whole.
-  void* base = MAP_FAILED;
-  for (; reserve_bytes >= (std::size_t{64} << 20); reserve_bytes /= 2) {
+  void* base = mmap(nullptr, reserve_bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
+  while (base == MAP_FAILED && reserve_bytes > (std::size_t{64} << 20)) {
+    reserve_bytes /= 2;
     base = mmap(nullptr, reserve_bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
-    if (base != MAP_FAILED) break;
   }
   if (base == MAP_FAILED) throw std::bad_alloc();
   Region* r = new Region;  // before routing: the bookkeeping lives on the process heap
@@ -138,6 +138,7 @@ DeterministicHeap::~DeterministicHeap() {
 }
 
 std::size_t DeterministicHeap::peak_bytes() const { return static_cast<const Region*>(region_)->top; }
+std::size_t DeterministicHeap::reserve_bytes() const { return static_cast<const Region*>(region_)->reserve; }
 
 DeterministicHeap::Pause::Pause() : held_(t_routed ? t_owned : nullptr) { t_routed = false; }
 DeterministicHeap::Pause::~Pause() { t_routed = held_ != nullptr; }

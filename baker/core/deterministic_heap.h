@@ -16,10 +16,10 @@ namespace qf {
 
 class DeterministicHeap {
  public:
-  // Reserves `reserve_bytes` of address space (pages are used only as touched) and routes this
-  // thread's operator new into it until destruction. Scopes do not nest. An allocation past the
-  // reserve throws std::bad_alloc.
-  explicit DeterministicHeap(std::size_t reserve_bytes = std::size_t{16} << 30);
+  // Reserves `reserve_bytes` of address space (pages are used only as touched; halved down to
+  // 64 MB while the system refuses it) and routes this thread's operator new into it until
+  // destruction. Scopes do not nest. An allocation past the reserve throws std::bad_alloc.
+  explicit DeterministicHeap(std::size_t reserve_bytes);
   ~DeterministicHeap();
   DeterministicHeap(const DeterministicHeap&) = delete;
   DeterministicHeap& operator=(const DeterministicHeap&) = delete;
@@ -37,7 +37,8 @@ class DeterministicHeap {
     void* held_;
   };
 
-  std::size_t peak_bytes() const;  // the region's high-water mark so far
+  std::size_t peak_bytes() const;     // the region's high-water mark so far
+  std::size_t reserve_bytes() const;  // the region's size (less than asked where the system refused that)
 
  private:
   void* region_;

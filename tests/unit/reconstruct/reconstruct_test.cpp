@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <memory>
+#include <new>
 #include <stdexcept>
 #include <thread>
 #include <vector>
@@ -64,7 +65,7 @@ TEST(Reconstruct, FlatGridsReconstructLinesAndTooFewPointsAreRefused) {
 // The addresses handed out in a scope, as offsets from its first block.
 std::vector<std::ptrdiff_t> scope_layout() {
   std::vector<std::ptrdiff_t> offsets;  // the result: on the process heap
-  DeterministicHeap heap;
+  DeterministicHeap heap(std::size_t{64} << 20);
   std::vector<std::unique_ptr<int[]>> blocks;
   blocks.reserve(64);
   const char* origin = reinterpret_cast<const char*>(blocks.data());
@@ -89,12 +90,20 @@ TEST(DeterministicHeap, SameLayoutWhateverCameBefore) {
 }
 
 TEST(DeterministicHeap, OverAlignedBlocksAndNoNesting) {
-  DeterministicHeap heap;
+  DeterministicHeap heap(std::size_t{64} << 20);
   struct alignas(64) Wide { char c[100]; };
   std::unique_ptr<Wide> w(new Wide);
   EXPECT_EQ(reinterpret_cast<std::uintptr_t>(w.get()) % 64, 0u);
-  EXPECT_THROW(DeterministicHeap nested, std::logic_error);
+  EXPECT_THROW(DeterministicHeap nested(std::size_t{64} << 20), std::logic_error);
   EXPECT_GT(heap.peak_bytes(), sizeof(Wide));
+}
+
+TEST(DeterministicHeap, AnAllocationPastTheReserveThrowsBadAlloc) {
+  DeterministicHeap heap(std::size_t{1} << 20);
+  EXPECT_EQ(heap.reserve_bytes(), std::size_t{1} << 20);
+  EXPECT_THROW(std::vector<char>(std::size_t{2} << 20), std::bad_alloc);
+  std::vector<char> fits(std::size_t{256} << 10);  // and the region still serves what fits
+  EXPECT_EQ(fits.size(), std::size_t{256} << 10);
 }
 
 }  // namespace
