@@ -4,77 +4,49 @@
 
 #include <sys/mman.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdlib>
+#include <memory_resource>
 #include <new>
 #include <stdexcept>
 
 namespace qf {
 namespace {
 
-// Size classes: multiples of 16 bytes up to 1 KiB, then powers of two. Each block starts with a
-// 16-byte header (its class, and the distance from the block's start to the pointer handed out, for
-// over-aligned requests); a freed block goes on its class's list, and the next request of that class
-// takes the most recently freed one. Nothing here depends on anything outside the scope.
-constexpr std::size_t kHeader = 16;
-constexpr std::size_t kSmallLimit = 1024;
-constexpr std::size_t kSmallClasses = kSmallLimit / 16;
-constexpr std::size_t kClasses = kSmallClasses + 48;
-
+// The region: a pool resource (size-classed free lists, the standard library's) over a monotonic
+// buffer on the mapped range, with nothing behind it (past the range: std::bad_alloc). Neither
+// takes memory from elsewhere, so its layout follows the scope's requests alone. Each block is
+// preceded by a header with its size and alignment, which an unsized delete needs to give it back.
 struct Header {
-  std::uint32_t size_class;
-  std::uint32_t offset;  // from the block's start to the pointer handed out
-  std::uint64_t unused;
+  std::size_t bytes;  // as asked, the header and alignment padding included
+  std::size_t align;
 };
+constexpr std::size_t kHeader = 16;  // sizeof(Header), and operator new's default alignment
 static_assert(sizeof(Header) == kHeader);
 
-std::size_t class_of(std::size_t bytes) {
-  if (bytes <= kSmallLimit) return bytes == 0 ? 0 : (bytes - 1) / 16;
-  std::size_t c = kSmallClasses, size = 2 * kSmallLimit;
-  while (size < bytes) size *= 2, ++c;
-  return c;
-}
-
-std::size_t class_size(std::size_t c) { return c < kSmallClasses ? 16 * (c + 1) : (2 * kSmallLimit) << (c - kSmallClasses); }
-
 struct Region {
-  char* base = nullptr;
-  std::size_t reserve = 0;
-  std::size_t top = 0;  // the high-water mark: blocks are carved from here when their list is empty
-  void* free_list[kClasses] = {};
+  Region(void* mapped, std::size_t bytes)
+      : base(static_cast<char*>(mapped)), reserve(bytes), range(mapped, bytes, std::pmr::null_memory_resource()), pool(&range) {}
+  char* base;
+  std::size_t reserve;
+  std::pmr::monotonic_buffer_resource range;
+  std::pmr::unsynchronized_pool_resource pool;
 
   bool contains(const void* p) const {
     const char* c = static_cast<const char*>(p);
     return c >= base && c < base + reserve;
   }
-
   void* allocate(std::size_t bytes, std::size_t align) {
-    const std::size_t pad = align > kHeader ? align - kHeader : 0;
+    align = std::max(align, kHeader);
     if (bytes > reserve) throw std::bad_alloc();
-    const std::size_t c = class_of(bytes + kHeader + pad);
-    if (c >= kClasses) throw std::bad_alloc();
-    char* block = static_cast<char*>(free_list[c]);
-    if (block != nullptr) {
-      free_list[c] = *reinterpret_cast<void**>(block);
-    } else {
-      if (class_size(c) > reserve - top) throw std::bad_alloc();
-      block = base + top;
-      top += class_size(c);
-    }
-    const std::uintptr_t first = reinterpret_cast<std::uintptr_t>(block) + kHeader;
-    char* p = reinterpret_cast<char*>(align > kHeader ? (first + align - 1) / align * align : first);
-    Header* h = reinterpret_cast<Header*>(p - kHeader);
-    h->size_class = static_cast<std::uint32_t>(c);
-    h->offset = static_cast<std::uint32_t>(p - block);
+    char* p = static_cast<char*>(pool.allocate(bytes + align, align)) + align;
+    *reinterpret_cast<Header*>(p - kHeader) = {bytes + align, align};
     return p;
   }
-
   void release(void* p) {
-    const Header* h = reinterpret_cast<const Header*>(static_cast<char*>(p) - kHeader);
-    char* block = static_cast<char*>(p) - h->offset;
-    const std::size_t c = h->size_class;
-    *reinterpret_cast<void**>(block) = free_list[c];
-    free_list[c] = block;
+    const Header h = *reinterpret_cast<const Header*>(static_cast<char*>(p) - kHeader);
+    pool.deallocate(static_cast<char*>(p) - h.align, h.bytes, h.align);
   }
 };
 
@@ -121,9 +93,7 @@ DeterministicHeap::DeterministicHeap(std::size_t reserve_bytes) : region_(nullpt
     base = mmap(nullptr, reserve_bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_NORESERVE, -1, 0);
   }
   if (base == MAP_FAILED) throw std::bad_alloc();
-  Region* r = new Region;  // before routing: the bookkeeping lives on the process heap
-  r->base = static_cast<char*>(base);
-  r->reserve = reserve_bytes;
+  Region* r = new Region(base, reserve_bytes);  // before routing: the bookkeeping lives on the process heap
   region_ = r;
   t_owned = r;
   t_routed = true;
@@ -133,11 +103,12 @@ DeterministicHeap::~DeterministicHeap() {
   Region* r = static_cast<Region*>(region_);
   t_owned = nullptr;
   t_routed = false;
-  munmap(r->base, r->reserve);
-  delete r;
+  const std::size_t reserve = r->reserve;
+  void* base = r->base;
+  delete r;  // the resources' destructors give their blocks back to the range, which is then unmapped
+  munmap(base, reserve);
 }
 
-std::size_t DeterministicHeap::peak_bytes() const { return static_cast<const Region*>(region_)->top; }
 std::size_t DeterministicHeap::reserve_bytes() const { return static_cast<const Region*>(region_)->reserve; }
 
 DeterministicHeap::Pause::Pause() : held_(t_routed ? t_owned : nullptr) { t_routed = false; }

@@ -37,7 +37,6 @@ class DeterministicHeap {
     void* held_;
   };
 
-  std::size_t peak_bytes() const;     // the region's high-water mark so far
   std::size_t reserve_bytes() const;  // the region's size (less than asked where the system refused that)
 
  private:
