@@ -41,8 +41,8 @@ function transformPoint(m, x, y, z) {
 
 // World-space positions of a primitive, taking the first node that draws its mesh (quantization
 // moves the dequantizing scale and offset into that node's transform).
-function worldPositions(doc, mesh, prim) {
-	const node = doc.getRoot().listNodes().find((n) => n.getMesh() === mesh);
+function worldPositions(doc, mesh, prim, drawnBy = null) {
+	const node = drawnBy || doc.getRoot().listNodes().find((n) => n.getMesh() === mesh);
 	const m = node ? node.getWorldMatrix() : [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1];
 	const position = prim.getAttribute('POSITION');
 	const out = [];
@@ -55,10 +55,13 @@ function worldPositions(doc, mesh, prim) {
 }
 
 // The quads in the order QF_impostor_level numbers them: primitives in order, then each run of
-// 6 indices (2 triangles, 4 distinct vertices). Each quad is given by its centroid.
+// 6 indices (2 triangles, 4 distinct vertices). Each quad is given by its centroid; `canonical`
+// says whether every quad still has the triangles (0, 1, 2), (0, 2, 3) of its corners that the
+// schema promises (a runtime may take the corners in that order).
 function quadCentroids(doc) {
 	const centroids = [];
 	let broken = false;
+	let canonical = true;
 	for (const mesh of doc.getRoot().listMeshes()) {
 		for (const prim of mesh.listPrimitives()) {
 			if (prim.getMode() !== TRIANGLES) continue;
@@ -70,13 +73,15 @@ function quadCentroids(doc) {
 				const verts = new Set();
 				for (let k = 0; k < 6; k++) verts.add(indices ? indices.getScalar(q + k) : q + k);
 				if (verts.size !== 4) broken = true;
+				const at = (k) => (indices ? indices.getScalar(q + k) : q + k);
+				if (at(3) !== at(0) || at(4) !== at(2)) canonical = false;
 				const c = [0, 0, 0];
 				for (const v of verts) for (let a = 0; a < 3; a++) c[a] += pos[v][a] / verts.size;
 				centroids.push(c);
 			}
 		}
 	}
-	return { centroids, broken };
+	return { centroids, broken, canonical };
 }
 
 function bboxDiagonal(points) {
@@ -115,12 +120,14 @@ export async function inspectGlb(bytes) {
 			const accessor = accessors[levelDef[key]];
 			arrays[key] = accessor ? Array.from(accessor.getArray()) : null;
 		}
-		const quads = quadCentroids(doc);
-		result.impostorLevel = {
-			def: levelDef, arrays, quads: quads.centroids, quadsBroken: quads.broken,
-			diagonal: bboxDiagonal(quads.centroids),
-		};
+		result.impostorLevel = { def: levelDef, arrays };
 	}
+	// The quads, with or without the extension (to tell a dropped block from reordered quads).
+	const quads = quadCentroids(doc);
+	result.quads = quads.centroids;
+	result.quadsBroken = quads.broken;
+	result.quadsCanonical = quads.canonical;
+	result.quadsDiagonal = bboxDiagonal(quads.centroids);
 
 	const pointDef = json.extensions?.[QF_POINT_IMPOSTOR];
 	if (pointDef) result.pointImpostor = { def: pointDef };
@@ -140,7 +147,16 @@ export async function inspectGlb(bytes) {
 		if (!lodDef) return;
 		const chain = [i, ...lodDef.ids].map((id) => {
 			const mesh = nodes[id]?.getMesh();
-			return { node: id, name: nodes[id]?.getName() ?? null, triangles: mesh ? triangleCount(mesh) : 0 };
+			// Where the level is drawn: the centre of its world-space bounds. A transform that moves
+			// the scene but not the LOD nodes outside it (center) shows up as levels apart.
+			const pts = mesh ? mesh.listPrimitives().flatMap((p) => worldPositions(doc, mesh, p, nodes[id])) : [];
+			const lo = [Infinity, Infinity, Infinity];
+			const hi = [-Infinity, -Infinity, -Infinity];
+			for (const p of pts) for (let a = 0; a < 3; a++) { lo[a] = Math.min(lo[a], p[a]); hi[a] = Math.max(hi[a], p[a]); }
+			return {
+				node: id, name: nodes[id]?.getName() ?? null, triangles: mesh ? triangleCount(mesh) : 0,
+				center: lo.map((v, a) => (v + hi[a]) / 2), diagonal: bboxDiagonal(pts),
+			};
 		});
 		lods.push({ node: i, levels: chain, screencoverage: nodeDef.extras?.MSFT_screencoverage ?? null });
 	});
@@ -148,6 +164,18 @@ export async function inspectGlb(bytes) {
 	// Every mesh-carrying node, in a scene or not: what a file without MSFT_lod still holds.
 	result.meshNodes = nodes.filter((n) => n.getMesh()).length;
 	return result;
+}
+
+// Whether b[i] is a[i] for every i, to `tol`, after moving both sets' means to the origin: `center`
+// moves the whole model, which a runtime does not mind, so only the order and the shape count.
+function sameSequence(a, b, tol) {
+	if (a.length !== b.length) return false;
+	if (!a.length) return true;
+	const mean = (s) => s.reduce((m, p) => [m[0] + p[0] / s.length, m[1] + p[1] / s.length, m[2] + p[2] / s.length], [0, 0, 0]);
+	const ma = mean(a);
+	const mb = mean(b);
+	return a.every((p, i) => Math.hypot(p[0] - ma[0] - b[i][0] + mb[0], p[1] - ma[1] - b[i][1] + mb[1],
+		p[2] - ma[2] - b[i][2] + mb[2]) <= tol);
 }
 
 /**
@@ -171,21 +199,21 @@ export function compareInspections(before, after, { tolerance = 2e-3 } = {}) {
 			}) && Object.keys(a.arrays).length === Object.keys(b.arrays).length;
 			out.impostorLevel.quadCountEqual = a.def.quadCount === b.def.quadCount;
 		}
-		// The quads themselves, with or without the extension.
-		const tol = tolerance * b.diagonal;
-		const qa = after.impostorLevel ? after.impostorLevel.quads : null;
-		out.quadsInOrder = !!qa && qa.length === b.quads.length
-			&& b.quads.every((c, i) => Math.hypot(c[0] - qa[i][0], c[1] - qa[i][1], c[2] - qa[i][2]) <= tol);
+		out.quadCountAfter = after.quads.length;
+		out.quadsInOrder = !after.quadsBroken && (after.quadsCanonical || !before.quadsCanonical)
+			&& sameSequence(before.quads, after.quads, tolerance * before.quadsDiagonal);
 	}
 	if (before.pointImpostor) {
 		out.pointImpostor = { kept: !!after.pointImpostor };
 		if (after.pointImpostor) {
-			out.pointImpostor.defEqual = JSON.stringify(after.pointImpostor.def) === JSON.stringify(before.pointImpostor.def);
+			// Key by key: a writer may order the keys differently.
+			const a = after.pointImpostor.def;
+			const b = before.pointImpostor.def;
+			const keys = new Set([...Object.keys(a), ...Object.keys(b)]);
+			out.pointImpostor.defEqual = [...keys].every((k) => JSON.stringify(a[k]) === JSON.stringify(b[k]));
 		}
-		const tol = tolerance * before.pointsDiagonal;
 		out.pointCountAfter = after.points.length;
-		out.pointsInOrder = after.points.length === before.points.length
-			&& before.points.every((p, i) => Math.hypot(p[0] - after.points[i][0], p[1] - after.points[i][1], p[2] - after.points[i][2]) <= tol);
+		out.pointsInOrder = sameSequence(before.points, after.points, tolerance * before.pointsDiagonal);
 	}
 	if (before.lods.length) {
 		const levelsBefore = before.lods[0].levels.length;
@@ -195,6 +223,15 @@ export function compareInspections(before, after, { tolerance = 2e-3 } = {}) {
 			levelsBefore, levelsAfter,
 			trianglesBefore: before.lods[0].levels.map((l) => l.triangles),
 			trianglesAfter: after.lods.length ? after.lods[0].levels.map((l) => l.triangles) : null,
+			// Each level where it was relative to the first, to 1% of the first's size.
+			levelsAligned: after.lods.length > 0 && after.lods[0].levels.length === levelsBefore
+				&& after.lods[0].levels.every((l, i) => {
+					const b0 = before.lods[0].levels[0];
+					const a0 = after.lods[0].levels[0];
+					const bi = before.lods[0].levels[i];
+					const d = [0, 1, 2].map((k) => (l.center[k] - a0.center[k]) - (bi.center[k] - b0.center[k]));
+					return Math.hypot(...d) <= 0.01 * b0.diagonal;
+				}),
 			screencoverageKept: JSON.stringify(after.lods[0]?.screencoverage) === JSON.stringify(before.lods[0].screencoverage),
 		};
 	}
