@@ -61,3 +61,14 @@ for pkg in validate-gltf/node_modules/gltf-validator three-render/node_modules/t
     npm ci --prefix "$dir" --no-audit --no-fund --loglevel=error
   fi
 done
+
+# glTF-Transform (library and CLI) and gltfpack with quasiflat's extensions, pinned by
+# tools/gltf-transform-qf/package-lock.json: the gltf_transform_qf test and docs/toolchain.md.
+tools_dir="$(dirname "$scripts_dir")/tools"
+for pkg in gltf-transform-qf/node_modules/@gltf-transform/cli gltf-transform-qf/node_modules/gltfpack; do
+  dir="$tools_dir/${pkg%%/node_modules/*}"
+  if [[ ! -f "$tools_dir/$pkg/package.json" ]]; then
+    echo "install-deps: installing ${dir##*/} (npm ci)"
+    npm ci --prefix "$dir" --no-audit --no-fund --loglevel=error
+  fi
+done
