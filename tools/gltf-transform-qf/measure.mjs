@@ -12,8 +12,7 @@ import { inspectGlb, compareInspections } from './src/inspect.mjs';
 
 // The flags that keep an impostor level's quads and a point impostor's points as they are in
 // `optimize` (docs/toolchain.md says why each is needed).
-export const SAFE_OPTIMIZE = ['--simplify', 'false', '--join', 'false', '--weld', 'false', '--instance', 'false',
-	'--flatten', 'false', '--palette', 'false'];
+export const SAFE_OPTIMIZE = ['--simplify', 'false', '--prune-attributes', 'false'];
 
 const RUNS = [
 	['copy', (i, o) => gltfTransform('copy', i, o, [], { qf: false }), 'no'],
@@ -33,7 +32,9 @@ const RUNS = [
 	['dedup', (i, o) => gltfTransform('dedup', i, o), 'yes'],
 	['reorder', (i, o) => gltfTransform('reorder', i, o), 'yes'],
 	['weld', (i, o) => gltfTransform('weld', i, o), 'yes'],
+	['prune --keep-attributes true', (i, o) => gltfTransform('prune', i, o, ['--keep-attributes', 'true']), 'yes'],
 	['simplify', (i, o) => gltfTransform('simplify', i, o), 'yes'],
+	['simplify --ratio 0.5 --error 0.01', (i, o) => gltfTransform('simplify', i, o, ['--ratio', '0.5', '--error', '0.01']), 'yes'],
 	['join', (i, o) => gltfTransform('join', i, o), 'yes'],
 	['flatten', (i, o) => gltfTransform('flatten', i, o), 'yes'],
 	['instance', (i, o) => gltfTransform('instance', i, o), 'yes'],
@@ -58,6 +59,7 @@ function describe(before, after, cmp) {
 		cells.push(cmp.pointImpostor.kept ? 'kept' : '**dropped**');
 		cells.push(`${cmp.pointCountAfter}${cmp.pointsInOrder ? ', in order' : ', **not in order**'}`);
 	}
+	if (!cmp.lod) cells.push(cmp.semanticsKept ? 'kept' : `**lost ${cmp.semanticsLost.join(', ')}**`);
 	if (cmp.lod) {
 		const l = cmp.lod;
 		cells.push(l.kept ? 'kept' : '**dropped**');
@@ -72,6 +74,7 @@ function header(before) {
 	const h = ['command', 'our config', 'bytes'];
 	if (before.impostorLevel) h.push('QF_impostor_level', 'quad k in place');
 	if (before.pointImpostor) h.push('QF_point_impostor', 'points');
+	if (!before.lods.length) h.push('attributes');
 	if (before.lods.length) h.push('MSFT_lod', 'levels', 'triangles per level', 'levels aligned');
 	return h;
 }

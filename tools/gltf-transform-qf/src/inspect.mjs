@@ -139,6 +139,10 @@ export async function inspectGlb(bytes) {
 		}
 	}
 	result.points = pointPrims.flat();
+	// The vertex attributes of every primitive (prune drops a point impostor's NORMAL, which no
+	// material asks for, unless told to keep attributes).
+	result.semantics = [...new Set(doc.getRoot().listMeshes().flatMap((m) => m.listPrimitives())
+		.flatMap((p) => p.listSemantics()))].sort();
 	result.pointsDiagonal = bboxDiagonal(result.points);
 
 	const lods = [];
@@ -215,6 +219,8 @@ export function compareInspections(before, after, { tolerance = 2e-3 } = {}) {
 		out.pointCountAfter = after.points.length;
 		out.pointsInOrder = sameSequence(before.points, after.points, tolerance * before.pointsDiagonal);
 	}
+	out.semanticsKept = before.semantics.every((sem) => after.semantics.includes(sem));
+	out.semanticsLost = before.semantics.filter((sem) => !after.semantics.includes(sem));
 	if (before.lods.length) {
 		const levelsBefore = before.lods[0].levels.length;
 		const levelsAfter = after.lods.length ? after.lods[0].levels.length : (after.meshNodes ? 1 : 0);
