@@ -15,7 +15,7 @@ function run(tool, args) {
 
 /** `gltf-transform <command> IN OUT ...flags`, with our config when `qf` is true. */
 export function gltfTransform(command, input, output, flags = [], { qf = true } = {}) {
-	const args = [command, input, output, ...flags];
+	const args = [command, input, ...(output === undefined ? [] : [output]), ...flags];
 	if (qf) args.push('--config', CONFIG);
 	return run('gltf-transform', args);
 }

@@ -135,7 +135,11 @@ export async function inspectGlb(bytes) {
 	const pointPrims = [];
 	for (const mesh of doc.getRoot().listMeshes()) {
 		for (const prim of mesh.listPrimitives()) {
-			if (prim.getMode() === POINTS) pointPrims.push(worldPositions(doc, mesh, prim));
+			if (prim.getMode() !== POINTS) continue;
+			// Points are drawn in index order where a transform (join) gave them indices.
+			const pos = worldPositions(doc, mesh, prim);
+			const indices = prim.getIndices();
+			pointPrims.push(indices ? Array.from(indices.getArray(), (i) => pos[i]) : pos);
 		}
 	}
 	result.points = pointPrims.flat();

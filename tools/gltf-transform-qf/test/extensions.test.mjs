@@ -45,6 +45,10 @@ test('the fixtures hold every extension, with data to compare', () => {
 	assert.ok(fixtures.points[0].info.points.length >= 100);
 });
 
+function spawnValidate(file) {
+	return gltfTransform('validate', file, undefined, [], { qf: false }).output;
+}
+
 let counter = 0;
 function runCli(command, input, flags, qf) {
 	const output = path.join(tmp, `${counter++}-${command}.glb`);
@@ -95,6 +99,12 @@ for (const [command, flags] of COMMANDS) {
 		for (const { file, info } of all()) {
 			const { output } = runCli(command, file, flags, true);
 			assertKept(info, await inspectGlb(fs.readFileSync(output)), `${command} ${path.basename(file)}`);
+			if (['copy', 'optimize', 'meshopt'].includes(command)) {
+				// The Khronos validator (through the CLI) on what we wrote: no error, no warning.
+				const v = spawnValidate(output);
+				assert.match(v, /No errors found/, `${command} ${path.basename(file)}:\n${v}`);
+				assert.match(v, /No warnings found/, `${command} ${path.basename(file)}:\n${v}`);
+			}
 		}
 	});
 }
