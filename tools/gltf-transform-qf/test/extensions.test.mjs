@@ -180,3 +180,34 @@ test('transforms that change the quads or points are reported, not written silen
 	await io.writeBinary(doc);
 	assert.ok(warnings.some((w) => w.includes('pointCount')), warnings.join('\n'));
 });
+
+// quasiflat writes MSFT_lod on nodes only; the extension also allows it on materials, and a file
+// edited elsewhere may carry both. Built here, since no bake makes one.
+test('MSFT_lod on nodes and materials: prune keeps the levels it names, the writer renumbers them', async () => {
+	const { Document } = await import('@gltf-transform/core');
+	const { MSFTLod } = await import('../src/index.mjs');
+	const io = await createIO();
+	const doc = new Document();
+	const buffer = doc.createBuffer();
+	const ext = doc.createExtension(MSFTLod);
+	const triangle = (name, material) => doc.createMesh(name).addPrimitive(doc.createPrimitive()
+		.setAttribute('POSITION', doc.createAccessor().setType('VEC3').setBuffer(buffer)
+			.setArray(new Float32Array([0, 0, 0, 1, 0, 0, 0, 1, 0])))
+		.setMaterial(material));
+	// An unused node and material first, so that prune renumbers everything after them.
+	doc.createNode('unused');
+	doc.createMaterial('unused');
+	const materials = ['m0', 'm1', 'm2'].map((n) => doc.createMaterial(n));
+	const nodes = ['n0', 'n1', 'n2'].map((n, i) => doc.createNode(n).setMesh(triangle(n, materials[i])));
+	doc.createScene().addChild(nodes[0]); // the coarser levels are in no scene, as in _lods.glb
+	nodes[0].setExtension('MSFT_lod', ext.createLod().addLod(nodes[1]).addLod(nodes[2]));
+	materials[0].setExtension('MSFT_lod', ext.createLod().addLod(materials[1]).addLod(materials[2]));
+	await doc.transform(prune());
+	const json = (await io.writeJSON(doc, { format: 'glb' })).json;
+	const nodeIndex = (name) => json.nodes.findIndex((n) => n.name === name);
+	const materialIndex = (name) => json.materials.findIndex((m) => m.name === name);
+	assert.equal(json.nodes.length, 3, 'prune kept the three levels and dropped the unused node');
+	assert.deepEqual(json.nodes[nodeIndex('n0')].extensions.MSFT_lod.ids, [nodeIndex('n1'), nodeIndex('n2')]);
+	assert.deepEqual(json.materials[materialIndex('m0')].extensions.MSFT_lod.ids, [materialIndex('m1'), materialIndex('m2')]);
+	assert.equal(materialIndex('unused'), -1);
+});
