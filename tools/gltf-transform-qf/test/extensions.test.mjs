@@ -211,3 +211,32 @@ test('MSFT_lod on nodes and materials: prune keeps the levels it names, the writ
 	assert.deepEqual(json.materials[materialIndex('m0')].extensions.MSFT_lod.ids, [materialIndex('m1'), materialIndex('m2')]);
 	assert.equal(materialIndex('unused'), -1);
 });
+
+// The blocks our writer produces (after meshopt: widened arrays) against the extensions' JSON
+// schemas in schemas/, with Debian's python3-jsonschema as tests/gltf/validate_test.sh uses it.
+test('written blocks validate against schemas/', async () => {
+	const { spawnSync } = await import('node:child_process');
+	const blocks = [];
+	for (const { file } of [...fixtures.level, ...fixtures.points]) {
+		for (const command of ['copy', 'meshopt']) {
+			const json = (await (await createIO()).binaryToJSON(fs.readFileSync(runCli(command, file, [], true).output))).json;
+			for (const name of [QF_IMPOSTOR_LEVEL, QF_POINT_IMPOSTOR]) {
+				if (json.extensions?.[name]) blocks.push({ name, block: json.extensions[name], where: `${command} ${path.basename(file)}` });
+			}
+		}
+	}
+	assert.ok(blocks.length >= 6);
+	const schemas = path.resolve(HERE, '../../../schemas');
+	const script = `
+import json, sys, jsonschema
+schemas, blocks = sys.argv[1], json.load(sys.stdin)
+bad = 0
+for b in blocks:
+    schema = json.load(open(f"{schemas}/{b['name']}/schema/glTF.{b['name']}.schema.json"))
+    for e in jsonschema.Draft202012Validator(schema).iter_errors(b['block']):
+        print(b['where'], b['name'], e.message); bad = 1
+sys.exit(bad)
+`;
+	const r = spawnSync('/usr/bin/python3', ['-c', script, schemas], { input: JSON.stringify(blocks), encoding: 'utf8' });
+	assert.equal(r.status, 0, `${r.stdout}${r.stderr}`);
+});
