@@ -89,7 +89,7 @@ def league_model(a, name):
     stem = os.path.splitext(os.path.basename(name))[0]
     out = os.path.join(a.work, stem)
     lods = ["--mesh-lods", "clustering"] if bundled else ["--mesh-lods", "none"]
-    run(a.baker, src, "-o", out, "--primitives", a.budgets, "--no-cache", "--no-points", *lods, "-q")
+    run(a.baker, src, "-o", out, "--primitives", a.budgets, "--no-cache", *lods, "-q")
     manifest = json.load(open(os.path.join(out, "manifest.json")))
     is_mesh = "mesh_lods" in manifest or not bundled
     rows, most = [], max(l["primitives"] for l in manifest["levels"])

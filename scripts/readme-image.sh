@@ -9,7 +9,7 @@ bin=build/bin out=docs/img/tree-levels.png
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 "$bin/qf-bake" generate tree -o "$work/tree.glb" -q
-"$bin/qf-bake" "$work/tree.glb" -o "$work/tree" --no-cache --mesh-lods none --no-points --no-report-html -q
+"$bin/qf-bake" "$work/tree.glb" -o "$work/tree" --no-cache --mesh-lods none --no-report-html -q
 draw() {  # FILE LINE1 LINE2 PNG
   "$bin/qf-render" "$1" -o "$4" --size 192 --method engine --background 255,255,255 --frame "$work/tree.glb"
   oiiotool "$4" --text:x=6:y=16:size=14:color=0,0,0:font=DejaVuSans "$2" \

@@ -2,6 +2,8 @@
 #include "tools/any_scene.h"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 #include "analysis/neighborhoods.h"
 #include "core/error.h"
@@ -100,12 +102,26 @@ int AnyScene::lod_for_coverage(double coverage) const {
 }
 
 ViewMetrics mean_of(const std::vector<ViewMetrics>& v) {
-  ViewMetrics m{0, 0, 0, 0, 0, 0, 0, 0, 0};
-  for (const ViewMetrics& x : v)
-    m.psnr += x.psnr, m.iou += x.iou, m.soft_iou += x.soft_iou, m.mae += x.mae, m.holes += x.holes, m.see_through += x.see_through, m.brightness += x.brightness,
-        m.reference_brightness += x.reference_brightness;
+  // Each figure is the mean over the views that have evidence for it (NaN where none has);
+  // coverage is the views' summed coverages' ratio, so a view that shows a sliver weighs little.
+  ViewMetrics m;
+  m.iou = m.soft_iou = m.coverage = 0;
+  double n_psnr = 0, n_iou = 0;
+  for (const ViewMetrics& x : v) {
+    if (!std::isnan(x.psnr)) m.psnr += x.psnr, m.soft_iou += x.soft_iou, m.mae += x.mae, ++n_psnr;
+    if (!std::isnan(x.iou)) m.iou += x.iou, ++n_iou;
+    m.covered_reference += x.covered_reference, m.covered_image += x.covered_image;
+    m.holes += x.holes, m.see_through += x.see_through, m.brightness += x.brightness, m.reference_brightness += x.reference_brightness;
+    m.covered += x.covered;
+  }
+  constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
   const double n = static_cast<double>(std::max<std::size_t>(1, v.size()));
-  m.psnr /= n, m.iou /= n, m.soft_iou /= n, m.mae /= n, m.holes /= n, m.see_through /= n, m.brightness /= n, m.reference_brightness /= n;
+  m.psnr = n_psnr > 0 ? m.psnr / n_psnr : kNone, m.soft_iou = n_psnr > 0 ? m.soft_iou / n_psnr : kNone, m.mae = n_psnr > 0 ? m.mae / n_psnr : 0;
+  m.iou = n_iou > 0 ? m.iou / n_iou : kNone;
+  m.coverage = has_evidence(m) ? m.covered_image / m.covered_reference : kNone;
+  m.covered = static_cast<std::size_t>(static_cast<double>(m.covered) / n);
+  m.covered_reference /= n, m.covered_image /= n;
+  m.holes /= n, m.see_through /= n, m.brightness /= n, m.reference_brightness /= n;
   return m;
 }
 

@@ -6,10 +6,14 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <stdexcept>
 
 namespace qf::render {
 namespace {
+
+// Under half a pixel of the truth's coverage there is nothing to judge a picture by.
+constexpr double kEvidencePixels = 0.5;
 
 // 1 where c >= t, else 0, with a ramp of 1e-6 below t (the metrics' thresholds).
 float at_least(float c, float t) { return std::clamp((c - t) * 1e6f + 1.0f, 0.0f, 1.0f); }
@@ -32,6 +36,8 @@ Covered covered(const RenderPair& r, std::size_t i, const float bg[3]) {
 
 }  // namespace
 
+bool has_evidence(const ViewMetrics& m) { return m.covered_reference >= kEvidencePixels; }
+
 ViewMetrics compare_renders(const RenderPair& reference, const RenderPair& impostor, Rgb8 background, std::vector<float>* diff) {
   const float bg[3] = {background.r / 255.0f, background.g / 255.0f, background.b / 255.0f};
   const Image& ref = reference.over_black;
@@ -40,28 +46,34 @@ ViewMetrics compare_renders(const RenderPair& reference, const RenderPair& impos
   const std::size_t pixels = static_cast<std::size_t>(ref.width) * static_cast<std::size_t>(ref.height);
   if (diff) diff->resize(pixels * 3);
   // One pass over the pixels (sums in double): the counts of covered pixels (c >= 0.5), the
-  // colour differences where either covers, fractional coverage, brightness.
-  double n_either = 0, n_ref = 0, n_both = 0, n_imp = 0, n_solid_both = 0, sum = 0, sum2 = 0, soft_min = 0, soft_max = 0, bright_i = 0, bright_r = 0;
+  // colour differences weighted by the footprint max(c_ref, c), fractional coverage, brightness.
+  double n_either = 0, n_ref = 0, n_both = 0, n_imp = 0, n_solid_both = 0, weight = 0, sum = 0, sum2 = 0, soft_min = 0, soft_max = 0,
+         bright_i = 0, bright_r = 0, cover_r = 0, cover_i = 0;
   for (std::size_t p = 0; p < pixels; ++p) {
     const Covered r = covered(reference, p * 4, bg), m = covered(impostor, p * 4, bg);
     const float in_r = at_least(r.c, 0.5f), in_i = at_least(m.c, 0.5f), either = std::max(in_r, in_i);
     n_either += either, n_ref += in_r, n_imp += in_i, n_both += in_r * in_i, n_solid_both += in_r * at_least(m.c, 0.9f);
+    const float cr = std::clamp(r.c, 0.0f, 1.0f), ci = std::clamp(m.c, 0.0f, 1.0f), w = std::max(cr, ci);
+    weight += w;
     for (std::size_t k = 0; k < 3; ++k) {
-      const float d = std::abs(r.rgb[k] - m.rgb[k]), masked = d * either;
-      sum += masked, sum2 += static_cast<double>(masked) * masked;
+      const float d = std::abs(r.rgb[k] - m.rgb[k]);
+      sum += static_cast<double>(d) * w, sum2 += static_cast<double>(d) * d * w;
       bright_i += m.rgb[k] * in_i, bright_r += r.rgb[k] * in_r;
       if (diff) (*diff)[p * 3 + k] = d;
     }
-    const float cr = std::clamp(r.c, 0.0f, 1.0f), ci = std::clamp(m.c, 0.0f, 1.0f);
-    soft_min += std::min(cr, ci), soft_max += std::max(cr, ci);
+    soft_min += std::min(cr, ci), soft_max += w, cover_r += cr, cover_i += ci;
   }
+  constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
   ViewMetrics m;
   m.covered = static_cast<std::size_t>(n_ref);
-  m.iou = n_either > 0 ? n_both / n_either : 1.0;
-  m.soft_iou = soft_max > 0 ? soft_min / soft_max : 1.0;
-  m.mae = n_either > 0 ? sum / (3 * n_either) : 0.0;
-  const double mse = n_either > 0 ? sum2 / (3 * n_either) : 0.0;
-  m.psnr = mse > 0 ? std::min(99.0, 10 * std::log10(1.0 / mse)) : 99.0;
+  m.covered_reference = cover_r, m.covered_image = cover_i;
+  const bool evidence = cover_r >= kEvidencePixels;
+  m.iou = n_either > 0 ? n_both / n_either : kNone;
+  m.soft_iou = evidence ? soft_min / soft_max : kNone;
+  m.coverage = evidence ? cover_i / cover_r : kNone;
+  m.mae = weight > 0 ? sum / (3 * weight) : 0.0;
+  const double mse = weight > 0 ? sum2 / (3 * weight) : 0.0;
+  m.psnr = !evidence ? kNone : mse > 0 ? std::min(99.0, 10 * std::log10(1.0 / mse)) : 99.0;
   // Mean grey (0..255, the mean of R, G, B) over each image's own covered pixels.
   if (n_imp > 0) m.brightness = 255 * bright_i / (3 * n_imp);
   if (n_ref > 0) m.reference_brightness = 255 * bright_r / (3 * n_ref);

@@ -12,13 +12,25 @@ namespace qf::render {
 // One view's comparison. A render's coverage c is recovered from two renders over black (B) and
 // white (W): W - B = (1 - c) * 255 for every method, since each is linear in the background. The
 // colours compared are both composited over `background`.
+//
+// Every figure is taken over the footprint, the pixels that either image covers, never over the
+// whole frame: a frame that is mostly background would score well whatever the object does. Where
+// there is nothing to judge by, a figure is NaN (no evidence), never a match: two empty masks are
+// not an IoU of 1, and a truth that covers nothing gives no PSNR, soft IoU or coverage.
 struct ViewMetrics {
-  double psnr = 0;         // dB, over pixels covered (c >= 0.5) by either image; 99 when identical
-  double iou = 1;          // silhouette intersection over union (c >= 0.5)
+  // dB over the footprint, each pixel weighted by the larger of the two coverages (a pixel that a
+  // thin beam covers a fifth of counts a fifth); 99 when identical.
+  double psnr = 0;
+  double iou = 1;          // silhouette intersection over union (c >= 0.5); NaN when neither silhouette has a pixel
   // Sum of min(c_ref, c) / sum of max(c_ref, c) over all pixels: the IoU of fractional coverage
   // (a leaf or a beam covers part of a pixel, which the silhouette's 0.5 threshold rounds away).
   double soft_iou = 1;
-  double mae = 0;          // mean absolute difference, 0..1, over the same pixels
+  // Sum of c / sum of c_ref: how much of what the truth covers the image covers (1: as much; a
+  // level that draws nothing is 0, whatever its PSNR).
+  double coverage = 1;
+  double covered_reference = 0;  // sum of c_ref, pixels: under half a pixel, there is no evidence
+  double covered_image = 0;      // sum of c
+  double mae = 0;          // mean absolute difference, 0..1, over the same weighted footprint
   double holes = 0;        // share of reference-covered pixels where the impostor's c < 0.5
   double see_through = 0;  // share of reference-covered pixels where the impostor's 0.5 <= c < 0.9
   std::size_t covered = 0; // pixels covered by the reference
@@ -28,6 +40,9 @@ struct ViewMetrics {
 struct RenderPair {
   Image over_black, over_white;
 };
+// Whether `m` has anything to judge by: the truth covers at least half a pixel.
+bool has_evidence(const ViewMetrics& m);
+
 // `diff` (if given) receives |reference - impostor| as linear floats, RGB, 0..1.
 ViewMetrics compare_renders(const RenderPair& reference, const RenderPair& impostor, Rgb8 background,
                             std::vector<float>* diff = nullptr);

@@ -13,17 +13,19 @@
 
 #include "io/model_io.h"
 #include "pipeline/measurements.h"
+#include "pipeline/screen_sizes.h"
 
 namespace qf::render {
 
 struct MeasureOptions {
-  // On-screen sizes, largest first (see Measurements::sizes): where impostor levels switch, and
-  // 256 px, the recommended chain's near band.
+  // On-screen sizes, largest first (see Measurements::sizes), every file drawn at each; above them,
+  // doubling up to `largest`, the files that hold at the size below (measure_files).
   std::vector<int> sizes{256, 128, 64, 32, 16};
+  int largest = kLargestMeasuredPixels;
   // Directions spread over the bounding sphere (sphere_direction), 4 for the bake's time, and the
-  // truth's supersampling of the largest size (truth_side): 2, a 512-px truth, so 4 x for 128 px,
-  // a quarter of the pixels of eval's 8 x (on bunny00, the generated tree, a bush and the
-  // octahedron it moved every figure by at most 0.23 dB and no level's screen size), 2 x for 256.
+  // truth's supersampling of the largest size (truth_side): 2, so 4 x for half the largest size
+  // (on bunny00, the generated tree, a bush and the octahedron 2 against 8 moved every figure by
+  // at most 0.23 dB and no level's screen size).
   int views = 4;
   int truth = 2;
   ReadOptions read;  // how the input is read again (as the bake read it)
@@ -47,11 +49,14 @@ int truth_side(const std::vector<int>& sizes, int truth);
 struct AnyScene;
 AnyScene measured_input(const std::string& input_path, const ReadOptions& read);
 
-// Draws the input at `input_path` (the truth once per view) and every candidate (loaded once, drawn
-// from the same views at each size up to kShownAbove x its max_pixels) and returns the mean scores
-// per size (Scores::measured false at the sizes above). Makes
-// its own headless GL context: throws UsageError when there is none, and the readers' and
-// loader's InputErrors.
-Measurements measure_files(const std::string& input_path, const std::vector<Candidate>& candidates, const MeasureOptions& options = {});
+// Draws the input at `input_path` (the truth once per view; the asset itself at every size, as
+// Measurements::asset, its bytes left 0 for the caller) and every candidate (loaded once, drawn from
+// the same views) at every size of options.sizes; then at twice the largest size, up to
+// options.largest, the asset and the candidates that hold (pipeline/screen_sizes.h, by `bar`) at
+// the largest size so far, the others not (Scores::measured false), while any does. Returns the
+// mean scores per size, largest first. Makes its own headless GL context: throws UsageError when
+// there is none, and the readers' and loader's InputErrors.
+Measurements measure_files(const std::string& input_path, const std::vector<Candidate>& candidates, const HoldBar& bar,
+                           const MeasureOptions& options = {});
 
 }  // namespace qf::render

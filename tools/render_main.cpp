@@ -263,10 +263,14 @@ CommandSpec eval_spec() {
   return s;
 }
 
+// A figure without evidence (NaN: nothing covered to judge by) is null.
+ordered_json figure(double v) { return std::isnan(v) ? ordered_json(nullptr) : ordered_json(canonical_double(static_cast<float>(v))); }
+
 ordered_json metrics_json(const ViewMetrics& m) {
-  return {{"psnr", canonical_double(static_cast<float>(m.psnr))},
-          {"iou", canonical_double(static_cast<float>(m.iou))},
-          {"soft_iou", canonical_double(static_cast<float>(m.soft_iou))},
+  return {{"psnr", figure(m.psnr)},
+          {"iou", figure(m.iou)},
+          {"soft_iou", figure(m.soft_iou)},
+          {"coverage", figure(m.coverage)},
           {"mae", canonical_double(static_cast<float>(m.mae))},
           {"holes", canonical_double(static_cast<float>(m.holes))},
           {"see_through", canonical_double(static_cast<float>(m.see_through))},
@@ -416,7 +420,7 @@ void write_eval_outputs(const ParsedArgs& a, const ordered_json& report, const E
 void print_eval_summary(const EvalViews& e, int views, Method method) {
   auto say = [&](const std::string& what, const std::vector<ViewMetrics>& v) {
     const ViewMetrics m = mean_of(v);
-    std::cerr << "qf-render eval: " << what << ": PSNR " << m.psnr << " dB, IoU " << m.iou << ", soft IoU " << m.soft_iou << ", holes " << 100 * m.holes
+    std::cerr << "qf-render eval: " << what << ": PSNR " << m.psnr << " dB, IoU " << m.iou << ", soft IoU " << m.soft_iou << ", coverage " << m.coverage << ", holes " << 100 * m.holes
               << "%, see-through " << 100 * m.see_through << "%\n";
   };
   say(std::to_string(views) + " views, " + method_name(method), e.main);

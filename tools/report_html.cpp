@@ -58,32 +58,27 @@ std::vector<PageFile> page_files(const AssetBake& a) {
   if (m.contains("mesh_lods"))
     for (const Json& l : m["mesh_lods"]["levels"]) add(l, "mesh_lod", l.value("max_screen_pixels", 0.0));  // none: clustering LODs
   if (m.contains("point_impostor")) {
-    // Nearer than its switch distance the points part: it is made for the sizes below this one.
+    // Measured: where it holds; else nearer than its switch distance the points part, so it is
+    // made for the sizes below this one.
     const Json& p = m["point_impostor"];
-    add(p, "point_impostor", distance_for_pixels(m.at("bounding_box_diagonal").get<double>(), p.at("switch_distance").get<double>(),
-                                                 p.at("switch_screen_height").get<double>(), p.at("switch_fov_degrees").get<double>()));
+    add(p, "point_impostor", p.contains("measured") ? p["max_screen_pixels"].get<double>()
+                                                    : distance_for_pixels(m.at("bounding_box_diagonal").get<double>(), p.at("switch_distance").get<double>(),
+                                                                          p.at("switch_screen_height").get<double>(), p.at("switch_fov_degrees").get<double>()));
   }
   if (m.contains("lod_file")) add(m["lod_file"], "lod_file", 0);
   return out;
 }
 
-// A file's measured figures, [{pixels, psnr, iou}] largest size first: an impostor level's own
-// (manifest "measured"); a mesh LOD's or the point impostor's from the chain's candidates (the
-// sizes it was drawn at).
-Json measured_of(const Json& manifest, const PageFile& f) {
-  if (f.entry->contains("measured")) return (*f.entry)["measured"];
-  Json out = Json::array();
-  if (!manifest.contains("recommended_chain")) return out;
-  const Json& c = manifest["recommended_chain"];
-  for (const Json& e : c.value("measured", Json::array()))
-    if (e.value("file", std::string()) == f.file)
-      for (std::size_t k = 0; k < e["at_pixels"].size() && k < c["sizes"].size(); ++k) {
-        if (!e["at_pixels"][k].is_object()) continue;  // not drawn there: far above the size it is made for
-        Json s = e["at_pixels"][k];
-        s["pixels"] = c["sizes"][k];
-        out.push_back(s);
-      }
-  return out;
+// A file's measured figures, [{pixels, psnr, iou, soft_iou, coverage, holds}] largest size first
+// (manifest "measured"; none where the file was not measured).
+Json measured_of(const PageFile& f) { return f.entry->value("measured", Json::array()); }
+
+// One measured size's cell: PSNR / coverage, marked where the file holds there.
+void measured_cell(std::ostream& h, const Json& s, const Json& at) {
+  const bool held = at.value("holds", false);
+  h << "<td class=\"measured" << (held ? " holds" : "") << "\" data-pixels=\"" << html::attr(s) << "\" data-psnr=\"" << html::attr(at["psnr"])
+    << "\" data-iou=\"" << html::attr(at["iou"]) << "\" data-coverage=\"" << html::attr(at["coverage"]) << "\" data-sort=\"" << html::attr(at["psnr"])
+    << "\">" << html::fixed(at["psnr"], 2) << " / " << html::fixed(at["coverage"], 2) << "</td>";
 }
 
 // GPU memory of a file's textures: the manifest's figure where it gives one (compressed
@@ -180,10 +175,23 @@ std::string files_table(const AssetBake& a, const std::vector<PageFile>& files) 
   const Json& m = a.manifest;
   const Json sizes = m.contains("measuring") ? m["measuring"].value("sizes", Json::array()) : Json::array();
   std::ostringstream h;
-  h << "<h2>Files</h2>\n<table id=\"files\" class=\"sortable\"><thead><tr><th>file</th><th class=\"text\">kind</th><th class=\"text\">holds</th><th>bytes</th><th>texels</th>"
+  h << "<h2>Files</h2>\n<p class=\"meta\">Each file drawn by the engine method at each measured size against the truth: footprint PSNR "
+       "(dB) / coverage (its summed coverage over the truth's); marked where it holds, as good as the input itself as drawn there "
+       "(manifest measuring.hold). made for: the largest size at which it holds.</p>\n"
+       "<table id=\"files\" class=\"sortable\"><thead><tr><th>file</th><th class=\"text\">kind</th><th class=\"text\">holds</th><th>bytes</th><th>texels</th>"
        "<th>GPU bytes</th><th>made for &le; px</th>";
-  for (const Json& s : sizes) h << "<th>at " << s.dump() << " px<br>PSNR dB / IoU</th>";
+  for (const Json& s : sizes) h << "<th>at " << s.dump() << " px<br>PSNR dB / coverage</th>";
   h << "</tr></thead><tbody>\n";
+  // The input itself as an engine draws it, what every file is judged beside.
+  if (m.contains("measuring") && m["measuring"].contains("asset")) {
+    const std::size_t input_bytes = m.contains("recommended_chain") ? m["recommended_chain"]["asset"].value("bytes", std::size_t{0}) : 0;
+    h << "<tr data-file=\"\" data-kind=\"asset\"><td>the input, as drawn</td><td class=\"text\">asset</td><td class=\"text\"></td><td data-sort=\""
+      << input_bytes << "\">" << (input_bytes ? html::bytes_text(double(input_bytes)) : "-") << "</td><td>-</td><td>-</td><td>-</td>";
+    for (const Json& s : sizes)
+      for (const Json& x : m["measuring"]["asset"])
+        if (x.value("pixels", Json()) == s) measured_cell(h, s, x);
+    h << "</tr>\n";
+  }
   for (const PageFile& f : files) {
     const Json& e = *f.entry;
     std::string holds = e.contains("primitives")  ? e["primitives"].dump() + " quads"
@@ -201,18 +209,13 @@ std::string files_table(const AssetBake& a, const std::vector<PageFile>& files) 
         << (f.own_pixels > 0 ? std::to_string(std::llround(f.own_pixels)) : "-") << "</td>";
     else
       h << "<td>-</td><td>-</td><td>-</td>";
-    const Json measured = drawn ? measured_of(m, f) : Json::array();
+    const Json measured = drawn ? measured_of(f) : Json::array();
     for (const Json& s : sizes) {
       const Json* at = nullptr;
       for (const Json& x : measured)
         if (x.value("pixels", Json()) == s) at = &x;
-      if (!at) {
-        h << "<td>-</td>";
-        continue;
-      }
-      h << "<td class=\"measured\" data-pixels=\"" << html::attr(s) << "\" data-psnr=\"" << html::attr((*at)["psnr"]) << "\" data-iou=\""
-        << html::attr((*at)["iou"]) << "\" data-sort=\"" << html::attr((*at)["psnr"]) << "\">" << html::fixed((*at)["psnr"], 2) << " / "
-        << html::fixed((*at)["iou"], 3) << "</td>";
+      if (at) measured_cell(h, s, *at);
+      else h << "<td>-</td>";
     }
     h << "</tr>\n";
   }
@@ -236,6 +239,7 @@ std::string chain_section(const AssetBake& a, const std::vector<PageFile>& files
     double lo = 0, hi = 0;  // pixels; hi < 0: any larger size
     Json psnr, iou, distance;
     bool bar_met = true;
+    std::string reason, kind;
   };
   const Json& m = a.manifest;
   std::vector<Band> bands;
@@ -248,7 +252,8 @@ std::string chain_section(const AssetBake& a, const std::vector<PageFile>& files
       << "&deg; field of view), its measured error at the band's largest size, and where it switches.</p>\n";
     for (const Json& e : c["chain"])
       bands.push_back({e["file"].get<std::string>(), e["min_pixels"].get<double>(), e["max_pixels"].is_null() ? -1 : e["max_pixels"].get<double>(),
-                       e["error"]["psnr"], e["error"]["iou"], e.value("switch_distance", Json()), e.value("bar_met", true)});
+                       e["error"].is_object() ? e["error"]["psnr"] : Json(), e["error"].is_object() ? e["error"]["iou"] : Json(),
+                       e.value("switch_distance", Json()), e.value("bar_met", true), e.value("reason", std::string()), e.value("kind", std::string())});
   } else {
     h << "<h2>Impostor levels by on-screen size</h2>\n<p class=\"note\">No recommended chain (baked with <code>--no-chain</code> or "
          "<code>--no-measure</code>, or without a GL driver to measure): the impostor levels, each shown from its max_screen_pixels down to "
@@ -257,7 +262,7 @@ std::string chain_section(const AssetBake& a, const std::vector<PageFile>& files
     for (const PageFile& f : files)
       if (f.kind == "impostor_level") levels.push_back(&f);
     for (std::size_t i = 0; i < levels.size(); ++i)
-      bands.push_back({levels[i]->file, i + 1 < levels.size() ? levels[i + 1]->own_pixels : 0, levels[i]->own_pixels, Json(), Json(), Json(), true});
+      bands.push_back({levels[i]->file, i + 1 < levels.size() ? levels[i + 1]->own_pixels : 0, levels[i]->own_pixels, Json(), Json(), Json(), true, "", ""});
   }
   if (bands.empty()) return h.str() + "<p>none</p>\n";
   h << "<div id=\"chain\" class=\"chain\" data-kind=\"" << (chain ? "recommended_chain" : "impostor_levels") << "\">";
@@ -273,10 +278,12 @@ std::string chain_section(const AssetBake& a, const std::vector<PageFile>& files
     h << "><div class=\"range\">" << (b.hi < 0 ? std::string("&infin;") : std::to_string(std::llround(b.hi))) << " &rarr; " << std::llround(b.lo)
       << " px</div>";
     if (f && f->near.width > 0) h << html::img(f->near, b.file, "thumb");
-    h << "<div><a href=\"#" << html::attr(b.file) << "\">" << html::escape(b.file) << "</a></div>";
+    if (b.kind == "asset") h << "<div>the input itself</div>";
+    else h << "<div><a href=\"#" << html::attr(b.file) << "\">" << html::escape(b.file) << "</a></div>";
     if (f) h << "<div>" << html::bytes_text(double(f->bytes->size())) << "</div>";
     if (chain)
-      h << "<div>" << html::fixed(b.psnr, 2) << " dB, IoU " << html::fixed(b.iou, 3) << (b.bar_met ? "" : " (below the bar)") << "</div>"
+      h << (b.psnr.is_number() ? "<div>" + html::fixed(b.psnr, 2) + " dB, IoU " + html::fixed(b.iou, 3) + "</div>" : "")
+        << (b.reason.empty() ? "" : "<div class=\"" + std::string(b.bar_met ? "meta" : "warn") + " reason\">" + html::escape(b.reason) + "</div>")
         << (b.distance.is_number() ? "<div class=\"meta\">switches at distance " + html::fixed(b.distance, 2) + "</div>" : "");
     h << "</div>";
   }
@@ -326,6 +333,7 @@ constexpr const char* kBakeStyle = R"(
 .axis{display:flex;justify-content:space-between;font-size:12px;color:#555;border-top:2px solid #888;padding-top:2px}
 .gallery{display:grid;grid-template-columns:auto 1fr;gap:16px}.pin{position:sticky;top:8px;align-self:start}
 h3{font-size:14px;margin:12px 0 2px}
+td.measured.holds{background:#e6f4e6}.band .reason{max-width:220px}
 )";
 
 // --- the batch page ----------------------------------------------------------------------------

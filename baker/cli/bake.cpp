@@ -60,8 +60,12 @@ CommandSpec bake_spec() {
                     {"lod-file", 0, "", "", "also write STEM_lods.glb: every level in one file under MSFT_lod (finest in the scene,\n"
                                              "the others as its lower LODs, switched by MSFT_screencoverage)"},
                     {"lod-screen-height", 0, "PX", "1080", "screen height the MSFT_screencoverage values and the chain's switch distances assume"},
-                    {"point-seed", 0, "S", "1", "mesh inputs: seed of the point impostor's random order (STEM_points.glb)"},
-                    {"no-points", 0, "", "", "mesh inputs: do not write the point impostor"},
+                    {"cheap-triangles", 0, "N", "256", "an opaque mesh of at most N triangles is cheap already: it is measured, not baked (only\n"
+                                                       "manifest.json and the reports, which say why; the chain is the asset itself); 0 bakes\n"
+                                                       "every mesh. Meshes with alpha-tested or blended materials are always baked"},
+                    {"points", 0, "", "", "mesh inputs: also write the point impostor (STEM_points.glb), the sampled points; off\n"
+                                          "by default, as the points outweigh most meshes they come from"},
+                    {"point-seed", 0, "S", "1", "mesh inputs, with --points: seed of the point impostor's random order"},
                     {"mesh-lods", 0, "simplify|clustering|none", "simplify",
                      "the mesh LODs beside the impostors: simplify = meshoptimizer's edge collapse\n"
                      "(STEM_S<i>.glb at the mesh's triangles / 4, 16, 64, 256, 1024; a point set's mesh is its\n"
@@ -71,18 +75,21 @@ CommandSpec bake_spec() {
                     {"no-mesh-lods", 0, "", "", "the same as --mesh-lods none"},
                     {"no-measure", 0, "", "", "do not measure the outputs on screen: each level keeps its geometric max_screen_pixels\n"
                                               "(error under half a pixel) and there is no chain (needs no GL driver)"},
-                    {"measure-views", 0, "N", "4", "directions each output is drawn from when measured, at 256, 128, 64, 32 and 16 px on\n"
-                                                   "screen, by the engine method against the truth (the input drawn once at 512 px,\n"
-                                                   "box-filtered to each): a level's max_screen_pixels is the largest of those sizes at which\n"
-                                                   "its look holds (PSNR within 1 dB of its best, IoU within 0.05 of its IoU there; manifest\n"
-                                                   "measuring)"},
-                    {"no-chain", 0, "", "", "no recommended chain (manifest recommended_chain, made by default): per band, never\n"
-                                            "more bytes than nearer, the smallest file that reaches --chain-psnr and IoU 0.9 (else\n"
-                                            "the best PSNR less 1 dB per doubling of bytes), among the files valid there (at most 2x\n"
-                                            "their max_screen_pixels; mesh LODs and the point impostor are drawn only there), with its\n"
-                                            "switch distance (--lod-screen-height, 60 degree field of view); with --lod-file,\n"
-                                            "STEM_lods.glb holds the chain's files. Without it only the impostor levels are drawn"},
-                    {"chain-psnr", 0, "DB", "30", "the recommended chain's quality bar, dB (engine method against the truth)"},
+                    {"measure-views", 0, "N", "4", "directions each output and the input are drawn from when measured, by the engine method,\n"
+                                                   "at sizes from 256 px (up to 1024 px, as far as the finest file claims by its geometry)\n"
+                                                   "halving down to 16 px, against the truth (the input drawn once at 2x the largest size,\n"
+                                                   "box-filtered to each). A file's max_screen_pixels is the largest of those sizes at which it\n"
+                                                   "holds: as good as the input itself as an engine draws it there (footprint PSNR within\n"
+                                                   "--hold-psnr, soft IoU within 0.1, coverage within 0.3 of it and at least half the\n"
+                                                   "truth's; manifest measuring)"},
+                    {"hold-psnr", 0, "DB", "3", "how far a file's footprint PSNR may fall below the input as drawn at a size and still hold"},
+                    {"no-chain", 0, "", "", "no recommended chain (manifest recommended_chain, made by default): nearest first, the\n"
+                                            "input itself above the largest size measured; then per band the smallest file that holds\n"
+                                            "there, never more bytes than a nearer file (nor than the input, unless it draws better);\n"
+                                            "where none holds, the input itself (or, where it costs more than the nearer band's file,\n"
+                                            "the best PSNR less 1 dB per doubling of bytes, with the reason); switch distances for\n"
+                                            "--lod-screen-height at a 60 degree field of view; with --lod-file, STEM_lods.glb holds the\n"
+                                            "chain's files. Without it the mesh LODs are not measured"},
                     {"no-report-html", 0, "", "", "do not write report.html, the bake's page for a browser (written by default: self-contained,\n"
                                                   "the input beside every output drawn by the engine method at its own on-screen size and at\n"
                                                   "256 px, per file bytes, texels, GPU bytes and measured error, the chain as bands, the\n"
@@ -177,8 +184,9 @@ AssetOptions read_asset_options(const OptionValues& args) {
   a.read.outlier_factor = static_cast<float>(args.get_double("outliers", 10.0, 0.0, 1e6));
   a.sample = read_sample_options(args);
   a.point_seed = static_cast<std::uint64_t>(args.get_int("point-seed", 1, 0, 1ll << 62));
-  a.point_impostor = !args.flag("no-points");
-  for (const char* name : {"ldi", "sampler", "all-triangles", "visibility-views", "point-seed", "no-points"})
+  a.point_impostor = args.flag("points");
+  a.cheap_triangles = static_cast<std::size_t>(args.get_int("cheap-triangles", static_cast<long long>(a.cheap_triangles), 0, 1ll << 40));
+  for (const char* name : {"ldi", "sampler", "all-triangles", "visibility-views", "point-seed", "points", "cheap-triangles"})
     if (args.has(name)) a.mesh_only_given.push_back(std::string("--") + name);
   const std::string lods = args.flag("no-mesh-lods") ? "none" : args.get_choice("mesh-lods", {"simplify", "clustering", "none"}, "simplify");
   a.mesh_lods = lods == "simplify" ? AssetOptions::MeshLods::kSimplify
@@ -188,14 +196,13 @@ AssetOptions read_asset_options(const OptionValues& args) {
   measure.views = static_cast<int>(args.get_int("measure-views", measure.views, 1, 1000));
   measure.read = a.read;
   a.chain = !args.flag("no-chain");
-  a.chain_rule.min_psnr = args.get_double("chain-psnr", a.chain_rule.min_psnr, 0.0, 99.0);
+  a.chain_rule.bar.psnr_drop = args.get_double("hold-psnr", a.chain_rule.bar.psnr_drop, 0.0, 99.0);
   a.chain_rule.screen_height = a.lod_screen_height;
-  if (args.flag("no-measure") && (args.has("chain-psnr") || args.has("measure-views")))
-    throw UsageError("--no-measure leaves nothing for --chain-psnr or --measure-views to do");
-  if (args.flag("no-chain") && args.has("chain-psnr")) throw UsageError("--no-chain leaves nothing for --chain-psnr to do");
+  if (args.flag("no-measure") && (args.has("hold-psnr") || args.has("measure-views")))
+    throw UsageError("--no-measure leaves nothing for --hold-psnr or --measure-views to do");
   if (!args.flag("no-measure"))
-    a.measure = [measure](const std::string& input, const std::vector<Candidate>& candidates) {
-      return render::measure_files(input, candidates, measure);
+    a.measure = [measure](const std::string& input, const std::vector<Candidate>& candidates, const HoldBar& bar) {
+      return render::measure_files(input, candidates, bar, measure);
     };
   if (!args.flag("no-report-html")) {
     render::BakePageOptions page;
@@ -217,7 +224,7 @@ void print_bake_summary(const AssetBake& a, const std::string& in, const std::st
                  r.memory.subsample, format_bytes(double(r.scratch_bytes)).c_str());
   for (const BakedLevel& l : r.levels)
     std::fprintf(stderr, "  level %zu: %zu primitives, %zu texels, error %.3g (%.2g of the diagonal)\n", l.level, l.primitives,
-                 l.texels, l.error, l.relative_error);
+                 l.textures.texels, l.error, l.relative_error);
   double total = 0;
   for (const StageTime& t : r.times) total += t.seconds;
   std::fprintf(stderr, "  time: %.3f s, %zu files\n", total + a.sampled.seconds, a.files.size() + 2);

@@ -170,6 +170,7 @@ int add_encoded_texture(tinygltf::Model& m, const std::vector<std::uint8_t>& byt
   m.textures.push_back(t);
   if (cost) {
     cost->file_bytes += bytes.size();
+    cost->texels += static_cast<std::size_t>(w) * static_cast<std::size_t>(h);
     // Every mip level down to 1x1: RGBA8 texels (PNG and WebP decode to them, and the engine makes
     // the levels), or 4x4 blocks of 16 bytes (KTX2; a level under 4 texels a side still takes a
     // whole block).

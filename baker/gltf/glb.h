@@ -67,6 +67,7 @@ GltfOptions::Textures parse_textures(const std::string& name);      // throws st
 struct TextureCost {
   std::size_t file_bytes = 0;
   std::size_t gpu_bytes = 0;
+  std::size_t texels = 0;  // base-level texels of every image in the file, as an engine uploads them
 };
 
 // Assembles a level from its support rectangles and textures (one per non-empty domain, in domain

@@ -27,7 +27,11 @@ PointSet load_point_set(const std::string& path, const ReadOptions& read, const 
                         const std::string& command, ReadReport& report, SampleStats* sampled, TriangleMesh* mesh,
                         std::vector<std::uint32_t>* triangles) {
   progress::step("reading " + path);
-  Model model = read_model(path, read, &report);
+  return points_of(read_model(path, read, &report), path, read, sample, command, report, sampled, mesh, triangles);
+}
+
+PointSet points_of(Model model, const std::string& path, const ReadOptions& read, const SampleOptions& sample, const std::string& command,
+                   ReadReport& report, SampleStats* sampled, TriangleMesh* mesh, std::vector<std::uint32_t>* triangles) {
   if (model.is_mesh) {
     progress::step("sampling the mesh into points (depth peeling)");
     SampleStats stats;
@@ -85,7 +89,7 @@ nlohmann::json simplify_level_file(SimplifiedMesh& s, std::size_t budget, double
   // Normals as the input's reference is drawn: its own where it has them (carried through the
   // simplifier), else smooth or none (flat).
   if (own_materials && smooth && s.mesh.normals.empty()) s.mesh.normals = s.mesh.smooth_normals();
-  if (own_materials) fit_textures(s.mesh, static_cast<int>(std::min(2 * max_screen_pixels, 16384.0)));
+  if (own_materials) fit_textures(s.mesh, static_cast<int>(std::min(2 * max_screen_pixels, 2.0 * kLargestMeasuredPixels)));
   // Double-sided, as the LOD material and the impostor levels are, where triangles were collapsed:
   // a collapsed thin part (a leg, a leaf) may show its back faces. All kept, the input's sidedness
   // stays (2CylinderEngine's copy, double-sided, showed the backs of its open parts: 56.4 dB).
@@ -181,7 +185,8 @@ nlohmann::json level_entry(const BakedLevel& l, const std::string& file) {
   return {{"file", file},
           {"level", l.level},
           {"primitives", l.primitives},
-          {"texels", l.texels},
+          {"texels", l.textures.texels},
+          {"quad_texels", l.quad_texels},
           {"texel", canonical_double(static_cast<float>(l.texel))},
           {"atlas_images", l.atlas_images},
           {"atlas_sides", atlas_sides},
@@ -366,14 +371,19 @@ void lod_file_output(AssetBake& a, const AssetOptions& o, const std::string& ste
   std::vector<std::pair<std::string, double>> steps;  // file, shown down to this many pixels
   const bool chain = a.manifest.contains("recommended_chain");
   if (chain) {
+    // The asset itself (its nearest entries) is the input file, not one of the bake's.
     for (const nlohmann::json& e : a.manifest["recommended_chain"]["chain"])
-      steps.push_back({e["file"].get<std::string>(), e["min_pixels"].get<double>()});
+      if (e["kind"] != "asset") steps.push_back({e["file"].get<std::string>(), e["min_pixels"].get<double>()});
   } else {
     std::vector<const BakedLevel*> levels;
     for (const BakedLevel& l : a.result.levels) levels.push_back(&l);
     std::sort(levels.begin(), levels.end(), [](const BakedLevel* x, const BakedLevel* y) { return x->level < y->level; });
     for (std::size_t i = 0; i < levels.size(); ++i)
       steps.push_back({stem + "_L" + std::to_string(levels[i]->level) + ".glb", i + 1 < levels.size() ? levels[i + 1]->max_screen_pixels : 0.0});
+  }
+  if (steps.empty()) {
+    a.result.warnings.push_back("no " + stem + "_lods.glb: the recommended chain is the asset itself at every size");
+    return;
   }
   // Babylon.js loads every MSFT_lod level at once, coarsest first, and on each level's arrival
   // disposes the next coarser one, loaded or not: a coarser level still decoding its textures when
@@ -410,39 +420,19 @@ void lod_file_output(AssetBake& a, const AssetOptions& o, const std::string& ste
   a.manifest["lod_file"] = {{"file", name}, {"screen_height", o.lod_screen_height}, {"parts", names}, {"left_out", left_out}};
 }
 
-// 5c (used by 5a). Up to which on-screen size a file is made for (0: any): a level's or mesh
-// LOD's max_screen_pixels; the point impostor's size at its switch distance, nearer than which its
-// points part (it fades to the mesh there).
-double file_max_pixels(const nlohmann::json& manifest, const std::string& file, double diagonal) {
-  std::vector<const nlohmann::json*> lists{&manifest.at("levels")};
-  if (manifest.contains("mesh_lods") && manifest["mesh_lods"].contains("levels")) lists.push_back(&manifest["mesh_lods"]["levels"]);
-  for (const nlohmann::json* entries : lists)
-    for (const nlohmann::json& e : *entries)
-      if (e.at("file") == file) return e.at("max_screen_pixels").get<double>();
-  if (manifest.contains("point_impostor") && manifest["point_impostor"].at("file") == file) {
-    // D H / (2 tan(fov / 2) d) is symmetric in pixels and distance: the pixels at a distance.
-    const nlohmann::json& p = manifest["point_impostor"];
-    return distance_for_pixels(diagonal, p.at("switch_distance").get<double>(), p.at("switch_screen_height").get<double>(),
-                               p.at("switch_fov_degrees").get<double>());
-  }
-  return 0;
-}
-
-// 5a. The files to measure: the impostor levels (at every size: their own figures decide their
-// size); with the chain also the mesh LODs and the point impostor, its other candidates, each
-// drawn only up to the sizes where it may be chosen.
+// 5a. The files to measure (their own figures decide where they hold): the impostor levels; with
+// the chain also the mesh LODs and the point impostor, its other candidates.
 std::vector<Candidate> measured_candidates(const AssetBake& a, bool chain) {
   std::vector<Candidate> out;
-  const double diagonal = a.manifest.at("bounding_box_diagonal").get<double>();
-  auto add = [&](const nlohmann::json& entry, const char* kind, bool sized) {
+  auto add = [&](const nlohmann::json& entry, const char* kind) {
     const std::string name = entry.at("file").get<std::string>();
     for (const OutputFile& f : a.files)
-      if (f.name == name) out.push_back({name, kind, &f.bytes, sized ? file_max_pixels(a.manifest, name, diagonal) : 0.0});
+      if (f.name == name) out.push_back({name, kind, &f.bytes});
   };
   if (chain && a.manifest.contains("mesh_lods"))
-    for (const nlohmann::json& l : a.manifest["mesh_lods"]["levels"]) add(l, "mesh_lod", true);
-  for (const nlohmann::json& l : a.manifest.at("levels")) add(l, "impostor_level", false);
-  if (chain && a.manifest.contains("point_impostor")) add(a.manifest["point_impostor"], "point_impostor", true);
+    for (const nlohmann::json& l : a.manifest["mesh_lods"]["levels"]) add(l, "mesh_lod");
+  for (const nlohmann::json& l : a.manifest.at("levels")) add(l, "impostor_level");
+  if (chain && a.manifest.contains("point_impostor")) add(a.manifest["point_impostor"], "point_impostor");
   return out;
 }
 
@@ -452,56 +442,74 @@ const FileScores* scores_of(const Measurements& m, const std::string& file) {
   return nullptr;
 }
 
-// 5b. Each impostor level's honest max_screen_pixels (finest first; the geometric one kept beside
-// it), its window and figures, in the manifest and in the bake's levels (which the combined LOD
-// file switches by).
+// 5b. Every measured file's max_screen_pixels and holds_from_pixels where it holds by the bar (the
+// geometric estimate kept beside it as geometric_max_screen_pixels), with its figures per size, in
+// the manifest and in the bake's levels (which the combined LOD file switches by).
 void apply_screen_sizes(AssetBake& a, const Measurements& m, const HoldBar& bar) {
-  nlohmann::json& levels = a.manifest["levels"];
-  std::vector<std::size_t> order(levels.size());
-  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return levels[x]["level"] < levels[y]["level"]; });
-  std::vector<double> geometric;
-  std::vector<ScreenWindow> windows;
-  for (std::size_t i : order) {
-    const FileScores* f = scores_of(m, levels[i]["file"].get<std::string>());
-    geometric.push_back(levels[i]["max_screen_pixels"].get<double>());
-    windows.push_back(holding_window(m.sizes, f->at_size, bar));
-  }
-  const std::vector<double> honest = honest_screen_pixels(geometric, windows);
-  for (std::size_t k = 0; k < order.size(); ++k) {
-    nlohmann::json& l = levels[order[k]];
+  std::vector<nlohmann::json*> entries;
+  for (nlohmann::json& l : a.manifest["levels"]) entries.push_back(&l);
+  if (a.manifest.contains("mesh_lods") && a.manifest["mesh_lods"].contains("levels"))
+    for (nlohmann::json& l : a.manifest["mesh_lods"]["levels"]) entries.push_back(&l);
+  if (a.manifest.contains("point_impostor")) entries.push_back(&a.manifest["point_impostor"]);
+  for (nlohmann::json* l : entries) {
+    const FileScores* f = scores_of(m, l->at("file").get<std::string>());
+    if (!f) continue;
+    const ScreenWindow w = holding_window(m.sizes, f->at_size, m.asset.at_size, bar);
     nlohmann::json measured = nlohmann::json::array();
-    const FileScores* f = scores_of(m, l["file"].get<std::string>());
     for (std::size_t s = 0; s < m.sizes.size(); ++s) {
       nlohmann::json e = scores_entry(f->at_size[s]);
       e["pixels"] = m.sizes[s];
+      e["holds"] = holds(f->at_size[s], m.asset.at_size[s], bar);
       measured.push_back(e);
     }
-    l["geometric_max_screen_pixels"] = l["max_screen_pixels"];
-    l["max_screen_pixels"] = static_cast<long long>(honest[k]);
-    l["holds_from_pixels"] = windows[k].holds_at_smallest ? 0 : windows[k].min_pixels;
-    l["measured"] = measured;
-    for (BakedLevel& b : a.result.levels)
-      if (static_cast<long long>(b.level) == l["level"].get<long long>()) b.max_screen_pixels = honest[k];
+    if (l->contains("max_screen_pixels")) (*l)["geometric_max_screen_pixels"] = (*l)["max_screen_pixels"];
+    (*l)["max_screen_pixels"] = w.max_pixels;
+    (*l)["holds_from_pixels"] = w.min_pixels;
+    (*l)["measured"] = measured;
+    if (l->contains("level"))
+      for (BakedLevel& b : a.result.levels)
+        if (static_cast<long long>(b.level) == (*l)["level"].get<long long>()) b.max_screen_pixels = w.max_pixels;
   }
 }
 
 nlohmann::json measuring_entry(const Measurements& m, const HoldBar& bar) {
+  nlohmann::json asset = nlohmann::json::array();
+  for (std::size_t s = 0; s < m.sizes.size(); ++s) {
+    nlohmann::json e = scores_entry(m.asset.at_size[s]);
+    e["pixels"] = m.sizes[s];
+    asset.push_back(e);
+  }
   return {{"method", "engine"},
           {"sizes", m.sizes},
           {"views", m.views},
           {"truth", m.truth},
-          {"hold_rule", "a level holds at a size when its PSNR is at most psnr_drop below its best over the sizes and its IoU at most "
-                        "iou_drop below its IoU there; max_screen_pixels is the largest size of the run that holds around its best (its "
-                        "geometric value where that is larger and it holds at the largest size), below every finer level's"},
-          {"psnr_drop", canonical_double(static_cast<float>(bar.psnr_drop))},
-          {"iou_drop", canonical_double(static_cast<float>(bar.iou_drop))}};
+          {"hold_rule", "a file holds at a size when, against the truth there, its footprint PSNR is at most psnr_drop below the asset's "
+                        "as drawn at that size, its soft IoU at most soft_iou_drop below the asset's, and its coverage at most "
+                        "coverage_drop below the asset's (capped at 1) and at least min_coverage; a size where the truth covers under "
+                        "half a pixel holds for no file. max_screen_pixels is the largest size measured at which it holds (0: none), "
+                        "holds_from_pixels the smallest of the run of sizes from there down at which it holds"},
+          {"hold", hold_entry(bar)},
+          {"asset", asset}};
 }
 
-void measure_outputs(AssetBake& a, const AssetOptions& o, const std::string& path) {
+// The asset's bytes as an engine would load it: the input file and every file it reads (a glTF's
+// buffers and images, an OBJ's MTL and textures).
+std::size_t asset_bytes(const std::string& path) {
+  std::vector<std::string> files{path};
+  for (const InputDependency& d : input_dependencies(path)) files.push_back(d.path);
+  std::size_t bytes = 0;
+  for (const std::string& f : files) {
+    std::error_code ec;
+    const std::uintmax_t n = std::filesystem::file_size(f, ec);
+    if (!ec) bytes += static_cast<std::size_t>(n);
+  }
+  return bytes;
+}
+
+void measure_outputs(AssetBake& a, const AssetOptions& o, const std::string& path, const std::string& input_name) {
   Measurements m;
   try {
-    m = o.measure(path, measured_candidates(a, o.chain));
+    m = o.measure(path, measured_candidates(a, o.chain), o.chain_rule.bar);
   } catch (const UsageError& e) {
     // No GL driver: the levels are still good files with their geometric sizes (as the sampler
     // falls back to the CPU), without a chain.
@@ -509,13 +517,13 @@ void measure_outputs(AssetBake& a, const AssetOptions& o, const std::string& pat
                                             "recommended chain: ") + e.what());
     return;
   }
-  apply_screen_sizes(a, m, o.hold);
-  a.manifest["measuring"] = measuring_entry(m, o.hold);
+  m.asset.file = input_name;
+  m.asset.bytes = asset_bytes(path);
+  apply_screen_sizes(a, m, o.chain_rule.bar);
+  a.manifest["measuring"] = measuring_entry(m, o.chain_rule.bar);
   if (o.chain) {
     const double diagonal = a.manifest.at("bounding_box_diagonal").get<double>();
-    std::vector<double> valid_up_to;
-    for (const FileScores& f : m.files) valid_up_to.push_back(file_max_pixels(a.manifest, f.file, diagonal));
-    const nlohmann::json chain = recommend_chain(m, diagonal, o.chain_rule, valid_up_to);
+    const nlohmann::json chain = recommend_chain(m, diagonal, o.chain_rule);
     if (!chain.is_null()) a.manifest["recommended_chain"] = chain;
   }
 }
@@ -545,18 +553,60 @@ std::optional<MemoryPlan> streamed_plan(const std::string& path, const BakeOptio
   return plan.out_of_core ? std::optional<MemoryPlan>(plan) : std::nullopt;
 }
 
+// Why a mesh is cheap already (empty: it is not): an opaque mesh of at most `cheap_triangles`
+// triangles draws exactly for less than any impostor or LOD of it would cost. Alpha-tested or
+// blended cards are never cheap: their own mipmaps thin them far away, where a level keeps them.
+std::string cheap_already(const Model& model, std::size_t cheap_triangles) {
+  if (!model.is_mesh || model.mesh.triangles.size() > cheap_triangles) return "";
+  for (const SurfaceMaterial& m : model.mesh.materials)
+    if (m.alpha_mode != AlphaMode::kOpaque) return "";
+  return "an opaque mesh of " + std::to_string(model.mesh.triangles.size()) + " triangles (at most --cheap-triangles " +
+         std::to_string(cheap_triangles) + ") is cheaper drawn as it is than any impostor or LOD of it: nothing else was written, "
+         "and the chain is the asset itself";
+}
+
+// 1'. A cheap mesh: no files but the manifest and report, which say why; measured, the asset alone,
+// so that its chain (the asset at every size) carries its figures.
+void cheap_asset(AssetBake& a, const AssetOptions& o, const std::string& path, const std::string& input_name, const TriangleMesh& mesh,
+                 const std::string& why) {
+  a.result.points = 0;
+  a.result.diagonal = static_cast<float>(mesh.bounds().diagonal());
+  a.manifest = impostor_outputs(a.result, std::filesystem::path(input_name).stem().string(), input_name, a.files);
+  a.manifest["cheap_asset"] = {{"triangles", mesh.triangles.size()}, {"bytes", asset_bytes(path)}, {"reason", why}};
+  a.result.warnings.push_back(why);
+  if (o.lod_file) a.result.warnings.push_back("no STEM_lods.glb for a cheap mesh: it would hold the asset alone");
+  if (o.measure) {
+    const auto measure_start = std::chrono::steady_clock::now();
+    measure_outputs(a, o, path, input_name);
+    a.result.times.push_back({"measure", seconds_since(measure_start), 0, 0});
+  }
+}
+
 }  // namespace
 
 AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::string& input_name) {
   AssetBake a;
   const std::string stem = std::filesystem::path(input_name).stem().string();
   BakeOptions bake_options = o.bake;
-  // 1. Points (a mesh is sampled), unless they stream straight to the out-of-core bake.
+  // 1. Points (a mesh is sampled), unless they stream straight to the out-of-core bake; a cheap
+  // mesh is not baked at all.
   const std::optional<MemoryPlan> streamed = streamed_plan(path, bake_options);
   TriangleMesh mesh;
   MeshSurface surface;  // a mesh input's quads draw the mesh itself
   PointSet points;
-  if (!streamed) points = load_point_set(path, o.read, o.sample, "bake", a.read, &a.sampled, &mesh, &surface.point_triangles);
+  if (!streamed) {
+    const auto read_start = std::chrono::steady_clock::now();
+    progress::step("reading " + path);
+    Model model = read_model(path, o.read, &a.read);
+    if (const std::string why = cheap_already(model, o.cheap_triangles); !why.empty()) {
+      a.result.times.push_back({"read", seconds_since(read_start), 0, 0});
+      cheap_asset(a, o, path, input_name, model.mesh, why);
+      a.report = asset_report(a, o, input_name, a.manifest["levels"]);
+      if (o.report_page) a.page = o.report_page(a, path);
+      return a;
+    }
+    points = points_of(std::move(model), path, o.read, o.sample, "bake", a.read, &a.sampled, &mesh, &surface.point_triangles);
+  }
   const bool is_mesh = !a.sampled.backend.empty();
   // A mesh's normals: its own; else flat for glTF (as engines draw it), smooth for the others (as
   // the reference is drawn, tools/reference_scene.cpp). Its quads and mesh LODs are drawn so too.
@@ -627,7 +677,7 @@ AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::
     a.result.warnings.push_back("no report.html (" + undrawn + "); give --no-report-html to say so, or more --max-memory");
   if (o.measure && undrawn.empty()) {
     const auto measure_start = std::chrono::steady_clock::now();
-    measure_outputs(a, o, path);
+    measure_outputs(a, o, path, input_name);
     a.result.times.push_back({"measure", seconds_since(measure_start), 0, 0});
   }
   // 6. All of them in one file.

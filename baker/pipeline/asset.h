@@ -40,7 +40,14 @@ struct AssetOptions {
   BakeOptions bake;
   ReadOptions read;
   SampleOptions sample;          // mesh inputs
-  bool point_impostor = true;    // mesh inputs: STEM_points.glb
+  // Mesh inputs: STEM_points.glb, only when asked for: the sampled points outweigh their asset on
+  // most meshes (1.4-5.1 MB for real game trees of 1.2-1.7 MB; 12.6 MB for a 4.7 KB textured cube).
+  bool point_impostor = false;
+  // An opaque mesh of at most this many triangles is cheap already: it is measured, not baked (no
+  // files but manifest.json and the reports, which say why; its chain is the asset itself). 0:
+  // every mesh is baked. A few hundred triangles draw in one call for less than one level's
+  // textures (a textured cube of 12 triangles and 4.7 KB took 28 s and 21.5 MB before).
+  std::size_t cheap_triangles = 256;
   std::uint64_t point_seed = 1;  // its permutation
   // Mesh inputs: the mesh LODs beside the impostors. Simplify (meshoptimizer's edge collapse,
   // STEM_S<i>.glb at default_simplify_budgets) by default: in the fidelity league it beats the
@@ -53,13 +60,13 @@ struct AssetOptions {
   bool lod_file = false;
   double lod_screen_height = 1080;
   // Measures the outputs by drawing them as an engine does (tools/measure.h; qf-bake sets it, as
-  // it links the renderer and the baker does not). With it each impostor level's
-  // max_screen_pixels is where its measured look holds (`hold`, pipeline/screen_sizes.h) and the
-  // manifest keeps every measured figure; empty: the geometric sizes, and no chain.
+  // it links the renderer and the baker does not). With it each measured file's
+  // max_screen_pixels is where its look holds beside the asset as drawn (chain_rule.bar,
+  // pipeline/screen_sizes.h) and the manifest keeps every measured figure; empty: the geometric
+  // sizes, and no chain.
   MeasureFiles measure;
-  HoldBar hold;
   // With `measure`, also the recommended chain (manifest recommended_chain, pipeline/chain.h):
-  // the mesh LODs and the point impostor are measured too, each where it may be chosen.
+  // the mesh LODs and the point impostor are measured too.
   bool chain = true;
   ChainRule chain_rule;
   // The page (report.html) of the bake; empty: none.
@@ -85,6 +92,11 @@ struct AssetBake {
 PointSet load_point_set(const std::string& path, const ReadOptions& read, const SampleOptions& sample,
                         const std::string& command, ReadReport& report, SampleStats* sampled = nullptr,
                         TriangleMesh* mesh = nullptr, std::vector<std::uint32_t>* triangles = nullptr);
+
+// The same for a model already read (`path` names it in errors).
+PointSet points_of(Model model, const std::string& path, const ReadOptions& read, const SampleOptions& sample, const std::string& command,
+                   ReadReport& report, SampleStats* sampled = nullptr, TriangleMesh* mesh = nullptr,
+                   std::vector<std::uint32_t>* triangles = nullptr);
 
 // Bakes one asset. `input_name` is how the manifest and report name the input (the path as the
 // user wrote it); output files are named after its stem.

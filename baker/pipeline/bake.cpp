@@ -13,6 +13,7 @@
 #include "core/memory.h"
 #include "core/progress.h"
 #include "pipeline/out_of_core.h"
+#include "pipeline/screen_sizes.h"
 
 namespace qf {
 namespace {
@@ -53,9 +54,12 @@ std::vector<std::size_t> chosen_levels(const AmgHierarchy& h, const BakeOptions&
 // The texture options of a level drawn at most `max_screen_pixels` across the bounding-box
 // diagonal: there one screen pixel is diagonal / max_screen_pixels wide, and its texels are
 // texel_density times finer (but never finer than the points, TextureOptions::texel_factor).
-// Texels sized for the points alone gave a 16-px level of the bunny 65k texels.
+// Texels sized for the points alone gave a 16-px level of the bunny 65k texels. No level is shown
+// above the largest size the measuring draws (kLargestMeasuredPixels): a textured cube's levels,
+// made by their geometry for 43,913-114,569 px, took 3.2-4.1M texels each and 28 s.
 TextureOptions level_texture_options(const BakeOptions& o, double diagonal, double max_screen_pixels) {
   TextureOptions t = o.texture;
+  max_screen_pixels = std::min(max_screen_pixels, double(kLargestMeasuredPixels));
   if (o.texel_density > 0 && max_screen_pixels > 0) t.min_texel = diagonal / (max_screen_pixels * o.texel_density);
   return t;
 }
@@ -253,7 +257,7 @@ BakedLevel bake_level(std::size_t level, const SparseMatrix& psi, std::vector<st
   std::vector<Texture> textures =
       texturer ? (*texturer)(psi, d, rects, texture) : level_textures(points, normals, alpha, d, rects, texture, surface);
   watch.lap(name + " textures");
-  for (const Texture& t : textures) out.texels += static_cast<std::size_t>(t.width) * static_cast<std::size_t>(t.height);
+  for (const Texture& t : textures) out.quad_texels += static_cast<std::size_t>(t.width) * static_cast<std::size_t>(t.height);
   // The level's partition is done with; its textures once packed into the atlas (at 10M sampled
   // points a level's textures are ~0.8 GB, freed before the PNG encoding needs more).
   alpha = SparseMatrix();

@@ -178,7 +178,7 @@ inline void use_surface_edges(BakeOptions& o, bool mesh_input) {
 struct BakedLevel {
   std::size_t level = 0;
   std::size_t primitives = 0;
-  std::size_t texels = 0;        // texels of the quads' textures (atlas gutters not counted)
+  std::size_t quad_texels = 0;   // texels of the quads' own textures (atlas gutters and padding not counted)
   int atlas_images = 0;
   double error = 0;              // mean of the quads' errors, model units
   double relative_error = 0;     // error / bounding-box diagonal

@@ -1,46 +1,43 @@
-// The recommended chain from near to far: for each screen-size band, the fewest bytes that look
-// good enough there (a quality bar; else the best trade of PSNR against bytes, 1 dB per doubling;
-// never more bytes than nearer), with its switch distance, chosen from the bake's measurements of
-// every candidate (mesh LODs, impostor levels, the point impostor; pipeline/measurements.h).
+// The recommended chain from near to far, starting at the asset itself: for each screen-size band,
+// the fewest bytes that hold there (pipeline/screen_sizes.h: about as good as the asset as drawn at
+// that size), never more bytes than a nearer derived file; where no derived file holds, the asset
+// itself, or, where the asset costs more than the nearer band's file, the best file per byte with
+// the reason. Chosen from the bake's measurements of every candidate (mesh LODs, impostor levels,
+// the point impostor; pipeline/measurements.h) and of the asset as drawn.
 #pragma once
 
 #include <nlohmann/json.hpp>
 
 #include "pipeline/measurements.h"
+#include "pipeline/screen_sizes.h"
 
 namespace qf {
 
 struct ChainRule {
-  // The quality bar: a band takes the smallest file that reaches both at the band's size. A
-  // tolerance relative to the band's best would always take the finest mesh LOD (44 dB on the
-  // bunny at every size), however small the object is on screen.
-  double min_psnr = 30;
-  double min_iou = 0.9;
+  HoldBar bar;                 // where a file holds (qf-bake: --hold-psnr)
   double screen_height = 1080; // of the switch distances, pixels (qf-bake: --lod-screen-height)
   double fov_degrees = 60;     // vertical field of view of the switch distances
 };
 
-// A file is a candidate for a band only where it is valid: at most `kShownAbove` x its own
-// max_screen_pixels (a level far above the size it was made for shows its flaws: CGAL's building
-// scan's 28-quad level, made for 26 px, was recommended from 0 to 256 px and beyond).
-constexpr double kShownAbove = 2;
-
-// The manifest's "recommended_chain" from `m` (band k shows the object between sizes[k+1] and
-// sizes[k] pixels and is measured at sizes[k], its largest; the first band also takes every size
-// above it, the last every size below): the rule, the candidates' figures and the chain
-// (consecutive bands with the same file joined; an entry's error is that at its nearest band's
-// size), nearest first. `max_pixels` gives each file's max_screen_pixels (one per m.files; 0 or
-// missing: valid at any size); a band takes only files valid at its size (the nearer band's cap
-// on bytes kept where it leaves one), and an entry says whether it met the bar (`bar_met`). Null
-// when nothing was measured.
-nlohmann::json recommend_chain(const Measurements& m, double diagonal, const ChainRule& rule = {}, const std::vector<double>& max_pixels = {});
+// The manifest's "recommended_chain" from `m`, whose asset has its file name and bytes set. Bands:
+// above sizes[0] (the asset, always: no file is measured there), then band k shows the object
+// between sizes[k+1] and sizes[k] pixels and is judged at sizes[k], its largest; the last takes
+// every size below. Consecutive bands with the same file are one entry (its error that at its
+// nearest band's size); an entry says whether it met the bar (`bar_met`) and, where the rule fell
+// back, why. A derived file larger than the asset takes part only at sizes where it draws better
+// than the asset (higher PSNR or soft IoU). Null when nothing was measured.
+nlohmann::json recommend_chain(const Measurements& m, double diagonal, const ChainRule& rule = {});
 
 // The distance at which an object of bounding-box diagonal `diagonal` spans `pixels` on a screen of
 // `screen_height` pixels with vertical field of view `fov_degrees` (as the point impostor's switch
 // distance: diagonal x screen_height / (2 tan(fov / 2) x pixels)).
 double distance_for_pixels(double diagonal, double pixels, double screen_height, double fov_degrees);
 
-// A score as the manifest rounds it: PSNR to 0.01 dB, IoU and soft IoU to 0.001.
+// A score as the manifest rounds it: PSNR to 0.01 dB, IoU, soft IoU and coverage to 0.001; a figure
+// without evidence (pipeline/measurements.h) is null.
 nlohmann::json scores_entry(const Scores& s);
+
+// The manifest's words for a HoldBar.
+nlohmann::json hold_entry(const HoldBar& bar);
 
 }  // namespace qf

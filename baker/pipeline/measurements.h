@@ -1,9 +1,11 @@
 // What a bake's outputs look like on screen: each file drawn as an engine draws it, at a ladder of
-// on-screen sizes, scored against the input's truth (tools/measure.h draws them; the baker, which
-// does not link the renderer, is handed that as a function). Plain figures, no GL here: the rules
-// that read them (pipeline/screen_sizes.h, pipeline/chain.h) are pure and unit-tested.
+// on-screen sizes, scored against the input's truth, beside the input itself drawn at each size
+// (the asset as drawn, what every file is judged relative to). tools/measure.h draws them; the
+// baker, which does not link the renderer, is handed that as a function. Plain figures, no GL here:
+// the rules that read them (pipeline/screen_sizes.h, pipeline/chain.h) are pure and unit-tested.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -11,17 +13,22 @@
 
 namespace qf {
 
-// One file at one size, the mean over the views.
+// One file at one size, the mean over the views (tools/image_metrics.h). A figure is NaN where
+// there was nothing to judge by: the truth covers under half a pixel (no PSNR, soft IoU or
+// coverage), or neither silhouette has a pixel (no IoU). Such a size is no evidence that a file
+// holds, never a match.
 struct Scores {
-  double psnr = 0;      // dB over the pixels either image covers (99 when identical)
+  double psnr = 0;      // dB over the footprint (the pixels either image covers, weighted by coverage)
   double iou = 0;       // silhouette intersection over union (coverage >= 0.5)
   double soft_iou = 0;  // sum min / sum max of fractional coverage
-  bool measured = true; // false: not drawn at this size (it cannot be chosen there; Candidate::max_pixels)
+  double coverage = 0;  // the file's summed coverage over the truth's (1: as much as the truth)
+  bool measured = true; // false: not drawn at this size
+  bool evidence() const { return measured && !std::isnan(psnr) && !std::isnan(soft_iou) && !std::isnan(coverage); }
 };
 
 struct FileScores {
   std::string file;
-  std::string kind;             // "impostor_level", "mesh_lod", "point_impostor"
+  std::string kind;             // "asset" (the input itself), "impostor_level", "mesh_lod", "point_impostor"
   std::size_t bytes = 0;
   std::vector<Scores> at_size;  // one per Measurements::sizes
 };
@@ -32,20 +39,20 @@ struct Measurements {
   std::vector<int> sizes;
   int views = 0;                 // directions spread over the bounding sphere
   int truth = 0;                 // the truth: the input drawn at truth x the size, box-filtered
+  FileScores asset;              // the input drawn at each size as an engine draws it (file, bytes: the caller's)
   std::vector<FileScores> files; // in the order asked for
 };
 
-// A file to measure: its name, kind and bytes (which outlive the call), and the largest size it
-// is drawn at: kShownAbove (pipeline/chain.h) x `max_pixels`, the size it is made for, beyond which
-// the chain never shows it (0: every size; an impostor level, whose size these figures decide).
+// A file to measure: its name, kind and bytes (which outlive the call).
 struct Candidate {
   std::string file, kind;
   const std::vector<std::uint8_t>* bytes = nullptr;
-  double max_pixels = 0;
 };
 
-// Draws `candidates` and the input at `input_path` and scores them; throws UsageError when no GL
-// context can be made, and the readers' InputErrors.
-using MeasureFiles = std::function<Measurements(const std::string& input_path, const std::vector<Candidate>& candidates)>;
+struct HoldBar;
+// Draws the input at `input_path` (the truth, and the asset as drawn) and `candidates` at a ladder
+// of sizes, larger ones while a file holds by `bar` (tools/measure.h), and scores them; throws
+// UsageError when no GL context can be made, and the readers' InputErrors.
+using MeasureFiles = std::function<Measurements(const std::string& input_path, const std::vector<Candidate>& candidates, const HoldBar& bar)>;
 
 }  // namespace qf

@@ -1,40 +1,38 @@
-// Honest screen sizes from measured looks (issue 31 item 5).
+// Honest screen sizes from measured looks, relative to the asset as drawn (issue 48).
 #include "pipeline/screen_sizes.h"
 
 #include <algorithm>
 #include <cassert>
+#include <cmath>
 
 namespace qf {
 
-ScreenWindow holding_window(const std::vector<int>& sizes, const std::vector<Scores>& at_size, const HoldBar& bar) {
-  assert(!sizes.empty() && sizes.size() == at_size.size() && "a score per size");
-  // 1. The best look over the ladder: the highest PSNR (the larger size on a tie: it is the one
-  // drawn nearer), with its IoU.
-  std::size_t best = 0;
-  for (std::size_t i = 0; i < at_size.size(); ++i)
-    if (at_size[i].psnr > at_size[best].psnr) best = i;
-  auto holds = [&](std::size_t i) {
-    return at_size[i].psnr >= at_size[best].psnr - bar.psnr_drop && at_size[i].iou >= at_size[best].iou - bar.iou_drop;
-  };
-  // 2. The run of sizes around it that hold: towards larger sizes (smaller index), then smaller.
-  std::size_t first = best, last = best;
-  while (first > 0 && holds(first - 1)) --first;
-  while (last + 1 < sizes.size() && holds(last + 1)) ++last;
-  return {sizes[first], sizes[last], first == 0, last + 1 == sizes.size()};
+namespace {
+
+// A figure as the manifest rounds it (pipeline/chain.h scores_entry), so that the rule can be
+// checked from the manifest; comparisons allow for the rounding's last bit.
+double rounded(double v, double step) { return std::round(v / step) * step; }
+constexpr double kSlack = 1e-9;
+
+}  // namespace
+
+bool holds(const Scores& file, const Scores& asset, const HoldBar& bar) {
+  if (!file.evidence() || !asset.evidence()) return false;
+  const double coverage_floor = std::max(bar.min_coverage, std::min(rounded(asset.coverage, 0.001), 1.0) - bar.coverage_drop);
+  return rounded(file.coverage, 0.001) >= coverage_floor - kSlack &&
+         rounded(file.psnr, 0.01) >= rounded(asset.psnr, 0.01) - bar.psnr_drop - kSlack &&
+         rounded(file.soft_iou, 0.001) >= rounded(asset.soft_iou, 0.001) - bar.soft_iou_drop - kSlack;
 }
 
-std::vector<double> honest_screen_pixels(const std::vector<double>& geometric, const std::vector<ScreenWindow>& windows) {
-  assert(geometric.size() == windows.size());
-  std::vector<double> out;
-  for (std::size_t i = 0; i < windows.size(); ++i) {
-    double v = windows[i].max_pixels;
-    if (windows[i].holds_at_largest) v = std::max(v, geometric[i]);
-    // Below the finer level's value: a power-of-two step of the ladder under it.
-    if (!out.empty())
-      while (v >= out.back() && v >= 1) v /= 2;
-    out.push_back(v);
-  }
-  return out;
+ScreenWindow holding_window(const std::vector<int>& sizes, const std::vector<Scores>& file, const std::vector<Scores>& asset, const HoldBar& bar) {
+  assert(sizes.size() == file.size() && sizes.size() == asset.size() && "a score per size");
+  // 1. The largest size at which it holds; 2. the run of sizes below it that hold too.
+  std::size_t first = 0;
+  while (first < sizes.size() && !holds(file[first], asset[first], bar)) ++first;
+  if (first == sizes.size()) return {};
+  std::size_t last = first;
+  while (last + 1 < sizes.size() && holds(file[last + 1], asset[last + 1], bar)) ++last;
+  return {sizes[first], sizes[last]};
 }
 
 }  // namespace qf

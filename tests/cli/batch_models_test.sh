@@ -9,7 +9,7 @@ dir=${QF_MODELS:-$HOME/.cache/quasiflat/models}
 source "$(dirname "$0")/test_lib.sh"
 models=(bunny00.off fandisk.off elephant.off ChineseDragon-10kv.off sphere.ply kitten.xyz ball.ply b9_training.ply oni.pwn sphere_20k.xyz)
 list=$(for m in "${models[@]}"; do printf '"%s/%s",' "$dir" "$m"; done)
-printf '{"output": "out", "assets": [%s]}\n' "${list%,}" >"$work/cgal.json"
+printf '{"output": "out", "defaults": {"points": true}, "assets": [%s]}\n' "${list%,}" >"$work/cgal.json"
 "$bake" batch "$work/cgal.json" -j 2 2>"$work/err"; rc=$?
 [[ $rc -eq 0 ]] && ok || bad "CGAL batch: exit $rc: $(tail -5 "$work/err")"
 [[ $(field "$work/out/batch-report.json" 'r["totals"]["baked"]') == ${#models[@]} ]] && ok || bad "every model baked"

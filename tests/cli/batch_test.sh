@@ -21,9 +21,9 @@ mkdir -p "$work/in"
 "$bake" generate cube -n 2000 -o "$work/in/cube.qs" -q
 cat >"$work/batch.json" <<JSON
 {"\$schema": "../schemas/batch.schema.json", "output": "out",
- "defaults": {"primitives": [100, 20], "ldi": 96},
+ "defaults": {"primitives": [100, 20], "ldi": 96, "cheap-triangles": 0},
  "assets": ["in/octa.ply", "in/ball.xyz", {"input": "in/ring.ply", "settings": {"merge": true, "tau": 0.1}},
-            {"input": "in/box.ply", "name": "box-mesh", "settings": {"no-points": true}}, "in/globe.ply",
+            {"input": "in/box.ply", "name": "box-mesh"}, {"input": "in/globe.ply", "settings": {"points": true}},
             {"input": "in/cube.qs", "settings": {"levels": "-1,-2"}}]}
 JSON
 validate "$work/batch.json" "$schemas/batch.schema.json"
@@ -34,7 +34,7 @@ validate "$work/batch.json" "$schemas/batch.schema.json"
 [[ $(field "$work/out/batch-report.json" 'r["totals"]["baked"]') == 6 ]] && ok || bad "first batch bakes 6 assets"
 validate "$work/out/batch-report.json" "$schemas/batch-report.schema.json"
 [[ -f $work/out/box-mesh/box_S0.glb && ! -f $work/out/box-mesh/box_points.glb && -f $work/out/globe/globe_points.glb ]] && ok ||
-  bad "per-asset settings and names apply (box-mesh without points, globe with)"
+  bad "per-asset settings and names apply (box-mesh without points, globe with: --points)"
 [[ $(field "$work/out/batch-report.json" 'min(a["primitives"] for a in r["assets"])') -gt 0 ]] && ok || bad "every asset has primitives"
 [[ $(field "$work/out/batch-report.json" 'all(a["peak_mb"] > 10 for a in r["assets"])') == True ]] && ok || bad "peak memory per asset"
 listing "$work/out" >"$work/full.sums"

@@ -285,8 +285,8 @@ grep -q $'\r' "$work/err" && bad "progress in a log has no carriage returns" || 
 grep -q "^qf-bake: .* -> " "$work/err" && ok || bad "bake prints its summary after the progress"
 # mesh-only options on a point set: said, not silently ignored
 expect 0 "generate points" -- "$bake" generate octahedron --points 4000 -o "$work/octp.ply" -q
-expect 0 "bake points with mesh options" -- "$bake" "$work/octp.ply" -o "$work/octp" --ldi 64 --no-points --primitives 30 --no-measure
-grep -q "warning: --ldi, --no-points apply to mesh inputs only; this input is a point set: ignored" "$work/err" && ok || bad "mesh-only options on a point set warned: $(head -c 300 "$work/err")"
+expect 0 "bake points with mesh options" -- "$bake" "$work/octp.ply" -o "$work/octp" --ldi 64 --points --primitives 30 --no-measure
+grep -q "warning: --ldi, --points apply to mesh inputs only; this input is a point set: ignored" "$work/err" && ok || bad "mesh-only options on a point set warned: $(head -c 300 "$work/err")"
 grep -q "mesh inputs only" "$work/octp/report.json" && ok || bad "the report keeps the mesh-only options' warning"
 QF_PROGRESS_SECONDS=soon expect 2 "QF_PROGRESS_SECONDS malformed" -- "$bake" "$work/ball_mesh.ply" -o "$work/meshbake_bad" -q
 grep -q "QF_PROGRESS_SECONDS" "$work/err" && [[ ! -e "$work/meshbake_bad" ]] && ok || bad "malformed QF_PROGRESS_SECONDS named, nothing written"

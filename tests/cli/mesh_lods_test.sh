@@ -37,8 +37,8 @@ if [[ -f "$engine" ]]; then copy_scores engine "$engine"; else echo "note: $engi
 
 # 2. The lattice's bake: simplify stalls above its smaller budget; no two S files are the same
 #    mesh, each budget is accounted for, the stop is said once; the same bytes at 1 thread.
-"$bake" "$work/lattice.glb" -o "$work/bake" --no-measure --no-points -q || bad "bake"
-"$bake" "$work/lattice.glb" -o "$work/bake1" --no-measure --no-points --threads 1 -q || bad "bake --threads 1"
+"$bake" "$work/lattice.glb" -o "$work/bake" --no-measure -q || bad "bake"
+"$bake" "$work/lattice.glb" -o "$work/bake1" --no-measure --threads 1 -q || bad "bake --threads 1"
 python3 - "$work/bake" <<'PY' 2>"$work/err" && ok || bad "lattice LODs: $(tail -3 "$work/err")"
 import json, os, sys
 d = sys.argv[1]

@@ -19,7 +19,7 @@ fail() { echo "FAIL: $*"; exit 1; }
 "$bake" generate bush --leaves 300 --seed 2 -o "$work/bush.glb" -q || fail "generate bush"
 for t in png webp; do
   OMP_NUM_THREADS=2 "$bake" "$work/oct.ply" -o "$work/oct_$t" --primitives 200,20 --no-measure --textures $t -q || fail "bake oct $t"
-  OMP_NUM_THREADS=2 "$bake" "$work/bush.glb" -o "$work/bush_$t" --primitives 100 --ldi 128 --mesh-lods none --no-points --no-measure \
+  OMP_NUM_THREADS=2 "$bake" "$work/bush.glb" -o "$work/bush_$t" --primitives 100 --ldi 128 --mesh-lods none --no-measure \
     --textures $t -q || fail "bake bush $t"
 done
 OMP_NUM_THREADS=1 "$bake" "$work/oct.ply" -o "$work/oct_webp1" --primitives 200,20 --no-measure --textures webp -q || fail "bake oct webp, 1 thread"

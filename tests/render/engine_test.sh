@@ -35,7 +35,7 @@ fail() { echo "FAIL: $*"; exit 1; }
 # the files draw the same. The chain needs the measurements.
 "$bake" "$src/samples/octahedron.ply" -o "$work/oct" --primitives 100 --no-measure -q || fail "bake octahedron"
 "$bake" generate sphere --mesh --subdivisions 8 -o "$work/sphere.ply" -q || fail "generate sphere"
-"$bake" "$work/sphere.ply" -o "$work/sphere" --primitives 30 --ldi 96 --no-measure -q || fail "bake sphere"
+"$bake" "$work/sphere.ply" -o "$work/sphere" --primitives 30 --ldi 96 --points --no-measure -q || fail "bake sphere"
 "$bake" cluster "$work/sphere.ply" -o "$work/cluster" --cells 0.6 --draco -q || fail "cluster sphere"
 "$bake" generate bush --leaves 600 --seed 2 -o "$work/bush.glb" -q || fail "generate bush"
 "$bake" "$work/bush.glb" -o "$work/bush" --primitives 100 --ldi 128 --mesh-lods none --no-measure -q || fail "bake bush"

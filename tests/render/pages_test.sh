@@ -42,7 +42,7 @@ n=$(grep -c '<section class="changed"' "$work/diff/index.html")
 # --- the batch's page: one asset baked, one failing with its message (--keep-going) ---
 printf 'ply\nformat ascii 1.0\nelement vertex 3\n' >"$work/broken.ply"
 cat >"$work/batch.json" <<EOF
-{"output": "out", "defaults": {"primitives": [30], "ldi": 64, "mesh-lods": "none", "no-points": true, "measure-views": 1},
+{"output": "out", "defaults": {"primitives": [30], "ldi": 64, "mesh-lods": "none", "measure-views": 1},
  "assets": ["m.ply", "broken.ply"]}
 EOF
 "$bake" batch "$work/batch.json" -k -q -j 2
@@ -50,7 +50,7 @@ EOF
 page batch "$work/out/batch-report.html" "$work/out/batch-report.json"
 
 # --- no page when asked for none; an earlier one is not left behind ---
-small=(-n 30 --ldi 64 --mesh-lods none --no-points -q)
+small=(-n 30 --ldi 64 --mesh-lods none -q)
 "$bake" "$work/m.ply" -o "$work/a" "${small[@]}" --no-measure --no-report-html
 [[ ! -e $work/a/report.html ]] && ok || bad "--no-report-html left a report.html"
 
