@@ -168,9 +168,10 @@ export class QFImpostorLevel extends Extension {
 		return this;
 	}
 
-	// The extension's arrays are per quad, and quad k is the k-th run of 4 vertices / 6 indices of
-	// the mesh. A transform that changes the geometry (simplify, weld, join, reorder) keeps the
-	// arrays intact but breaks that pairing, and nothing else would notice; warn where it shows.
+	// The extension's arrays are per quad, and quad k is the k-th run of 6 indices of the mesh. A
+	// transform that changes the number of quads (simplify at a large error) keeps the arrays
+	// intact but breaks that pairing, and nothing else would notice: warn. One that only reorders
+	// the quads (Draco) keeps the counts and is not caught here; docs/toolchain.md lists it.
 	checkQuads(level, logger) {
 		const quadCount = level.getQuadCount();
 		const meshes = this.document.getRoot().listMeshes();
