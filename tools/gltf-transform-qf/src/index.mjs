@@ -171,9 +171,13 @@ export class QFImpostorLevel extends Extension {
 	// The extension's arrays are per quad, and quad k is the k-th run of 6 indices of the mesh. A
 	// transform that changes the number of quads (simplify at a large error) keeps the arrays
 	// intact but breaks that pairing, and nothing else would notice: warn. One that only reorders
-	// the quads (Draco) keeps the counts and is not caught here; docs/toolchain.md lists it.
+	// the quads keeps the counts; of those, Draco is recognised by its extension.
 	checkQuads(level, logger) {
 		const quadCount = level.getQuadCount();
+		if (this.document.getRoot().listExtensionsUsed().some((ext) => ext.extensionName === 'KHR_draco_mesh_compression')) {
+			logger.warn(`${QF_IMPOSTOR_LEVEL}: Draco stores the triangles in its own order, so quad k is no longer `
+				+ `the k-th pair of triangles that the per-quad arrays describe (use meshopt or quantize).`);
+		}
 		const meshes = this.document.getRoot().listMeshes();
 		let indexCount = 0;
 		for (const mesh of meshes) {

@@ -160,6 +160,15 @@ test('meshopt compression keeps 1- and 2-byte arrays (glTF-Transform pads them w
 });
 
 test('transforms that change the quads or points are reported, not written silently', async () => {
+	// Draco reorders an impostor level's triangles; an aggressive simplify collapses quads.
+	for (const [command, flags] of [['draco', []], ['simplify', ['--ratio', '0', '--error', '0.1']]]) {
+		const { log } = runCli(command, fixtures.level[0].file, flags, true);
+		assert.match(log, /warn: QF_impostor_level:/, `${command}:\n${log}`);
+	}
+	for (const command of ['copy', 'meshopt']) {
+		const { log } = runCli(command, fixtures.level[0].file, [], true);
+		assert.doesNotMatch(log, /warn: QF_impostor_level:/, `${command}:\n${log}`);
+	}
 	// simplify on a point impostor drops points (meshoptimizer's simplifyPoints): our writer warns.
 	const { file } = fixtures.points[0];
 	const warnings = [];
