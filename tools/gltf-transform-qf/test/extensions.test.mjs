@@ -249,3 +249,20 @@ sys.exit(bad)
 	const r = spawnSync('/usr/bin/python3', ['-c', script, schemas], { input: JSON.stringify(blocks), encoding: 'utf8' });
 	assert.equal(r.status, 0, `${r.stdout}${r.stderr}`);
 });
+
+// Files baked before December 2026 carry `center`, `normal` and `atlasRect` in the block (values a
+// reader now ignores); they and other unknown keys pass through unchanged, and extras too.
+test('unknown keys and extras of a block are written back as they were', async () => {
+	const io = await createIO();
+	const jsonDoc = await io.binaryToJSON(fs.readFileSync(fixtures.level[0].file));
+	const block = jsonDoc.json.extensions[QF_IMPOSTOR_LEVEL];
+	block.center = [0.5, -0.25, 1];
+	block.atlasRect = [0, 0.125, 0.5, 1];
+	block.extras = { note: 'kept' };
+	const doc = await io.readJSON(jsonDoc);
+	const written = (await io.writeJSON(doc, { format: 'glb' })).json.extensions[QF_IMPOSTOR_LEVEL];
+	assert.deepEqual(written.center, [0.5, -0.25, 1]);
+	assert.deepEqual(written.atlasRect, [0, 0.125, 0.5, 1]);
+	assert.deepEqual(written.extras, { note: 'kept' });
+	assert.equal(written.quadCount, block.quadCount);
+});
