@@ -1,7 +1,7 @@
 // What a standard glTF engine sees of a file (three.js, Babylon, Godot, Unity's glTF importers):
 // primitives in world space with their metallic-roughness materials, for the engine method
 // (draw_engine.h). Any file qf-render reads becomes one: a baked .glb of any kind through the
-// glTF loader, and the references (a mesh, a point set as disc splats, tools/reference_scene.h)
+// glTF loader, and the references (a mesh, a point set as disc splats, measure/reference_scene.h)
 // as the engine would draw them had they been exported as glTF.
 #pragma once
 

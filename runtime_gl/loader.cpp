@@ -1,6 +1,6 @@
 // Loading scenes for runtime_gl: .glb/.gltf through tinygltf (with engine_loader.cpp, which reads
 // the engine's view of a file, the runtime files that include it; shared accessors in
-// gltf_read.h). References made from input files are tools/reference_scene.
+// gltf_read.h). References made from input files are baker/measure/reference_scene.
 #include "runtime_gl/loader.h"
 #include "runtime_gl/gltf_read.h"
 

@@ -1,5 +1,5 @@
 // Loading what runtime_gl draws: a baked .glb (tinygltf, with the QF_impostor_level extension when
-// present). References made from input files are tools/reference_scene.h.
+// present). References made from input files are measure/reference_scene.h.
 #pragma once
 
 #include <cstdint>

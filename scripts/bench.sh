@@ -22,6 +22,9 @@
 # chain: the recommended chain (scripts/chain_table.py) on bunny00, fandisk, the generated tree and
 # assimp's textured glTF box and spider: the chain, its bytes, and the bake's wall and CPU seconds
 # with --no-chain and with the chain (the default), with their ratio.
+# holds: issue 48's check (scripts/holds_table.py): every file's claimed max_screen_pixels drawn by
+# qf-render eval (8 views, 8x truth) beside the input as drawn, on a seeded lattice and bare tree,
+# assimp's textured cube and engine, bunny00 and elephant; the chains; bake seconds and bytes.
 # big: one big asset (issue 20): a generated torus and bunny00's mesh sampled by depth peeling, at
 # 1M and 10M points each, baked with the defaults on 2 threads: seconds per stage, wall and CPU
 # (user + sys) time and peak RSS of the whole command (GNU time -v), bytes per point, and the
@@ -40,12 +43,12 @@
 # bytes: the league at equal bytes (issue 32, scripts/bytes_league.py): bunny00, fandisk, elephant and the
 # generated tree baked with PNG, WebP and KTX2 textures; each impostor level against the best mesh LOD of
 # at most its bytes, at the largest chain band within its max_screen_pixels (~2 min).
-# usage: scripts/bench.sh [io|las|analysis|amg|render|bake|sample|cluster|batch|fidelity|chain|scans|textures|bytes|big|growth]...   (default: all but big and growth)
+# usage: scripts/bench.sh [io|las|analysis|amg|render|bake|sample|cluster|batch|fidelity|chain|holds|scans|textures|bytes|big|growth]...   (default: all but big and growth)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh >/dev/null
 what=("$@")
-[[ ${#what[@]} -eq 0 ]] && what=(io las analysis amg render bake sample cluster batch fidelity chain scans textures bytes)
+[[ ${#what[@]} -eq 0 ]] && what=(io las analysis amg render bake sample cluster batch fidelity chain holds scans textures bytes)
 for w in "${what[@]}"; do
   case $w in
     io) build/bin/qf-bench-io ;;
@@ -271,7 +274,21 @@ for w in "${what[@]}"; do
       done
       python3 scripts/chain_table.py build/bin "$models" "$tmp" bunny00.off fandisk.off "${assets[@]}"
       rm -rf "$tmp" ;;
-    *) echo "unknown benchmark '$w' (io, las, analysis, amg, render, bake, sample, cluster, batch, fidelity, chain, scans, textures, big)" >&2; exit 2 ;;
+    holds)
+      # Issue 48: every file's claimed size checked by qf-render eval, and the chains, on assets no test
+      # uses: seeded thin structures (a lattice tower, a bare tree), assimp's textured cube and engine,
+      # and CGAL's bunny and elephant.
+      models=$(scripts/fetch-models.sh bunny00.off elephant.off | tail -1)
+      tmp=$(mktemp -d)
+      build/bin/qf-bake generate lattice --seed 5 -o "$tmp/lattice5.glb" -q
+      build/bin/qf-bake generate bare-tree --seed 7 -o "$tmp/bare7.glb" -q
+      assets=("$tmp/lattice5.glb" "$tmp/bare7.glb")
+      for f in /usr/share/assimp/models/glTF2/BoxTextured-glTF-Binary/BoxTextured.glb /usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb; do
+        if [[ -f $f ]]; then assets+=("$f"); else echo "(assimp-testmodels not installed: $(basename "$f") skipped)"; fi
+      done
+      python3 scripts/holds_table.py build/bin "$tmp" "${assets[@]}" "$models/bunny00.off" "$models/elephant.off"
+      rm -rf "$tmp" ;;
+    *) echo "unknown benchmark '$w' (io, las, analysis, amg, render, bake, sample, cluster, batch, fidelity, chain, holds, scans, textures, big)" >&2; exit 2 ;;
   esac
   echo
 done

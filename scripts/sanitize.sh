@@ -5,7 +5,7 @@
 # engine (qf-render, qf-diff: EGL/OpenGL), the tests of the mesh sampler's GL backend (qf_test_sample's
 # Sample.* tests that draw with OpenGL, SampleModels.*; its CPU backend runs in the tests kept and
 # in every bake), and three scale tests (scale_tests below). GL users remain, headless through EGL
-# on llvmpipe: every bake's measuring (tools/measure.h: our code sanitized, Mesa's not),
+# on llvmpipe: every bake's measuring (baker/measure/measure.h: our code sanitized, Mesa's not),
 # cli_test.sh's `convert --sampler gl` and batch_test.sh's `--eval` (qf-render eval); Mesa and
 # LeakSanitizer: tests/lsan.supp, baker/gl/egl.cpp.
 #

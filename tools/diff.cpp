@@ -18,7 +18,7 @@
 #include "core/gltf_keys.h"
 #include "gl/egl.h"
 #include "runtime_gl/camera.h"
-#include "tools/any_scene.h"
+#include "measure/any_scene.h"
 #include "tools/image_ops.h"
 
 namespace qf::render {
@@ -362,8 +362,10 @@ OJson chain_changes(const Json& a, const Json& b) {
     for (const Json& e : m["recommended_chain"].value("chain", Json::array())) {
       if (!e.is_object()) continue;
       if (!text.empty()) text += " -> ";
-      text += e.value("file", std::string("?")) + " to " + e.value("min_pixels", Json(0)).dump() + " px, " +
-              e.value("error", Json::object()).value("psnr", Json(0)).dump() + " dB";
+      // The input's first entry, above the largest size measured, has no figure.
+      const Json error = e.contains("error") && e["error"].is_object() ? e["error"] : Json::object();
+      text += (e.value("kind", std::string()) == "asset" ? std::string("the input") : e.value("file", std::string("?"))) + " to " +
+              e.value("min_pixels", Json(0)).dump() + " px" + (error.contains("psnr") ? ", " + error["psnr"].dump() + " dB" : "");
     }
     return OJson(text);
   };
@@ -393,9 +395,14 @@ OJson error_changes(const Json& a, const Json& b, double& worst_drop) {
       for (const Json& e : c["chain"]) {
         const bool covers = (e["max_pixels"].is_null() || size <= e["max_pixels"].get<double>()) && lower >= e["min_pixels"].get<double>();
         if (!covers) continue;
+        // The band's file: the input itself (its figures as drawn) or a measured file.
+        std::vector<const Json*> sources;
+        if (e.value("kind", std::string()) == "asset" && c.contains("asset")) sources.push_back(&c["asset"]);
         for (const Json& f : c["measured"])
-          if (f["file"] == e["file"] && f["at_pixels"].size() > k)
-            out["chain band " + sizes[k].dump() + " px"] = {{"psnr", f["at_pixels"][k]["psnr"]}, {"iou", f["at_pixels"][k]["iou"]}, {"file", e["file"]}};
+          if (f["file"] == e["file"]) sources.push_back(&f);
+        for (const Json* f : sources)
+          if ((*f)["at_pixels"].size() > k && (*f)["at_pixels"][k].is_object())
+            out["chain band " + sizes[k].dump() + " px"] = {{"psnr", (*f)["at_pixels"][k]["psnr"]}, {"iou", (*f)["at_pixels"][k]["iou"]}, {"file", e["file"]}};
       }
     }
     return out;

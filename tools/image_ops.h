@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "runtime_gl/scene.h"
-#include "tools/image_metrics.h"
+#include "measure/image_metrics.h"
 
 namespace qf::render {
 

@@ -16,11 +16,11 @@
 #include "core/error.h"
 #include "core/file_io.h"
 #include "io/model_io.h"
-#include "tools/any_scene.h"
+#include "measure/any_scene.h"
 #include "runtime_gl/draw_gl11.h"
 #include "runtime_gl/egl_context.h"
 #include "tools/image_ops.h"
-#include "tools/measure.h"
+#include "measure/measure.h"
 #include "runtime_gl/loader.h"
 
 namespace qf::render {

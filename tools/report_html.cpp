@@ -12,11 +12,11 @@
 
 #include "core/error.h"
 #include "gl/egl.h"
-#include "pipeline/chain.h"
+#include "measure/chain.h"
 #include "runtime_gl/camera.h"
-#include "tools/any_scene.h"
+#include "measure/any_scene.h"
 #include "tools/html_page.h"
-#include "tools/measure.h"
+#include "measure/measure.h"
 
 namespace qf::render {
 namespace {
@@ -239,7 +239,14 @@ std::string chain_section(const AssetBake& a, const std::vector<PageFile>& files
     double lo = 0, hi = 0;  // pixels; hi < 0: any larger size
     Json psnr, iou, distance;
     bool bar_met = true;
-    std::string reason, kind;
+    std::string reason, kind, cost;
+  };
+  // What drawing a chain entry costs: triangles, and the GPU memory of its textures.
+  const auto cost_text = [](const Json& c) {
+    if (!c.is_object()) return std::string();
+    std::string out = c.contains("triangles") ? c["triangles"].dump() + " triangles" : c.contains("points") ? c["points"].dump() + " points" : "";
+    if (c.contains("gpu_bytes")) out += ", " + html::bytes_text(c["gpu_bytes"].get<double>()) + " GPU";
+    return out;
   };
   const Json& m = a.manifest;
   std::vector<Band> bands;
@@ -253,7 +260,8 @@ std::string chain_section(const AssetBake& a, const std::vector<PageFile>& files
     for (const Json& e : c["chain"])
       bands.push_back({e["file"].get<std::string>(), e["min_pixels"].get<double>(), e["max_pixels"].is_null() ? -1 : e["max_pixels"].get<double>(),
                        e["error"].is_object() ? e["error"]["psnr"] : Json(), e["error"].is_object() ? e["error"]["iou"] : Json(),
-                       e.value("switch_distance", Json()), e.value("bar_met", true), e.value("reason", std::string()), e.value("kind", std::string())});
+                       e.value("switch_distance", Json()), e.value("bar_met", true), e.value("reason", std::string()), e.value("kind", std::string()),
+                       cost_text(e.value("draw_cost", Json()))});
   } else {
     h << "<h2>Impostor levels by on-screen size</h2>\n<p class=\"note\">No recommended chain (baked with <code>--no-chain</code> or "
          "<code>--no-measure</code>, or without a GL driver to measure): the impostor levels, each shown from its max_screen_pixels down to "
@@ -262,7 +270,7 @@ std::string chain_section(const AssetBake& a, const std::vector<PageFile>& files
     for (const PageFile& f : files)
       if (f.kind == "impostor_level") levels.push_back(&f);
     for (std::size_t i = 0; i < levels.size(); ++i)
-      bands.push_back({levels[i]->file, i + 1 < levels.size() ? levels[i + 1]->own_pixels : 0, levels[i]->own_pixels, Json(), Json(), Json(), true, "", ""});
+      bands.push_back({levels[i]->file, i + 1 < levels.size() ? levels[i + 1]->own_pixels : 0, levels[i]->own_pixels, Json(), Json(), Json(), true, "", "", ""});
   }
   if (bands.empty()) return h.str() + "<p>none</p>\n";
   h << "<div id=\"chain\" class=\"chain\" data-kind=\"" << (chain ? "recommended_chain" : "impostor_levels") << "\">";
@@ -281,6 +289,7 @@ std::string chain_section(const AssetBake& a, const std::vector<PageFile>& files
     if (b.kind == "asset") h << "<div>the input itself</div>";
     else h << "<div><a href=\"#" << html::attr(b.file) << "\">" << html::escape(b.file) << "</a></div>";
     if (f) h << "<div>" << html::bytes_text(double(f->bytes->size())) << "</div>";
+    if (!b.cost.empty()) h << "<div class=\"meta cost\">" << html::escape(b.cost) << "</div>";
     if (chain)
       h << (b.psnr.is_number() ? "<div>" + html::fixed(b.psnr, 2) + " dB, IoU " + html::fixed(b.iou, 3) + "</div>" : "")
         << (b.reason.empty() ? "" : "<div class=\"" + std::string(b.bar_met ? "meta" : "warn") + " reason\">" + html::escape(b.reason) + "</div>")

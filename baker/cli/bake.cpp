@@ -18,7 +18,7 @@
 #include "core/memory.h"
 #include "core/progress.h"
 #include "pipeline/asset.h"
-#include "tools/measure.h"
+#include "measure/measure.h"
 #include "tools/report_html.h"
 
 namespace qf::cli {
@@ -200,10 +200,7 @@ AssetOptions read_asset_options(const OptionValues& args) {
   a.chain_rule.screen_height = a.lod_screen_height;
   if (args.flag("no-measure") && (args.has("hold-psnr") || args.has("measure-views")))
     throw UsageError("--no-measure leaves nothing for --hold-psnr or --measure-views to do");
-  if (!args.flag("no-measure"))
-    a.measure = [measure](const std::string& input, const std::vector<Candidate>& candidates, const HoldBar& bar) {
-      return render::measure_files(input, candidates, bar, measure);
-    };
+  if (!args.flag("no-measure")) a.measure = measure;
   if (!args.flag("no-report-html")) {
     render::BakePageOptions page;
     page.read = a.read;

@@ -158,6 +158,8 @@ const std::vector<Command>& commands() {
             "               leaf textures: a textured game asset (OUT must be .glb), where mesh\n"
             "               simplification has nothing to collapse\n"
             "  bush         stems and --leaves (default 1800) small alpha-masked leaves: foliage (.glb)\n"
+            "  bare-tree    a trunk and limbs branching down to twigs far thinner than a pixel, no leaves\n"
+            "               (.glb); --seed sets the branching\n"
             "  lattice      a tower of thin square beams, flat-shaded, one material (.glb); --seed sets\n"
             "               its storeys, taper, bracing and beam width\n"
             "  plate        a 2 x 1 plate whose halves differ in roughness and metallic (a metallic-\n"
@@ -285,7 +287,7 @@ int run_generate(const ParsedArgs& args) {
   o.seed = static_cast<std::uint64_t>(args.get_int("seed", static_cast<long long>(o.seed), 0, (1ll << 62)));
   const std::string out = args.get("output");
   const std::string& shape = args.positional[0];
-  if (shape == "tree" || shape == "bush" || shape == "lattice" || shape == "plate") {
+  if (shape == "tree" || shape == "bush" || shape == "bare-tree" || shape == "lattice" || shape == "plate") {
     if (file_extension(out) != "glb") throw UsageError("generate " + shape + " writes a .glb, not '" + out + "'");
     TriangleMesh asset;
     if (shape == "tree") {
@@ -298,6 +300,8 @@ int run_generate(const ParsedArgs& args) {
       b.seed = o.seed;
       b.leaves = static_cast<std::size_t>(args.get_int("leaves", static_cast<long long>(b.leaves), 1, 1000000));
       asset = generate_bush(b);
+    } else if (shape == "bare-tree") {
+      asset = generate_bare_tree(o.seed);
     } else if (shape == "plate") {
       asset = generate_material_plate();
     } else {

@@ -26,7 +26,7 @@ struct ReadOptions {
   // their 8 nearest neighbours (analysis/neighborhoods.h drop_outliers: a scanner's mixed pixels
   // and strays); 0 keeps every point. Not the format readers' job (read_model ignores it): the
   // bake's loader applies it (pipeline/asset.h load_point_set), and so does the loader of the
-  // measuring's and report.html's truth (tools/any_scene.h load_input), so both see one set.
+  // measuring's and report.html's truth (measure/any_scene.h load_input), so both see one set.
   // qf-bake sets 10 (--outliers).
   float outlier_factor = 0.0f;
 };

@@ -1,5 +1,5 @@
 // Loading any drawable file, and the paired renders of the fidelity metrics.
-#include "tools/any_scene.h"
+#include "measure/any_scene.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include "core/error.h"
 #include "core/file_io.h"
 #include "io/model_io.h"
-#include "tools/reference_scene.h"
+#include "measure/reference_scene.h"
 
 namespace qf::render {
 

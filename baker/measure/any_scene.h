@@ -10,7 +10,7 @@
 
 #include "io/model_io.h"
 #include "runtime_gl/draw_gl11.h"
-#include "tools/image_metrics.h"
+#include "measure/image_metrics.h"
 #include "runtime_gl/loader.h"
 
 namespace qf::render {

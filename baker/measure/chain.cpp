@@ -1,6 +1,6 @@
 // The recommended chain: the asset itself near, then the cheapest file that holds per screen-size
 // band, from the measurements.
-#include "pipeline/chain.h"
+#include "measure/chain.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,15 +1,15 @@
 // The recommended chain from near to far, starting at the asset itself: for each screen-size band,
-// the fewest bytes that hold there (pipeline/screen_sizes.h: about as good as the asset as drawn at
+// the fewest bytes that hold there (measure/screen_sizes.h: about as good as the asset as drawn at
 // that size), never more bytes than a nearer derived file; where no derived file holds, the asset
 // itself, or, where the asset costs more than the nearer band's file, the best file per byte with
 // the reason. Chosen from the bake's measurements of every candidate (mesh LODs, impostor levels,
-// the point impostor; pipeline/measurements.h) and of the asset as drawn.
+// the point impostor; measure/measurements.h) and of the asset as drawn.
 #pragma once
 
 #include <nlohmann/json.hpp>
 
-#include "pipeline/measurements.h"
-#include "pipeline/screen_sizes.h"
+#include "measure/measurements.h"
+#include "measure/screen_sizes.h"
 
 namespace qf {
 
@@ -34,7 +34,7 @@ nlohmann::json recommend_chain(const Measurements& m, double diagonal, const Cha
 double distance_for_pixels(double diagonal, double pixels, double screen_height, double fov_degrees);
 
 // A score as the manifest rounds it: PSNR to 0.01 dB, IoU, soft IoU and coverage to 0.001; a figure
-// without evidence (pipeline/measurements.h) is null.
+// without evidence (measure/measurements.h) is null.
 nlohmann::json scores_entry(const Scores& s);
 
 // The manifest's words for a HoldBar.

@@ -1,7 +1,7 @@
 // The metrics and image arithmetic (see image_metrics.h). One plain loop over the pixels: through
 // OpenImageIO's float images and pixel iterators they took a fifth of a mesh bake's CPU (bunny00
 // with the chain). Thresholds are steep clamps (c >= t  <=>  clamp((c - t) * 1e6 + 1, 0, 1)).
-#include "tools/image_metrics.h"
+#include "measure/image_metrics.h"
 
 #include <algorithm>
 #include <cmath>

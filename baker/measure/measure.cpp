@@ -1,5 +1,5 @@
 // The measuring library: candidates and the input's truth drawn per size and view, scored.
-#include "tools/measure.h"
+#include "measure/measure.h"
 
 #include <algorithm>
 #include <memory>
@@ -9,9 +9,9 @@
 #include "core/file_io.h"
 #include "core/progress.h"
 #include "gl/egl.h"
-#include "pipeline/screen_sizes.h"
+#include "measure/screen_sizes.h"
 #include "runtime_gl/camera.h"
-#include "tools/any_scene.h"
+#include "measure/any_scene.h"
 
 namespace qf::render {
 namespace {

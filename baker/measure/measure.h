@@ -2,7 +2,7 @@
 // ladder of on-screen sizes, scored against the truth, what the input's pixels should show there
 // (the input drawn at `truth` x the size and box-filtered down, as `qf-render eval --truth`), with
 // the input itself drawn at the size beside them (the asset as an engine shows it). The bake
-// measures every output with it (qf-bake hands it over as pipeline/measurements.h MeasureFiles:
+// measures every output with it (qf-bake hands it over as measure/measurements.h MeasureFiles:
 // the baker does not link the renderer); its figures for a file at a size are `qf-render eval
 // BAKED --size S --views N -m engine`'s. They come from the GL driver's pixels (llvmpipe here):
 // the same bytes on every run on one driver, not across drivers.
@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "io/model_io.h"
-#include "pipeline/measurements.h"
-#include "pipeline/screen_sizes.h"
+#include "measure/measurements.h"
+#include "measure/screen_sizes.h"
 
 namespace qf::render {
 
@@ -52,7 +52,7 @@ AnyScene measured_input(const std::string& input_path, const ReadOptions& read);
 // Draws the input at `input_path` (the truth once per view; the asset itself at every size, as
 // Measurements::asset, its bytes left 0 for the caller) and every candidate (loaded once, drawn from
 // the same views) at every size of options.sizes; then at twice the largest size, up to
-// options.largest, the asset and the candidates that hold (pipeline/screen_sizes.h, by `bar`) at
+// options.largest, the asset and the candidates that hold (measure/screen_sizes.h, by `bar`) at
 // the largest size so far, the others not (Scores::measured false), while any does. Returns the
 // mean scores per size, largest first. Makes its own headless GL context: throws UsageError when
 // there is none, and the readers' and loader's InputErrors.

@@ -1,19 +1,18 @@
 // What a bake's outputs look like on screen: each file drawn as an engine draws it, at a ladder of
 // on-screen sizes, scored against the input's truth, beside the input itself drawn at each size
-// (the asset as drawn, what every file is judged relative to). tools/measure.h draws them; the
-// baker, which does not link the renderer, is handed that as a function. Plain figures, no GL here:
-// the rules that read them (pipeline/screen_sizes.h, pipeline/chain.h) are pure and unit-tested.
+// (the asset as drawn, what every file is judged relative to). measure/measure.h draws them. Plain
+// figures, no GL here: the rules that read them (measure/screen_sizes.h, measure/chain.h) are pure
+// and unit-tested.
 #pragma once
 
 #include <cmath>
 #include <cstdint>
-#include <functional>
 #include <string>
 #include <vector>
 
 namespace qf {
 
-// One file at one size, the mean over the views (tools/image_metrics.h). A figure is NaN where
+// One file at one size, the mean over the views (measure/image_metrics.h). A figure is NaN where
 // there was nothing to judge by: the truth covers under half a pixel (no PSNR, soft IoU or
 // coverage), or neither silhouette has a pixel (no IoU). Such a size is no evidence that a file
 // holds, never a match.
@@ -49,10 +48,5 @@ struct Candidate {
   const std::vector<std::uint8_t>* bytes = nullptr;
 };
 
-struct HoldBar;
-// Draws the input at `input_path` (the truth, and the asset as drawn) and `candidates` at a ladder
-// of sizes, larger ones while a file holds by `bar` (tools/measure.h), and scores them; throws
-// UsageError when no GL context can be made, and the readers' InputErrors.
-using MeasureFiles = std::function<Measurements(const std::string& input_path, const std::vector<Candidate>& candidates, const HoldBar& bar)>;
 
 }  // namespace qf

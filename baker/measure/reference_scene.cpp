@@ -1,6 +1,6 @@
 // Reference scenes of input point sets and meshes, for the GL 1.1 methods and as an engine draws
 // them (see reference_scene.h).
-#include "tools/reference_scene.h"
+#include "measure/reference_scene.h"
 
 #include <algorithm>
 #include <cmath>

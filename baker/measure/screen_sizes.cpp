@@ -1,5 +1,5 @@
 // Honest screen sizes from measured looks, relative to the asset as drawn (issue 48).
-#include "pipeline/screen_sizes.h"
+#include "measure/screen_sizes.h"
 
 #include <algorithm>
 #include <cassert>
@@ -9,7 +9,7 @@ namespace qf {
 
 namespace {
 
-// A figure as the manifest rounds it (pipeline/chain.h scores_entry), so that the rule can be
+// A figure as the manifest rounds it (measure/chain.h scores_entry), so that the rule can be
 // checked from the manifest; comparisons allow for the rounding's last bit.
 double rounded(double v, double step) { return std::round(v / step) * step; }
 constexpr double kSlack = 1e-9;

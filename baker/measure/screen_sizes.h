@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "pipeline/measurements.h"
+#include "measure/measurements.h"
 
 namespace qf {
 
@@ -33,7 +33,7 @@ struct ScreenWindow {
 ScreenWindow holding_window(const std::vector<int>& sizes, const std::vector<Scores>& file, const std::vector<Scores>& asset,
                             const HoldBar& bar = {});
 
-// The largest on-screen size measured, pixels (tools/measure.h: every file at 256 px and below,
+// The largest on-screen size measured, pixels (measure/measure.h: every file at 256 px and below,
 // then doubling while a file holds): no file is shown above it (the asset itself is), so none
 // needs texels for more.
 constexpr int kLargestMeasuredPixels = 1024;

@@ -506,10 +506,29 @@ std::size_t asset_bytes(const std::string& path) {
   return bytes;
 }
 
+// What drawing a chain's file costs an engine besides its bytes: triangles (a quad is two), and the
+// GPU memory of its textures with their mip levels where the manifest gives it; the input's
+// triangles where it is a mesh.
+nlohmann::json draw_cost(const nlohmann::json& manifest, const std::string& file) {
+  std::vector<const nlohmann::json*> entries;
+  for (const nlohmann::json& l : manifest.at("levels")) entries.push_back(&l);
+  if (manifest.contains("mesh_lods") && manifest["mesh_lods"].contains("levels"))
+    for (const nlohmann::json& l : manifest["mesh_lods"]["levels"]) entries.push_back(&l);
+  for (const nlohmann::json* e : entries) {
+    if (e->at("file") != file) continue;
+    nlohmann::json cost{{"triangles", e->contains("primitives") ? 2 * e->at("primitives").get<std::size_t>() : e->value("triangles", std::size_t{0})}};
+    if (e->contains("gpu_bytes")) cost["gpu_bytes"] = (*e)["gpu_bytes"];
+    return cost;
+  }
+  if (manifest.contains("point_impostor") && manifest["point_impostor"].at("file") == file) return {{"points", manifest["point_impostor"]["points"]}};
+  if (manifest.contains("input_triangles")) return {{"triangles", manifest["input_triangles"]}};
+  return nullptr;
+}
+
 void measure_outputs(AssetBake& a, const AssetOptions& o, const std::string& path, const std::string& input_name) {
   Measurements m;
   try {
-    m = o.measure(path, measured_candidates(a, o.chain), o.chain_rule.bar);
+    m = render::measure_files(path, measured_candidates(a, o.chain), o.chain_rule.bar, *o.measure);
   } catch (const UsageError& e) {
     // No GL driver: the levels are still good files with their geometric sizes (as the sampler
     // falls back to the CPU), without a chain.
@@ -523,8 +542,10 @@ void measure_outputs(AssetBake& a, const AssetOptions& o, const std::string& pat
   a.manifest["measuring"] = measuring_entry(m, o.chain_rule.bar);
   if (o.chain) {
     const double diagonal = a.manifest.at("bounding_box_diagonal").get<double>();
-    const nlohmann::json chain = recommend_chain(m, diagonal, o.chain_rule);
-    if (!chain.is_null()) a.manifest["recommended_chain"] = chain;
+    nlohmann::json chain = recommend_chain(m, diagonal, o.chain_rule);
+    if (chain.is_null()) return;
+    for (nlohmann::json& e : chain["chain"]) e["draw_cost"] = draw_cost(a.manifest, e["file"].get<std::string>());
+    a.manifest["recommended_chain"] = chain;
   }
 }
 
@@ -572,6 +593,7 @@ void cheap_asset(AssetBake& a, const AssetOptions& o, const std::string& path, c
   a.result.points = 0;
   a.result.diagonal = static_cast<float>(mesh.bounds().diagonal());
   a.manifest = impostor_outputs(a.result, std::filesystem::path(input_name).stem().string(), input_name, a.files);
+  a.manifest["input_triangles"] = mesh.triangles.size();
   a.manifest["cheap_asset"] = {{"triangles", mesh.triangles.size()}, {"bytes", asset_bytes(path)}, {"reason", why}};
   a.result.warnings.push_back(why);
   if (o.lod_file) a.result.warnings.push_back("no STEM_lods.glb for a cheap mesh: it would hold the asset alone");
@@ -579,6 +601,7 @@ void cheap_asset(AssetBake& a, const AssetOptions& o, const std::string& path, c
     const auto measure_start = std::chrono::steady_clock::now();
     measure_outputs(a, o, path, input_name);
     a.result.times.push_back({"measure", seconds_since(measure_start), 0, 0});
+    if (a.manifest.contains("recommended_chain")) a.manifest["recommended_chain"]["chain"][0]["reason"] = why;
   }
 }
 
@@ -609,7 +632,7 @@ AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::
   }
   const bool is_mesh = !a.sampled.backend.empty();
   // A mesh's normals: its own; else flat for glTF (as engines draw it), smooth for the others (as
-  // the reference is drawn, tools/reference_scene.cpp). Its quads and mesh LODs are drawn so too.
+  // the reference is drawn, baker/measure/reference_scene.cpp). Its quads and mesh LODs are drawn so too.
   const bool gltf = a.read.format == "glb" || a.read.format == "gltf";
   if (is_mesh) {
     surface.mesh = &mesh;
@@ -657,6 +680,7 @@ AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::
                                 " to mesh inputs only; this input is a point set: ignored");
   }
   a.manifest = impostor_outputs(a.result, stem, input_name, a.files);
+  if (is_mesh) a.manifest["input_triangles"] = mesh.triangles.size();
   if (is_mesh && o.point_impostor) {
     progress::step("point impostor");
     a.manifest["point_impostor"] = point_impostor_output(points, o, a.sampled.pixel, stem, a.files);

@@ -11,15 +11,17 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "clustering/clustering.h"
 #include "io/model_io.h"
+#include "measure/chain.h"
+#include "measure/measure.h"
+#include "measure/measurements.h"
+#include "measure/screen_sizes.h"
 #include "pipeline/bake.h"
-#include "pipeline/chain.h"
-#include "pipeline/measurements.h"
-#include "pipeline/screen_sizes.h"
 #include "sample/sample.h"
 #include "simplify/simplify.h"
 
@@ -59,13 +61,12 @@ struct AssetOptions {
   // pixels high.
   bool lod_file = false;
   double lod_screen_height = 1080;
-  // Measures the outputs by drawing them as an engine does (tools/measure.h; qf-bake sets it, as
-  // it links the renderer and the baker does not). With it each measured file's
-  // max_screen_pixels is where its look holds beside the asset as drawn (chain_rule.bar,
-  // pipeline/screen_sizes.h) and the manifest keeps every measured figure; empty: the geometric
-  // sizes, and no chain.
-  MeasureFiles measure;
-  // With `measure`, also the recommended chain (manifest recommended_chain, pipeline/chain.h):
+  // Measures the outputs by drawing them as an engine does (measure/measure.h). With it each
+  // measured file's max_screen_pixels is where its look holds beside the asset as drawn
+  // (chain_rule.bar, measure/screen_sizes.h) and the manifest keeps every measured figure; none:
+  // the geometric sizes, and no chain (no GL driver needed).
+  std::optional<render::MeasureOptions> measure;
+  // With `measure`, also the recommended chain (manifest recommended_chain, measure/chain.h):
   // the mesh LODs and the point impostor are measured too.
   bool chain = true;
   ChainRule chain_rule;

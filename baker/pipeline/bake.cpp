@@ -13,7 +13,7 @@
 #include "core/memory.h"
 #include "core/progress.h"
 #include "pipeline/out_of_core.h"
-#include "pipeline/screen_sizes.h"
+#include "measure/screen_sizes.h"
 
 namespace qf {
 namespace {

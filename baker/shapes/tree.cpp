@@ -60,8 +60,7 @@ void frame(Vec3f d, Vec3f& a, Vec3f& b) {
 
 // A tapered tube from `from` along unit `dir`, `length` long, radius r0 -> r1, with the bark's
 // texture coordinates (u around, twice; v along, one repeat per unit).
-void add_tube(TriangleMesh& mesh, Vec3f from, Vec3f dir, double length, double r0, double r1) {
-  constexpr int kSides = 10, kRings = 6;
+void add_tube(TriangleMesh& mesh, Vec3f from, Vec3f dir, double length, double r0, double r1, int kSides = 10, int kRings = 6) {
   Vec3f a, b;
   frame(dir, a, b);
   const auto base = static_cast<std::uint32_t>(mesh.positions.size());
@@ -132,7 +131,47 @@ void add_random_leaf(TriangleMesh& mesh, SplitMix64& random, Vec3f at, Vec3f off
   add_leaf(mesh, at + offset, n, normalized(along), size, 0.6f * size);
 }
 
+// A branch from `from` along `dir` and, while `depth` lasts, 2-3 children from its upper half,
+// each 0.6-0.75 as long and 0.55 as thick, turned 30-60 degrees away and upwards (the draws in this
+// order: the count, then per child its place, turn and length). Twigs are 6-sided tubes of 2 rings.
+void add_branch(TriangleMesh& mesh, SplitMix64& random, Vec3f from, Vec3f dir, double length, double radius, int depth) {
+  const bool twig = depth == 0;
+  add_tube(mesh, from, dir, length, radius, 0.6 * radius, twig ? 6 : 8, twig ? 2 : 4);
+  if (depth == 0) return;
+  Vec3f a, b;
+  frame(dir, a, b);
+  const int children = 2 + static_cast<int>(random.next() % 2);
+  for (int c = 0; c < children; ++c) {
+    const double at = 0.5 + 0.5 * random.uniform(), turn = (0.5 + 0.5 * random.uniform()) * kPi / 3,
+                 around = 2 * kPi * (c + random.uniform()) / children;
+    const Vec3f side = a * static_cast<float>(std::cos(around)) + b * static_cast<float>(std::sin(around));
+    const Vec3f child = normalized(dir * static_cast<float>(std::cos(turn)) + side * static_cast<float>(std::sin(turn)) + Vec3f{0, 0.2f, 0});
+    add_branch(mesh, random, from + dir * static_cast<float>(length * at), child, length * (0.6 + 0.15 * random.uniform()),
+               0.55 * radius * (1 - 0.4 * at), depth - 1);
+  }
+}
+
 }  // namespace
+
+TriangleMesh generate_bare_tree(std::uint64_t seed) {
+  SplitMix64 random(seed);
+  TriangleMesh mesh;
+  mesh.textures = {bark_texture(random)};
+  SurfaceMaterial bark;
+  bark.name = "bark";
+  bark.texture = 0;
+  mesh.materials = {bark};
+  // The trunk, then 6 limbs in a spiral, each branching four times down to twigs ~0.004 thick
+  // (a tree 4 units tall: at 64 px on screen a pixel is ~0.08 units, so twigs are a twentieth of
+  // a pixel and the limbs about one).
+  add_tube(mesh, {0, 0, 0}, {0, 1, 0}, 2.2, 0.14, 0.07);
+  for (int i = 0; i < 6; ++i) {
+    const double angle = 2.4 * i + 0.5 * random.uniform(), height = 1.2 + 1.0 * i / 5;
+    const Vec3f dir = normalized(vec(std::cos(angle), 0.8 + 0.4 * random.uniform(), std::sin(angle)));
+    add_branch(mesh, random, {0, static_cast<float>(height), 0}, dir, 1.0 + 0.3 * random.uniform(), 0.05, 4);
+  }
+  return mesh;
+}
 
 TriangleMesh generate_tree(const TreeOptions& options) {
   if (options.leaves == 0 || options.leaves > 1000000) throw UsageError("a tree needs 1..1000000 leaves");

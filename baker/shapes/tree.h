@@ -29,4 +29,9 @@ struct BushOptions {
 // 1.6 wide, standing on y = 0. Foliage without a trunk: its look is the leaves' coverage.
 TriangleMesh generate_bush(const BushOptions& options = {});
 
+// A bare tree: a trunk and six limbs branching four times down to twigs far thinner than a pixel
+// at the sizes it is seen far away (~0.004 units in a tree ~4 tall), bark only (material 0, as the
+// tree's), opaque. The thin parts an impostor must not lose (issue 48); `seed` sets the branching.
+TriangleMesh generate_bare_tree(std::uint64_t seed = 1);
+
 }  // namespace qf

@@ -12,7 +12,7 @@
 #include "runtime_gl/draw_gl11.h"
 #include "runtime_gl/egl_context.h"
 #include "runtime_gl/loader.h"
-#include "tools/reference_scene.h"
+#include "measure/reference_scene.h"
 
 using namespace qf;
 using namespace qf::render;

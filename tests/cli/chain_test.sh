@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The recommended chain (made by every bake unless --no-chain, pipeline/chain.h): every candidate of
+# The recommended chain (made by every bake unless --no-chain, baker/measure/chain.h): every candidate of
 # a bake and the input itself measured at every size; nearest first the input itself, then per
 # band the smallest file that holds there beside the input as drawn (else the input, else the best
 # trade of PSNR against bytes with the reason), switch distances for a 1080-px screen at 60

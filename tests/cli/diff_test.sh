@@ -49,7 +49,7 @@ print(m["bytes_total"] == [sum(l["bytes"] for l in a), sum(l["bytes"] for l in c
   grep -q "^    impostor levels: [0-9]* -> [0-9]* bytes" "$work/out" && ok ||
   bad "text report: exit $rc: $(head -5 "$work/out")"
 # looser thresholds: within
-"$diff" "$work/a" "$work/c" --min-psnr 5 --max-changed 1 --max-quad-change 1 >"$work/out"; rc=$?
+"$diff" "$work/a" "$work/c" --min-psnr 5 --max-changed 1 --max-quad-change 1 --max-error-drop 10 >"$work/out"; rc=$?
 [[ $rc -eq 0 ]] && grep -q "^verdict: within thresholds" "$work/out" && ok || bad "loose thresholds pass: exit $rc: $(tail -2 "$work/out")"
 # structure only
 "$diff" "$work/a" "$work/c" --no-render --json >"$work/j"; rc=$?
@@ -72,18 +72,18 @@ cp "$work/k1/ball_C0.draco.glb" "$work/k3.draco.glb"
 
 # --- the recommended chain: a manifest's chain before and after, in text and JSON ---
 "$bake" generate torus -n 6000 -o "$work/ring.ply" -q
-"$bake" "$work/ring.ply" -o "$work/c1" --measure-views 2 --chain-psnr 99 -q --no-mesh-lods
-"$bake" "$work/ring.ply" -o "$work/c2" --measure-views 2 --chain-psnr 0 -q --no-mesh-lods
+"$bake" "$work/ring.ply" -o "$work/c1" --measure-views 2 --hold-psnr 0 -q --no-mesh-lods
+"$bake" "$work/ring.ply" -o "$work/c2" --measure-views 2 --hold-psnr 20 -q --no-mesh-lods
 "$diff" "$work/c1" "$work/c2" --no-render --json >"$work/j"; rc=$?
 chain="[x for x in r['files'] if x['name'] == 'manifest.json'][0]['recommended_chain']"
 errors="[x for x in r['files'] if x['name'] == 'manifest.json'][0].get('measured_errors')"
-[[ $(field "$work/j" "$chain['old'] != $chain['new'] and $chain['old'].startswith('ring_L')") == True ]] && ok ||
+[[ $(field "$work/j" "$chain['old'] != $chain['new'] and $chain['old'].startswith('the input to ') and 'ring_L' in $chain['new']") == True ]] && ok ||
   bad "a changed chain: old and new listed"
 # The bands whose file changed are listed with their figures; the exit status follows the worst drop.
 [[ $(field "$work/j" "$errors is not None and all(e['what'].startswith('chain band ') and e['file'][0] != e['file'][1] for e in $errors['changes']) and ($rc == 1) == ($errors['worst_psnr_drop'] > 0.5)") == True ]] && ok ||
   bad "the chain's bands: exit $rc, $(field "$work/j" "$errors")"
 "$diff" "$work/c1" "$work/c2" --no-render >"$work/out"
-grep -q "^    recommended chain: ring_L.* px, .* dB" "$work/out" && grep -q "^      now: ring_L" "$work/out" && grep -q "^      chain band [0-9]* px: .* dB" "$work/out" && ok ||
+grep -q "^    recommended chain: the input to .* px, .* dB" "$work/out" && grep -q "^      now: the input to .* -> ring_L" "$work/out" && grep -q "^      chain band [0-9]* px: .* dB" "$work/out" && ok ||
   bad "the chain in text: $(cat "$work/out")"
 # A level measured 2 dB worse at 32 px is a regression (beyond thresholds, named), a better one is not;
 # --max-error-drop allows it.

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# Honest screen sizes (tools/measure.h, pipeline/screen_sizes.h): every bake measures its files on
+# Honest screen sizes (baker/measure/measure.h, screen_sizes.h): every bake measures its files on
 # screen beside the input as drawn; each file's max_screen_pixels follows the hold rule from its own
-# figures, and those figures are qf-render eval's at the same size; a lattice of beams thinner than
-# a pixel claims no size at which it covers under half of the truth (checked by qf-render eval);
+# figures, and those figures are qf-render eval's at the same size; a lattice of beams and a bare
+# tree of twigs thinner than a pixel claim no size at which they cover under half of the truth
+# (checked by qf-render eval);
 # without a GL driver the bake still succeeds with geometric sizes and a warning; --no-measure skips
 # it and options that need it are refused.
 # usage: measure_test.sh QF_BAKE QF_RENDER
@@ -47,18 +48,24 @@ print(", ".join(f'{l["file"]} {l.get("primitives", l.get("triangles"))}: {l["geo
 PY
 python3 "$work/rule.py" "$work/tree/manifest.json" || fail "the tree's max_screen_pixels do not follow the measured rule"
 
-# 1'. Thin parts: a lattice tower of beams thinner than a pixel at small sizes. A level that draws
-#     nothing there must not claim the size: each level's claimed size is checked again by
-#     qf-render eval, independently of the bake's figures: it covers at least half of the truth.
-"$bake" generate lattice --seed 3 -o "$work/lattice.glb" -q || fail "generate lattice"
-"$bake" "$work/lattice.glb" -o "$work/lattice" --primitives 300,100,30 -q || fail "bake the lattice"
-python3 "$work/rule.py" "$work/lattice/manifest.json" || fail "the lattice's sizes do not follow the rule"
-while read -r file size; do
-  [[ $size == 0 ]] && continue
-  "$render" eval "$work/lattice.glb" "$work/lattice/$file" --size "$size" --views 4 --truth 2 -m engine -o "$work/le.json" 2>/dev/null || fail "eval $file"
-  python3 -c "import json,sys; e = json.load(open(sys.argv[1]))['mean']['engine']; c = e['coverage']; print(sys.argv[2], sys.argv[3], 'px: coverage', c); sys.exit(c is None or c < 0.5)" \
-    "$work/le.json" "$file" "$size" || fail "$file claims $size px, where it covers under half of the truth"
-done < <(python3 -c "import json,sys; [print(l['file'], l['max_screen_pixels']) for l in json.load(open(sys.argv[1]))['levels']]" "$work/lattice/manifest.json")
+# 1'. Thin parts: a lattice tower of beams and a bare tree whose twigs are thinner than a pixel at
+#     small sizes. A level that draws nothing there must not claim the size: each level's claimed
+#     size is checked again by qf-render eval, independently of the bake's figures: it covers at
+#     least half of the truth there.
+thin() {  # thin NAME GENERATE-ARGS...: bake it, check the rule and every level's claimed size
+  local name=$1; shift
+  "$bake" generate "$@" -o "$work/$name.glb" -q || fail "generate $name"
+  "$bake" "$work/$name.glb" -o "$work/$name" --primitives 300,100,30 -q || fail "bake $name"
+  python3 "$work/rule.py" "$work/$name/manifest.json" || fail "$name's sizes do not follow the rule"
+  while read -r file size; do
+    [[ $size == 0 ]] && continue
+    "$render" eval "$work/$name.glb" "$work/$name/$file" --size "$size" --views 4 --truth 2 -m engine -o "$work/le.json" 2>/dev/null || fail "eval $file"
+    python3 -c "import json,sys; e = json.load(open(sys.argv[1]))['mean']['engine']; c = e['coverage']; print(sys.argv[2], sys.argv[3], 'px: coverage', c); sys.exit(c is None or c < 0.5)" \
+      "$work/le.json" "$file" "$size" || fail "$file claims $size px, where it covers under half of the truth"
+  done < <(python3 -c "import json,sys; [print(l['file'], l['max_screen_pixels']) for l in json.load(open(sys.argv[1]))['levels']]" "$work/$name/manifest.json")
+}
+thin lattice lattice --seed 3
+thin bare bare-tree --seed 2
 
 # 2. The figures are qf-render eval's: the same views, the candidate drawn at the size, the truth
 #    drawn at 512 px (2 x 256, the largest size every file is drawn at) and box-filtered down (eval

@@ -39,7 +39,7 @@ done
 "$bake" join T/tiles.json baked -o J 2>err && ok || bad "join: $(cat err)"
 "$bake" join T/tiles.json baked -o J2 -q && ok || bad "second join"
 for f in J/*.glb; do cmp -s "$f" "J2/$(basename "$f")" || bad "join differs between runs: $f"; done
-/usr/bin/python3 - J <<'PY' && ok || bad "the joined manifest"
+/usr/bin/python3 - J <<'PY' 2>"$work/jerr" && ok || bad "the joined manifest: $(tail -2 "$work/jerr")"
 import json, sys
 m = json.load(open(sys.argv[1] + "/manifest.json"))
 levels = m["levels"]
@@ -47,7 +47,15 @@ assert m["tiles"] == 4 and len(levels) == 2, m
 for level, target in zip(levels, [200, 50]):
     assert len(level["parts"]) == 4 and len({p.split("/")[0] for p in level["parts"]}) == 4, level
     assert 0.75 * target <= level["primitives"] <= 1.25 * target, (level, target)
-    assert level["max_screen_pixels"] > 0
+    # A joined level holds as far as its worst tile: a tile's size scaled by its share of the diagonal
+    # (0 where a tile's level holds at no size measured).
+    diagonals = {t["name"]: t["bounding_box_diagonal"] for t in json.load(open("T/tiles.json"))["tiles"]}
+    def scaled(part):  # the tile level's size, across the whole scan's diagonal
+        tile, file = part.split("/")
+        l = next(x for x in json.load(open(f"baked/{tile}/manifest.json"))["levels"] if x["file"] == file)
+        return l["max_screen_pixels"] * m["bounding_box_diagonal"] / diagonals[tile]
+    want = min(scaled(p) for p in level["parts"])
+    assert abs(level["max_screen_pixels"] - int(want)) <= 1, (level["max_screen_pixels"], want)
 PY
 /usr/bin/python3 - J/torus_J0.glb <<'PY' && ok || bad "the joined level's nodes"
 import json, struct, sys

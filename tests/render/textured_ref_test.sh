@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Mesh references drawn with their materials (tools/reference_scene.cpp): the textured cube as
+# Mesh references drawn with their materials (baker/measure/reference_scene.cpp): the textured cube as
 # OBJ + MTL and as glTF (tests/data/textured) scores one bake alike under qf-render eval (engine
 # PSNR within 0.05 dB), renders with its texture's red, green and blue (not the grey of an
 # uncoloured mesh) and like the glTF; one primitive per material; meshes without materials keep

@@ -5,8 +5,8 @@
 #include <cmath>
 #include <limits>
 
-#include "pipeline/chain.h"
-#include "pipeline/screen_sizes.h"
+#include "measure/chain.h"
+#include "measure/screen_sizes.h"
 
 namespace qf {
 namespace {

@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "tools/any_scene.h"
-#include "tools/image_metrics.h"
+#include "measure/any_scene.h"
+#include "measure/image_metrics.h"
 
 namespace qf::render {
 namespace {

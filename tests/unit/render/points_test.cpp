@@ -18,7 +18,7 @@
 #include "runtime_gl/camera.h"
 #include "runtime_gl/draw_gl11.h"
 #include "runtime_gl/loader.h"
-#include "tools/reference_scene.h"
+#include "measure/reference_scene.h"
 #include "sample/sample.h"
 #include "shapes/shapes.h"
 
