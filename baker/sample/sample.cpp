@@ -8,6 +8,7 @@
 #include <type_traits>
 
 #include "core/error.h"
+#include "core/parallel_errors.h"
 #include "core/random.h"
 #include "sample/surface_color.h"
 
@@ -184,10 +185,14 @@ PointSet points_from_layers(const TriangleMesh& mesh, const SampleGrid& grid, co
     const int blocks = (L.height + kRows - 1) / kRows;
     std::vector<PointSet> parts(static_cast<std::size_t>(std::max(blocks, 0)));
     std::vector<std::vector<std::uint32_t>> part_triangles(parts.size());
+    ParallelErrors errors;
 #pragma omp parallel for schedule(dynamic, 1)
     for (int b = 0; b < blocks; ++b)
-      row_points(mesh, grid, L, facts, b * kRows, std::min(L.height, (b + 1) * kRows), parts[static_cast<std::size_t>(b)],
-                 part_triangles[static_cast<std::size_t>(b)]);
+      errors.run(b, [&] {
+        row_points(mesh, grid, L, facts, b * kRows, std::min(L.height, (b + 1) * kRows), parts[static_cast<std::size_t>(b)],
+                   part_triangles[static_cast<std::size_t>(b)]);
+      });
+    errors.rethrow();
     const std::size_t before = out.size();
     for (std::size_t b = 0; b < parts.size(); ++b) {
       append_points(out, parts[b]);
