@@ -7,6 +7,8 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "core/input_limits.h"
+#include "io/asset_files.h"
 #include "gltf/png.h"
 #include "io/reader_util.h"
 
@@ -20,28 +22,40 @@ std::string join_words(const std::vector<std::string_view>& words) {
 
 namespace {
 
-std::filesystem::path beside(const std::string& file, std::string relative) {
+std::string slashes(std::string relative) {
   std::replace(relative.begin(), relative.end(), '\\', '/');
-  return std::filesystem::path(file).parent_path() / relative;
+  return relative;
 }
 
-TextureImage load_texture(const std::filesystem::path& image, const std::string& mtl, std::size_t line) {
+// The image of a map_Kd line (`written` as the MTL writes it, relative to the MTL's folder),
+// confined to the asset's folder; its decoded size checked, with the images before it, against
+// the memory limit before it is decoded.
+TextureImage load_texture(const std::filesystem::path& mtl_folder, const std::string& written, const std::string& mtl, std::size_t line,
+                          MaterialLibrary& library) {
+  const std::string where = "line " + std::to_string(line);
+  const std::filesystem::path image = confined_file(library.root, mtl_folder, slashes(written), written, mtl, "mtl", where);
   std::error_code ec;
   if (!std::filesystem::is_regular_file(image, ec))
-    throw InputError("mtl.image", mtl, "line " + std::to_string(line), "map_Kd names " + image.string() + ", which does not exist");
+    throw InputError("mtl.image", mtl, where, "map_Kd names " + written + ", which does not exist");
   const InputFile file(image.string());
+  if (const std::optional<ImageHeader> h = image_header(file.bytes().data(), file.bytes().size())) {
+    library.image_bytes += decoded_image_bytes(*h);
+    check_memory_need(library.image_bytes, library.memory_limit, mtl, "mtl.memory", where,
+                      "decoding its images (the last " + std::to_string(h->width) + " x " + std::to_string(h->height) + ")");
+  }
   try {
     return decode_image(file.bytes().data(), file.bytes().size(), image.string());
   } catch (const std::runtime_error& e) {
-    throw InputError("mtl.image", mtl, "line " + std::to_string(line), "map_Kd " + image.string() + ": " + e.what());
+    throw InputError("mtl.image", mtl, where, "map_Kd " + written + ": " + e.what());
   }
 }
 
 }  // namespace
 
-void read_mtl(const std::string& obj_path, const std::string& mtl_path, TriangleMesh& mesh, MaterialLibrary& library,
-              ReadReport* report) {
-  const std::filesystem::path path = beside(obj_path, mtl_path);
+void read_mtl(const std::string& obj_path, const std::string& mtl_path, std::size_t obj_line, TriangleMesh& mesh,
+              MaterialLibrary& library, ReadReport* report) {
+  const std::filesystem::path path = confined_file(library.root, std::filesystem::path(obj_path).parent_path(), slashes(mtl_path),
+                                                   mtl_path, obj_path, "obj", "line " + std::to_string(obj_line));
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) {
     if (report) report->warnings.push_back("mtllib " + mtl_path + " not found: its materials are left uncoloured");
@@ -80,7 +94,7 @@ void read_mtl(const std::string& obj_path, const std::string& mtl_path, Triangle
     } else if (current && key == "map_Kd" && !words.empty()) {
       // Options (-s, -o, -bm ...) come first; the image is the last word.
       current->texture = static_cast<int>(mesh.textures.size());
-      mesh.textures.push_back(load_texture(beside(path.string(), std::string(words.back())), path.string(), line));
+      mesh.textures.push_back(load_texture(path.parent_path(), std::string(words.back()), path.string(), line, library));
     }
     tok.skip_line();
   }
