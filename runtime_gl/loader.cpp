@@ -16,11 +16,13 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <optional>
 #include <type_traits>
 
 #include "core/color.h"
 #include "core/error.h"
 #include "core/gltf_keys.h"
+#include "core/input_limits.h"
 
 namespace qf::render {
 namespace {
@@ -62,12 +64,44 @@ bool load_image_checked(tinygltf::Image* image, const int index, std::string* er
     image->width = image->height = -1;
     return true;
   }
+  // PNG and JPEG are decoded here by stb_image: their size from the header first, against the
+  // memory available (a 1 MB PNG can decode to 16384 x 16384 texels, 1 GB).
+  if (const std::optional<ImageHeader> h = image_header(bytes, static_cast<std::size_t>(std::max(size, 0)))) {
+    try {
+      check_memory_need(decoded_image_bytes(*h), 0, "", "render.gltf.memory", "",
+                        "image[" + std::to_string(index) + "] of " + std::to_string(h->width) + " x " + std::to_string(h->height) + " texels");
+    } catch (const InputError& e) {
+      if (err) *err += e.detail();
+      return false;
+    }
+  }
   return tinygltf::LoadImageData(image, index, err, warn, width, height, bytes, size, nullptr);
+}
+
+// The JSON of a glTF file checked for depth before tinygltf parses it (its parser recurses per
+// level: ~14,500 levels in 30 KB overflowed the stack): a .gltf's whole text, a .glb's JSON chunk.
+void check_file_json_depth(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::vector<std::uint8_t> bytes(20);
+  in.read(reinterpret_cast<char*>(bytes.data()), 20);
+  bytes.resize(static_cast<std::size_t>(in.gcount()));
+  if (bytes.size() == 20 && std::memcmp(bytes.data(), "glTF", 4) == 0) {
+    std::uint32_t length = 0;
+    std::memcpy(&length, bytes.data() + 12, 4);
+    const std::uintmax_t size = std::filesystem::file_size(path);
+    bytes.resize(20 + static_cast<std::size_t>(std::min<std::uintmax_t>(length, size > 20 ? size - 20 : 0)));
+    in.read(reinterpret_cast<char*>(bytes.data() + 20), static_cast<std::streamsize>(bytes.size() - 20));
+  } else {
+    bytes.insert(bytes.end(), std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  check_gltf_json_depth(bytes.data(), bytes.size(), path, "render.gltf");
 }
 
 // Parses a glTF file, or (`glb`, a .glb file's bytes) the same from memory; errors name `path`.
 tinygltf::Model parse_gltf(const std::string& path, const std::vector<std::uint8_t>* glb) {
   if (!glb && !std::filesystem::is_regular_file(path)) throw InputError("file.unreadable", path, "", "cannot open: no such file");
+  if (glb) check_gltf_json_depth(glb->data(), glb->size(), path, "render.gltf");
+  else check_file_json_depth(path);
   tinygltf::Model m;
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(&load_image_checked, &m);
