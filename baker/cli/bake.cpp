@@ -181,6 +181,7 @@ AssetOptions read_asset_options(const OptionValues& args) {
   a.read.memory_limit = o.max_memory;
   a.read.outlier_factor = static_cast<float>(args.get_double("outliers", 10.0, 0.0, 1e6));
   a.sample = read_sample_options(args);
+  a.sample.memory_limit = o.max_memory;
   a.point_seed = static_cast<std::uint64_t>(args.get_int("point-seed", 1, 0, 1ll << 62));
   a.point_impostor = !args.flag("no-points");
   for (const char* name : {"ldi", "sampler", "all-triangles", "visibility-views", "point-seed", "no-points"})

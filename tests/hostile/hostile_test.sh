@@ -62,6 +62,13 @@ while IFS=$'\t' read -r name input outside programs; do
   fi
 done <"$work/corpus/cases.tsv"
 
+# A sampling density whose layers would take more than --max-memory: refused before drawing
+# (it was std::bad_alloc inside the depth peeling's OpenMP loop: std::terminate, SIGABRT).
+"$bake" generate cube --mesh -o "$work/cube.ply" -q
+rm -rf "$work/out"
+run ldi_16000 bake inside "$bake" bake "$work/cube.ply" -o "$work/out" -q --max-memory 2G --no-cache --no-measure --ldi 16000
+grep -q "sample.memory" "$work/err.txt" && ok || bad "ldi_16000: not refused by the sampling estimate: $(tail -c 300 "$work/err.txt")"
+
 # The corpus holds what the issue lists: at least 40 cases.
 (($(wc -l <"$work/corpus/cases.tsv") >= 40)) && ok || bad "the corpus has fewer than 40 cases"
 finish hostile

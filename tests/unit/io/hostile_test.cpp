@@ -14,6 +14,7 @@
 #include "core/input_limits.h"
 #include "core/parallel_errors.h"
 #include "io/model_io.h"
+#include "sample/sample.h"
 #include "test_util.h"
 
 namespace qf {
@@ -217,6 +218,25 @@ TEST(Hostile, ObjReferencesOutsideTheAssetsFolderAreRefused) {
   const std::string b = error_of(dir.write("asset/b.obj", "mtllib in.mtl\n" + faces));
   EXPECT_EQ(b.rfind("mtl.outside_asset: ", 0), 0u) << b;
   EXPECT_TRUE(input_dependencies(dir.path("asset/a.obj")).empty());
+}
+
+// Sampling is sized before it draws: an LDI whose layers would take more than the limit is
+// refused (it was a std::bad_alloc inside the peeling's parallel loop: SIGABRT).
+TEST(Hostile, SamplingPastTheMemoryLimitIsRefusedBeforeDrawing) {
+  test::TempDir dir;
+  const TriangleMesh mesh = read_model(dir.write("t.gltf", gltf())).mesh;
+  SampleOptions o;
+  o.ldi_size = 16000;
+  o.memory_limit = 256 << 20;
+  try {
+    sample_mesh(mesh, o, "t.gltf");
+    ADD_FAILURE() << "sampled";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.code(), "sample.memory") << e.what();
+    EXPECT_NE(std::string(e.what()).find("sampling its 1 triangles at LDI 16000 would need about"), std::string::npos) << e.what();
+  }
+  o.ldi_size = 64;
+  EXPECT_GT(sample_mesh(mesh, o, "t.gltf").size(), 100u);
 }
 
 TEST(Hostile, ParallelErrorsKeepTheFirstIterationsException) {
