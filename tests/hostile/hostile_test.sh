@@ -30,15 +30,17 @@ fi
 run() {
   local name=$1 program=$2 outside=$3
   shift 3
-  local start end rc peak
-  start=$(date +%s.%N)
-  (ulimit -v "$vlimit_kb"; exec timeout -s KILL "$seconds" /usr/bin/time -f %M -o "$work/peak" "$@") \
-    >"$work/out.txt" 2>"$work/err.txt" </dev/null
+  local start rc peak
+  local -a timer=()
+  # GNU time gives the peak resident memory; without it the peak is not checked.
+  [[ -x /usr/bin/time ]] && timer=(/usr/bin/time -f %M -o "$work/peak")
+  rm -f "$work/peak"
+  start=$EPOCHREALTIME
+  (ulimit -v "$vlimit_kb"; exec timeout -s KILL "$seconds" "${timer[@]}" "$@") >"$work/out.txt" 2>"$work/err.txt" </dev/null
   rc=$?
-  end=$(date +%s.%N)
   peak=$(tail -1 "$work/peak" 2>/dev/null)
   [[ $peak =~ ^[0-9]+$ ]] || peak=0
-  printf '%s\t%s\t%s\t%.2f\t%s\n' "$name" "$program" "$rc" "$(echo "$end - $start" | bc)" "$peak" >>"$report"
+  printf '%s\t%s\t%s\t%s\t%s\n' "$name" "$program" "$rc" "$(python3 -c "print(f'{$EPOCHREALTIME - $start:.2f}')")" "$peak" >>"$report"
   # /usr/bin/time reports a signal as "Command terminated by signal N" and exits 128 + N.
   if grep -q "terminated by signal" "$work/peak" 2>/dev/null || ((rc > 3)); then
     bad "$name ($program): killed or timed out (exit $rc): $(tail -c 300 "$work/err.txt")"
