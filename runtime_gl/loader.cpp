@@ -6,7 +6,10 @@
 
 #include "core/weight_alpha.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <tiny_gltf.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -97,6 +100,35 @@ void check_file_json_depth(const std::string& path) {
   check_gltf_json_depth(bytes.data(), bytes.size(), path, "render.gltf");
 }
 
+// tinygltf opens a .gltf and its external buffers and images through these instead of its
+// defaults: no "~" or "$VAR" expansion (the default runs wordexp on the file's text), and only
+// regular files, opened without blocking (a FIFO named as a buffer hung the reader).
+bool regular_file_exists(const std::string& path, void*) {
+  struct stat st {};
+  return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+}
+
+std::string path_as_written(const std::string& path, void*) { return path; }
+
+bool read_regular_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  struct stat st {};
+  if (fd < 0 || ::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    if (fd >= 0) ::close(fd);
+    if (err) *err += path + " is not a readable regular file\n";
+    return false;
+  }
+  out->resize(static_cast<std::size_t>(st.st_size));
+  std::size_t done = 0;
+  for (ssize_t n = 1; done < out->size() && n > 0; done += static_cast<std::size_t>(std::max<ssize_t>(n, 0)))
+    n = ::read(fd, out->data() + done, out->size() - done);
+  ::close(fd);
+  out->resize(std::min(done, out->size()));
+  return true;
+}
+
+bool write_no_file(std::string*, const std::string&, const std::vector<unsigned char>&, void*) { return false; }
+
 // Parses a glTF file, or (`glb`, a .glb file's bytes) the same from memory; errors name `path`.
 tinygltf::Model parse_gltf(const std::string& path, const std::vector<std::uint8_t>* glb) {
   if (!glb && !std::filesystem::is_regular_file(path)) throw InputError("file.unreadable", path, "", "cannot open: no such file");
@@ -105,6 +137,7 @@ tinygltf::Model parse_gltf(const std::string& path, const std::vector<std::uint8
   tinygltf::Model m;
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(&load_image_checked, &m);
+  loader.SetFsCallbacks(tinygltf::FsCallbacks{&regular_file_exists, &path_as_written, &read_regular_file, &write_no_file, nullptr});
   std::string err, warn;
   const bool binary = glb || (path.size() >= 4 && path.compare(path.size() - 4, 4, ".glb") == 0);
   const bool ok = glb ? loader.LoadBinaryFromMemory(&m, &err, &warn, glb->data(), static_cast<unsigned int>(glb->size()))
