@@ -28,26 +28,52 @@ std::string slashes(std::string relative) {
 }
 
 // The image of a map_Kd line (`written` as the MTL writes it, relative to the MTL's folder),
-// confined to the asset's folder; its decoded size checked, with the images before it, against
-// the memory limit before it is decoded.
-TextureImage load_texture(const std::filesystem::path& mtl_folder, const std::string& written, const std::string& mtl, std::size_t line,
-                          MaterialLibrary& library) {
+// confined to the asset's folder; InputError "mtl.image" where it is missing.
+std::filesystem::path texture_path(const std::filesystem::path& mtl_folder, const std::string& written, const std::string& mtl,
+                                   std::size_t line, const MaterialLibrary& library) {
   const std::string where = "line " + std::to_string(line);
   const std::filesystem::path image = confined_file(library.root, mtl_folder, slashes(written), written, mtl, "mtl", where);
   std::error_code ec;
   if (!std::filesystem::is_regular_file(image, ec))
     throw InputError("mtl.image", mtl, where, "map_Kd names " + written + ", which does not exist");
+  return image;
+}
+
+TextureImage load_texture(const std::filesystem::path& mtl_folder, const std::string& written, const std::string& mtl, std::size_t line,
+                          const MaterialLibrary& library) {
+  const std::filesystem::path image = texture_path(mtl_folder, written, mtl, line, library);
   const InputFile file(image.string());
-  if (const std::optional<ImageHeader> h = image_header(file.bytes().data(), file.bytes().size())) {
-    library.image_bytes += decoded_image_bytes(*h);
-    check_memory_need(library.image_bytes, library.memory_limit, mtl, "mtl.memory", where,
-                      "decoding its images (the last " + std::to_string(h->width) + " x " + std::to_string(h->height) + ")");
-  }
   try {
     return decode_image(file.bytes().data(), file.bytes().size(), image.string());
   } catch (const std::runtime_error& e) {
-    throw InputError("mtl.image", mtl, where, "map_Kd " + written + ": " + e.what());
+    throw InputError("mtl.image", mtl, "line " + std::to_string(line), "map_Kd " + written + ": " + e.what());
   }
+}
+
+// Before any image of the MTL `bytes` is decoded: every map_Kd image's decoded size from its
+// header, added to the images of the MTL files before it, checked against the memory limit (one
+// 1 MB PNG named 8 times decodes to 8 GB).
+void check_texture_memory(ByteView bytes, const std::filesystem::path& path, MaterialLibrary& library) {
+  Tokenizer tok(reinterpret_cast<const char*>(bytes.data()), reinterpret_cast<const char*>(bytes.data() + bytes.size()));
+  std::size_t images = 0;
+  while (!tok.at_end()) {
+    const std::size_t line = tok.line();
+    const std::string_view key = tok.next_on_line();
+    std::string_view last;
+    for (std::string_view t = tok.next_on_line(); !t.empty(); t = tok.next_on_line()) last = t;
+    tok.skip_line();
+    if (key != "map_Kd" || last.empty()) continue;
+    const std::string written(last);
+    const std::filesystem::path image = confined_file(library.root, path.parent_path(), slashes(written), written, path.string(), "mtl",
+                                                      "line " + std::to_string(line));
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(image, ec)) continue;  // refused where a material uses it
+    const InputFile file(image.string());
+    if (const std::optional<ImageHeader> h = image_header(file.bytes().data(), file.bytes().size()))
+      library.image_bytes += decoded_image_bytes(*h), ++images;
+  }
+  check_memory_need(library.image_bytes, library.memory_limit, path.string(), "mtl.memory", "",
+                    "decoding its " + std::to_string(images) + " map_Kd images (with those of the MTL files before it)");
 }
 
 }  // namespace
@@ -63,6 +89,7 @@ void read_mtl(const std::string& obj_path, const std::string& mtl_path, std::siz
   }
   const InputFile file(path.string());
   const ByteView bytes = file.bytes();
+  check_texture_memory(bytes, path, library);
   Tokenizer tok(reinterpret_cast<const char*>(bytes.data()), reinterpret_cast<const char*>(bytes.data() + bytes.size()));
   SurfaceMaterial* current = nullptr;
   while (!tok.at_end()) {
