@@ -48,8 +48,9 @@ std::optional<fs::path> resolve_inside(const fs::path& root, const fs::path& bas
   // (readlink, not followed) and its target walked the same way; 40 symlinks at most, as Linux
   // allows. The reference's own parts are not normalised first: "link/../x" goes where the kernel
   // would take it, through link's target.
+  // A NUL ("%00") would cut the path the kernel sees short of the one walked here.
+  if (reference.empty() || reference.find('\0') != std::string::npos) return std::nullopt;
   const fs::path ref(reference);
-  if (ref.empty()) return std::nullopt;
   std::error_code ec;
   const fs::path from = ref.is_absolute() ? ref : fs::weakly_canonical(fs::absolute(base_folder, ec), ec) / ref;
   if (ec) return std::nullopt;

@@ -219,7 +219,7 @@ def write(out, seed):
     # --- References outside the asset's folder (each names a file that exists) ---
     rel = os.path.relpath(outside, os.path.join(out, "cases", "x"))
     for name, uri in {"uri_dotdot": rel + "/secret.bin", "uri_pct_dotdot": rel.replace("..", "%2e%2e") + "/secret.bin",
-                      "uri_pct_slash": rel.replace("/", "%2F") + "%2Fsecret.bin", "uri_absolute": outside + "/secret.bin",
+                      "uri_pct_slash": rel.replace("/", "%2F") + "%2Fsecret.bin", "uri_pct_nul": "%2e%2e%00/" + rel + "/secret.bin", "uri_absolute": outside + "/secret.bin",
                       "uri_file_scheme": "file://" + outside + "/secret.bin", "uri_etc_passwd": "/etc/passwd",
                       "uri_home": "~/../../" + outside + "/secret.bin", "uri_variable": "$HOME/../.." + outside + "/secret.bin",
                       "uri_dev_zero": "/dev/zero", "uri_proc": "/proc/self/environ"}.items():

@@ -167,7 +167,7 @@ TEST(Hostile, ReferencesOutsideTheAssetsFolderAreRefused) {
   fs::create_symlink(outside_abs, dir.path("asset/link.bin"));
   fs::create_symlink("..", dir.path("asset/sub/up"));
   for (const std::string& uri : std::vector<std::string>{"../secret.bin", "%2e%2e/secret.bin", "sub/../../secret.bin", outside_abs, "link.bin",
-                                "sub/up/../secret.bin", "sub/up/inside.bin/../../secret.bin"}) {
+                                "sub/up/../secret.bin", "sub/up/inside.bin/../../secret.bin", "%2e%2e%00/secret.bin"}) {
     const std::string e = error_of(dir.write("asset/a.gltf", gltf(R"([{"mesh":0}])", "", uri)));
     EXPECT_EQ(e.rfind("gltf.outside_asset: ", 0), 0u) << uri << ": " << e;
     EXPECT_NE(e.find("'" + uri + "' leads outside the asset's folder"), std::string::npos) << e;
