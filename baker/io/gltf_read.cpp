@@ -472,9 +472,10 @@ struct SceneReader {
   // declared counts, before any is read (a count of 2^62 is a figure here, not an allocation).
   double instances_bytes(const std::vector<Instance>& list) const {
     // Per vertex: the primitive's floats (position, normal, colour, uv: 48 bytes), the mesh's
-    // position, normal and colour (27) and the remap (4); per index: the index and its corner (8)
-    // and a third of a triangle's index, material and corner uvs (40 / 3).
-    constexpr double kVertexBytes = 80, kIndexBytes = 22;
+    // position, normal and colour (27) and the remap (4); per index: the index and its corner (8),
+    // a third of a triangle's index, material and corner uvs (40 / 3) and the vertex a flat-shaded
+    // triangle gets for each corner (27).
+    constexpr double kVertexBytes = 80, kIndexBytes = 48;
     const auto count = [&](int accessor) {
       return accessor >= 0 && static_cast<std::size_t>(accessor) < m.accessors.size()
                  ? static_cast<double>(m.accessors[static_cast<std::size_t>(accessor)].count) : 0.0;
