@@ -8,6 +8,7 @@
 #include <mutex>
 
 #include "core/error.h"
+#include "core/input_limits.h"
 
 namespace qf::render {
 namespace {
@@ -62,6 +63,10 @@ Image decode_ktx2(const std::uint8_t* bytes, std::size_t size, const std::string
   if (t.get_width() < 1 || t.get_height() < 1 || t.get_width() > kMaxSide || t.get_height() > kMaxSide)
     bad(path, "a KTX2 image of " + std::to_string(t.get_width()) + " x " + std::to_string(t.get_height()) +
                   " texels (1 to " + std::to_string(kMaxSide) + " a side expected)");
+  // The RGBA8 levels' memory, from the header, against the memory available before any is
+  // allocated (a 6 KB glb claiming 16384 x 16384 cost 1.18 GB before it was refused).
+  check_memory_need(decoded_image_bytes({t.get_width(), t.get_height(), t.get_levels()}), 0, path, "render.gltf.memory", "",
+                    "a KTX2 image of " + std::to_string(t.get_width()) + " x " + std::to_string(t.get_height()) + " texels");
   if (!t.start_transcoding()) bad(path, "a KTX2 image whose Basis data does not decode");
   Image out;
   for (std::uint32_t level = 0; level < t.get_levels(); ++level) {

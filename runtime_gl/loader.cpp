@@ -6,7 +6,10 @@
 
 #include "core/weight_alpha.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <tiny_gltf.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <array>
@@ -16,11 +19,13 @@
 #include <fstream>
 #include <iterator>
 #include <limits>
+#include <optional>
 #include <type_traits>
 
 #include "core/color.h"
 #include "core/error.h"
 #include "core/gltf_keys.h"
+#include "core/input_limits.h"
 
 namespace qf::render {
 namespace {
@@ -62,15 +67,77 @@ bool load_image_checked(tinygltf::Image* image, const int index, std::string* er
     image->width = image->height = -1;
     return true;
   }
+  // PNG and JPEG are decoded here by stb_image: their size from the header first, against the
+  // memory available (a 1 MB PNG can decode to 16384 x 16384 texels, 1 GB).
+  if (const std::optional<ImageHeader> h = image_header(bytes, static_cast<std::size_t>(std::max(size, 0)))) {
+    try {
+      check_memory_need(decoded_image_bytes(*h), 0, "", "render.gltf.memory", "",
+                        "image[" + std::to_string(index) + "] of " + std::to_string(h->width) + " x " + std::to_string(h->height) + " texels");
+    } catch (const InputError& e) {
+      if (err) *err += e.detail();
+      return false;
+    }
+  }
   return tinygltf::LoadImageData(image, index, err, warn, width, height, bytes, size, nullptr);
 }
+
+// The JSON of a glTF file checked for depth before tinygltf parses it (its parser recurses per
+// level: ~14,500 levels in 30 KB overflowed the stack): a .gltf's whole text, a .glb's JSON chunk.
+void check_file_json_depth(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::vector<std::uint8_t> bytes(20);
+  in.read(reinterpret_cast<char*>(bytes.data()), 20);
+  bytes.resize(static_cast<std::size_t>(in.gcount()));
+  if (bytes.size() == 20 && std::memcmp(bytes.data(), "glTF", 4) == 0) {
+    std::uint32_t length = 0;
+    std::memcpy(&length, bytes.data() + 12, 4);
+    const std::uintmax_t size = std::filesystem::file_size(path);
+    bytes.resize(20 + static_cast<std::size_t>(std::min<std::uintmax_t>(length, size > 20 ? size - 20 : 0)));
+    in.read(reinterpret_cast<char*>(bytes.data() + 20), static_cast<std::streamsize>(bytes.size() - 20));
+  } else {
+    bytes.insert(bytes.end(), std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  check_gltf_json_depth(bytes.data(), bytes.size(), path, "render.gltf");
+}
+
+// tinygltf opens a .gltf and its external buffers and images through these instead of its
+// defaults: no "~" or "$VAR" expansion (the default runs wordexp on the file's text), and only
+// regular files, opened without blocking (a FIFO named as a buffer hung the reader).
+bool regular_file_exists(const std::string& path, void*) {
+  struct stat st {};
+  return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+}
+
+std::string path_as_written(const std::string& path, void*) { return path; }
+
+bool read_regular_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+  struct stat st {};
+  if (fd < 0 || ::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    if (fd >= 0) ::close(fd);
+    if (err) *err += path + " is not a readable regular file\n";
+    return false;
+  }
+  out->resize(static_cast<std::size_t>(st.st_size));
+  std::size_t done = 0;
+  for (ssize_t n = 1; done < out->size() && n > 0; done += static_cast<std::size_t>(std::max<ssize_t>(n, 0)))
+    n = ::read(fd, out->data() + done, out->size() - done);
+  ::close(fd);
+  out->resize(std::min(done, out->size()));
+  return true;
+}
+
+bool write_no_file(std::string*, const std::string&, const std::vector<unsigned char>&, void*) { return false; }
 
 // Parses a glTF file, or (`glb`, a .glb file's bytes) the same from memory; errors name `path`.
 tinygltf::Model parse_gltf(const std::string& path, const std::vector<std::uint8_t>* glb) {
   if (!glb && !std::filesystem::is_regular_file(path)) throw InputError("file.unreadable", path, "", "cannot open: no such file");
+  if (glb) check_gltf_json_depth(glb->data(), glb->size(), path, "render.gltf");
+  else check_file_json_depth(path);
   tinygltf::Model m;
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(&load_image_checked, &m);
+  loader.SetFsCallbacks(tinygltf::FsCallbacks{&regular_file_exists, &path_as_written, &read_regular_file, &write_no_file, nullptr});
   std::string err, warn;
   const bool binary = glb || (path.size() >= 4 && path.compare(path.size() - 4, 4, ".glb") == 0);
   const bool ok = glb ? loader.LoadBinaryFromMemory(&m, &err, &warn, glb->data(), static_cast<unsigned int>(glb->size()))

@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "core/input_limits.h"
 
 namespace qf::render {
 namespace {
@@ -25,6 +26,8 @@ Image decode_webp(const std::uint8_t* bytes, std::size_t size, const std::string
   if (WebPGetFeatures(bytes, size, &f) != VP8_STATUS_OK) bad(path, "a WebP image whose header does not read");
   if (f.has_animation) bad(path, "an animated WebP image, not a still texture");
   if (f.width < 1 || f.height < 1) bad(path, "a WebP image of " + std::to_string(f.width) + " x " + std::to_string(f.height) + " texels");
+  check_memory_need(decoded_image_bytes({static_cast<std::uint64_t>(f.width), static_cast<std::uint64_t>(f.height), 1}), 0, path,
+                    "render.gltf.memory", "", "a WebP image of " + std::to_string(f.width) + " x " + std::to_string(f.height) + " texels");
   Image out;
   out.width = f.width;
   out.height = f.height;

@@ -16,6 +16,7 @@
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/gltf_keys.h"
+#include "core/input_limits.h"
 #include "gl/egl.h"
 #include "runtime_gl/camera.h"
 #include "measure/any_scene.h"
@@ -79,6 +80,7 @@ bool needs_draco(const Json& j) {
 Json glb_json(ByteView b, const std::string& path) {
   if (b.size() < 4 || std::memcmp(b.data(), "glTF", 4) != 0)
     throw InputError("diff.glb", path, "byte 0", "not a binary glTF file (no 'glTF' magic)");
+  check_gltf_json_depth(b.data(), b.size(), path, "diff");  // before tinygltf's recursive parser
   tinygltf::TinyGLTF gltf;
   gltf.SetImageLoader(leave_image_undecoded, nullptr);
   tinygltf::Model model;

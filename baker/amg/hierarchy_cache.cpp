@@ -171,6 +171,9 @@ void save_hierarchy(const std::string& dir, const std::string& key, const AmgHie
   }
   put_array(payload, normals.data(), normals.size());
   std::filesystem::create_directories(dir);
+  // Half-written entries of killed bakes ("<key>.qfamg.tmp-<pid>", tens of MB each) whose process
+  // is gone: nothing else would ever remove them.
+  remove_stale_temporaries(dir);
   write_file_atomically(path_of(dir, key), [&](std::ostream& out) {
     std::string header(kMagic, sizeof kMagic);
     put(header, kVersion);

@@ -100,6 +100,9 @@ CommandSpec bake_spec() {
                                                                          "back in tiles from a scratch file in $TMPDIR (removed at the end, on Ctrl-C and on\n"
                                                                          "SIGTERM); LAS/LAZ and point-only PLY are read a block at a time, never whole; manifest\n"
                                                                          "out_of_core, report memory. A mesh past it is refused (bake.memory)"},
+                    {"asset-root", 0, "DIR", "the input's folder", "the folder the input's external files (glTF buffers and images, OBJ mtllib,\n"
+                                                                       "MTL map_Kd) must resolve inside, symlinks followed; a reference leading outside it,\n"
+                                                                       "or naming a folder, FIFO or device, is refused (exit 1)"},
                     drop_nonfinite_option(),
                     {"outliers", 0, "F", "10", "point sets: drop the points farther than F x the median spacing from their 8 nearest\n"
                                               "neighbours (mean distance): strays and a scanner's mixed pixels, which would veil the\n"
@@ -181,8 +184,11 @@ AssetOptions read_asset_options(const OptionValues& args) {
   a.lod_file = args.flag("lod-file");
   a.lod_screen_height = args.get_double("lod-screen-height", a.lod_screen_height, 1.0, 100000.0);
   a.read.drop_nonfinite = args.flag("drop-nonfinite");
+  a.read.asset_root = args.has("asset-root") ? args.get("asset-root") : "";
+  a.read.memory_limit = o.max_memory;
   a.read.outlier_factor = static_cast<float>(args.get_double("outliers", 10.0, 0.0, 1e6));
   a.sample = read_sample_options(args);
+  a.sample.memory_limit = o.max_memory;
   a.point_seed = static_cast<std::uint64_t>(args.get_int("point-seed", 1, 0, 1ll << 62));
   a.point_impostor = args.flag("points");
   a.cheap_triangles = static_cast<std::size_t>(args.get_int("cheap-triangles", static_cast<long long>(a.cheap_triangles), 0, 1ll << 40));

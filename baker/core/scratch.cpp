@@ -1,7 +1,9 @@
 // Scratch files, removed on destruction and on SIGINT / SIGTERM / SIGHUP.
 #include "core/scratch.h"
 
+#include <dirent.h>
 #include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -54,6 +56,30 @@ void install_handlers() {
   g_installed = true;
 }
 
+// Removes the scratch files "qf-<tag>-<pid>-XXXXXX.scratch" in `folder` left by processes that
+// are gone (a SIGKILL, the OOM killer: no handler runs). Gone means kill(pid, 0) finds no such
+// process here and no process anywhere holds the file's lock: a $TMPDIR shared by several
+// machines may hold a live file of a pid that is free on this one.
+void remove_dead_scratch(const std::string& folder) {
+  DIR* d = ::opendir(folder.c_str());
+  if (!d) return;
+  while (const dirent* e = ::readdir(d)) {
+    const std::string name = e->d_name;
+    constexpr std::size_t kSuffix = 15;  // "-XXXXXX.scratch"
+    if (name.rfind("qf-", 0) != 0 || name.size() < 3 + kSuffix + 2 || name.compare(name.size() - 8, 8, ".scratch") != 0) continue;
+    const std::string head = name.substr(0, name.size() - kSuffix);  // "qf-<tag>-<pid>"
+    const std::string digits = head.substr(head.rfind('-') + 1);
+    if (digits.empty() || digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) continue;
+    if (::kill(static_cast<pid_t>(std::stol(digits)), 0) == 0 || errno != ESRCH) continue;
+    const std::string path = folder + "/" + name;
+    const int fd = ::open(path.c_str(), O_RDWR | O_CLOEXEC | O_NOFOLLOW);
+    if (fd < 0) continue;
+    if (::flock(fd, LOCK_EX | LOCK_NB) == 0) ::unlink(path.c_str());
+    ::close(fd);
+  }
+  ::closedir(d);
+}
+
 }  // namespace
 
 std::string default_scratch_dir() {
@@ -70,10 +96,12 @@ ScratchFile::ScratchFile(const std::string& tag, const std::string& dir) {
     if (!g_live[s].load()) slot_ = s;
   if (slot_ < 0) throw std::logic_error("ScratchFile: more than 16 scratch files at once");
   install_handlers();
+  remove_dead_scratch(folder);
   fd_ = ::mkstemps(name.data(), 8);  // 8 = strlen(".scratch")
   if (fd_ < 0)
     throw std::runtime_error("cannot create a scratch file in " + folder + " (" + std::strerror(errno) +
                              "); set TMPDIR to a folder with room");
+  ::flock(fd_, LOCK_EX);  // held while the file lives: remove_dead_scratch leaves it alone
   path_ = name;
   std::memcpy(g_paths[slot_], name.c_str(), name.size() + 1);
   g_live[slot_].store(1);

@@ -2,7 +2,8 @@
 // pipeline/out_of_core.h): created in $TMPDIR (or /tmp, or a folder given), removed when the
 // object goes, and also when the process is stopped by SIGINT, SIGTERM or SIGHUP (a handler
 // unlinks every live scratch file, then lets the signal take its course). A SIGKILL (the kernel's
-// OOM killer) leaves the file behind: its name, qf-<tag>-<pid>-XXXXXX.scratch, says whose it was.
+// OOM killer) leaves the file behind: its name, qf-<tag>-<pid>-XXXXXX.scratch, says whose it was,
+// and the next ScratchFile made in that folder removes it (its process gone, its lock free).
 #pragma once
 
 #include <cstdint>

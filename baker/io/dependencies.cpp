@@ -1,12 +1,16 @@
 // The files a model reads besides itself (model_io.h, input_dependencies): a glTF's external
 // buffers and images, an OBJ's MTL libraries and their map_Kd images, found from the text alone.
 #include <algorithm>
+#include <optional>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string_view>
 #include <system_error>
 
+#include "core/error.h"
 #include "core/file_io.h"
+#include "core/input_limits.h"
+#include "io/asset_files.h"
 #include "io/gltf_json.h"
 #include "io/model_io.h"
 #include "io/mtl_read.h"
@@ -17,30 +21,23 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// glTF URIs are percent-encoded (RFC 3986); tinygltf decodes them before opening the file, so
-// the same file is found here.
-std::string percent_decoded(const std::string& uri) {
-  std::string out;
-  for (std::size_t i = 0; i < uri.size(); ++i) {
-    const auto hex = [](char c) { return c >= '0' && c <= '9' ? c - '0' : c >= 'a' && c <= 'f' ? c - 'a' + 10 : c >= 'A' && c <= 'F' ? c - 'A' + 10 : -1; };
-    if (uri[i] == '%' && i + 2 < uri.size() && hex(uri[i + 1]) >= 0 && hex(uri[i + 2]) >= 0) {
-      out += static_cast<char>(hex(uri[i + 1]) * 16 + hex(uri[i + 2]));
-      i += 2;
-    } else {
-      out += uri[i];
-    }
-  }
-  return out;
-}
-
-// Adds `name` (relative to the model's folder) once, in the order first met.
-void add(std::vector<InputDependency>& out, const fs::path& folder, const fs::path& name) {
+// Adds `name` (as the model names it, relative to `base`) once, in the order first met, by the
+// reader's rule (io/asset_files.h): a name leading outside the asset's folder is left out (the
+// reader refuses the asset, and a content key must not read, hash or reveal files outside it);
+// it is opened by the path found inside, symlinks resolved.
+void add(std::vector<InputDependency>& out, const fs::path& root, const fs::path& base, const fs::path& name) {
   const std::string n = name.lexically_normal().generic_string();
   if (n.empty() || std::any_of(out.begin(), out.end(), [&](const InputDependency& d) { return d.name == n; })) return;
-  out.push_back({n, (folder / name).string()});
+  const std::optional<fs::path> inside = io::resolve_inside(root, base, name.generic_string());
+  if (inside) out.push_back({n, inside->string()});
 }
 
 void gltf_dependencies(ByteView bytes, const fs::path& folder, std::vector<InputDependency>& out) {
+  try {
+    check_gltf_json_depth(bytes.data(), bytes.size(), "", "gltf");
+  } catch (const InputError&) {
+    return;  // the reader refuses it
+  }
   const nlohmann::json j = io::gltf_json(bytes);  // the JSON exactly as the reader sees it
   if (!j.is_object()) return;  // the reader will say what is wrong
   for (const char* array : {"buffers", "images"}) {
@@ -51,7 +48,7 @@ void gltf_dependencies(ByteView bytes, const fs::path& folder, std::vector<Input
       const auto uri = item.find("uri");
       // data: URIs are inside the file already (so hashed with it).
       if (uri == item.end() || !uri->is_string() || uri->get<std::string>().rfind("data:", 0) == 0) continue;
-      add(out, folder, fs::path(percent_decoded(uri->get<std::string>())));
+      add(out, folder, folder, fs::path(io::percent_decoded(uri->get<std::string>())));
     }
   }
 }
@@ -78,14 +75,14 @@ std::vector<std::string> lines_of(ByteView bytes, std::string_view key, bool las
 
 void obj_dependencies(ByteView bytes, const fs::path& folder, std::vector<InputDependency>& out) {
   for (const std::string& mtl : lines_of(bytes, "mtllib", false)) {
-    add(out, folder, fs::path(mtl));
+    add(out, folder, folder, fs::path(mtl));
+    const std::optional<fs::path> mtl_path = io::resolve_inside(folder, folder, mtl);
     std::error_code ec;
-    const fs::path mtl_path = folder / mtl;
-    if (!fs::is_regular_file(mtl_path, ec)) continue;  // a missing MTL is only a warning to the reader
-    const InputFile file(mtl_path.string());
+    if (!mtl_path || !fs::is_regular_file(*mtl_path, ec)) continue;  // a missing MTL is only a warning to the reader
+    const InputFile file(mtl_path->string());
     // Images are relative to the MTL file, which may sit in another folder than the OBJ.
     for (const std::string& image : lines_of(file.bytes(), "map_Kd", true))
-      add(out, folder, fs::path(mtl).parent_path() / image);
+      add(out, folder, folder, fs::path(mtl).parent_path() / image);
   }
 }
 
@@ -96,7 +93,7 @@ std::vector<InputDependency> input_dependencies(const std::string& path) {
   const std::string ext = file_extension(path);
   if (ext != "gltf" && ext != "glb" && ext != "obj") return out;
   const InputFile file(path);
-  const fs::path folder = fs::path(path).parent_path();
+  const fs::path folder = io::asset_root(path, "");  // canonical: the root references stay in
   if (ext == "obj") obj_dependencies(file.bytes(), folder, out);
   else gltf_dependencies(file.bytes(), folder, out);
   return out;

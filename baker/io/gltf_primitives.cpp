@@ -33,11 +33,13 @@ class Accessors {
     if (tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(a.type)) != components)
       fail(path_, "accessor_type", where, "expected a " + std::to_string(components) + "-component accessor, found type " +
                                               std::to_string(tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(a.type))));
-    std::vector<float> out(a.count * static_cast<std::size_t>(components));
     const int csize = tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(a.componentType));
     if (csize <= 0) fail(path_, "accessor_type", where, "unknown componentType " + std::to_string(a.componentType));
     std::size_t stride = 0;
+    // The count checked against the buffer before it sizes anything (a count of 2^62 asked for
+    // 2^64 bytes: an internal error, not a refused file).
     const unsigned char* base = data(a, static_cast<std::size_t>(csize) * static_cast<std::size_t>(components), stride, where);
+    std::vector<float> out(a.count * static_cast<std::size_t>(components));
     for (std::size_t i = 0; i < a.count; ++i)
       for (int c = 0; c < components; ++c)
         out[i * static_cast<std::size_t>(components) + static_cast<std::size_t>(c)] =

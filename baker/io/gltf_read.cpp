@@ -3,13 +3,17 @@
 // baker file that parses glTF; tinygltf reads the JSON and the buffers, this file checks every
 // accessor against its buffer before reading it, so a malformed file is an InputError naming its
 // JSON path and never a read out of bounds.
+#include <fcntl.h>
+#include <sys/stat.h>
 #include <tiny_gltf.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <string_view>
 #include <set>
 #include <string>
@@ -17,7 +21,9 @@
 
 #include "core/color.h"
 #include "core/error.h"
+#include "core/input_limits.h"
 #include "gltf/png.h"
+#include "io/asset_files.h"
 #include "io/gltf_json.h"
 #include "io/gltf_primitives.h"
 #include "io/model_io.h"
@@ -41,17 +47,61 @@ const std::set<std::string>& supported_extensions() {
 
 // ---- 1. Parsing ----------------------------------------------------------------------------
 
-struct ImageContext {
+// What the file-system callbacks and the image loader share.
+struct ParseContext {
   const tinygltf::Model* model = nullptr;
+  std::filesystem::path root;  // canonical: every external file must resolve inside it
+  std::size_t memory_limit = 0;  // ReadOptions::memory_limit: an external file larger is not read
 };
 
-// tinygltf 2.7 hands an image's bufferView to the loader without checking that it lies within its
-// buffer: check it here, then decode through OpenImageIO (PNG, JPEG, and whatever else it reads).
-bool load_image(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
+// tinygltf opens external files through these. Each path is walked again inside the root (the
+// references were checked before parsing; this is what is opened), opened without blocking (a
+// FIFO renamed in since would otherwise hang) and read only if it is a regular file. No "~" or
+// "$VAR" expansion (tinygltf's default runs wordexp on the file's text).
+std::optional<std::filesystem::path> inside(const std::string& abs, void* user) {
+  return io::resolve_inside(static_cast<ParseContext*>(user)->root, "/", abs);
+}
+
+bool file_exists(const std::string& abs, void* user) {
+  const std::optional<std::filesystem::path> p = inside(abs, user);
+  std::error_code ec;
+  return p && std::filesystem::is_regular_file(*p, ec);
+}
+
+std::string expand_nothing(const std::string& path, void*) { return path; }
+
+bool read_whole_file(std::vector<unsigned char>* out, std::string* err, const std::string& abs, void* user) {
+  const std::optional<std::filesystem::path> p = inside(abs, user);
+  const int fd = p ? ::open(p->c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOFOLLOW) : -1;
+  struct stat st {};
+  if (fd < 0 || ::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode) ||
+      static_cast<std::uint64_t>(st.st_size) > memory_limit(static_cast<ParseContext*>(user)->memory_limit)) {
+    if (fd >= 0) ::close(fd);
+    if (err) *err += "an external file cannot be read as a regular file inside the asset's folder, within the memory limit\n";
+    return false;
+  }
+  out->resize(static_cast<std::size_t>(st.st_size));
+  std::size_t done = 0;
+  while (done < out->size()) {
+    const ssize_t n = ::read(fd, out->data() + done, out->size() - done);
+    if (n <= 0) break;
+    done += static_cast<std::size_t>(n);
+  }
+  ::close(fd);
+  out->resize(done);
+  return true;
+}
+
+bool write_nothing(std::string*, const std::string&, const std::vector<unsigned char>&, void*) { return false; }
+
+// The image loader keeps each image's encoded bytes (component 0 marks them); decode_images
+// decodes them once the memory they need has been checked. tinygltf 2.7 hands an image's
+// bufferView to the loader without checking that it lies within its buffer: checked here.
+bool keep_image(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
                 const unsigned char* bytes, int size, void* user) {
   const std::string where = "images[" + std::to_string(index) + "]" + (image->uri.empty() || image->uri.rfind("data:", 0) == 0 ? "" : " (" + image->uri + ")");
   if (image->bufferView >= 0) {
-    const tinygltf::Model& m = *static_cast<ImageContext*>(user)->model;
+    const tinygltf::Model& m = *static_cast<ParseContext*>(user)->model;
     const tinygltf::BufferView& v = m.bufferViews.at(static_cast<std::size_t>(image->bufferView));
     const std::size_t buffer = m.buffers.at(static_cast<std::size_t>(v.buffer)).data.size();
     if (v.byteOffset > buffer || v.byteLength > buffer - v.byteOffset || size < 0 ||
@@ -60,37 +110,51 @@ bool load_image(tinygltf::Image* image, const int index, std::string* err, std::
       return false;
     }
   }
-  try {
-    TextureImage t = decode_image(bytes, static_cast<std::size_t>(std::max(size, 0)), image->uri);
-    image->width = t.width;
-    image->height = t.height;
-    image->component = 4;
-    image->bits = 8;
-    image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
-    image->image = std::move(t.rgba);
-    return true;
-  } catch (const std::exception& e) {
-    *err += where + ": " + e.what();
-    return false;
+  image->image.assign(bytes, bytes + std::max(size, 0));
+  image->component = 0;
+  return true;
+}
+
+// Refuses, before tinygltf opens anything, a buffer or image URI that leads outside the asset's
+// folder or names something other than a regular file: InputError naming the URI as written.
+void check_references(const nlohmann::json& j, const std::string& path, const std::filesystem::path& root,
+                      const std::filesystem::path& folder) {
+  for (const char* array : {"buffers", "images"}) {
+    const auto a = j.find(array);
+    if (a == j.end() || !a->is_array()) continue;
+    for (std::size_t i = 0; i < a->size(); ++i) {
+      const nlohmann::json& item = (*a)[i];
+      const auto uri = item.is_object() ? item.find("uri") : item.end();
+      if (uri == item.end() || !uri->is_string()) continue;
+      const std::string written = uri->get<std::string>();
+      if (written.rfind("data:", 0) == 0) continue;
+      io::confined_file(root, folder, io::percent_decoded(written), written, path, "gltf",
+                        std::string(array) + "[" + std::to_string(i) + "].uri");
+    }
   }
 }
 
-tinygltf::Model parse(ByteView bytes, const std::string& path) {
+tinygltf::Model parse(ByteView bytes, const std::string& path, const ReadOptions& options) {
+  // Before any JSON parser: tinygltf's recursion is as deep as the file nests.
+  check_gltf_json_depth(bytes.data(), bytes.size(), path, "gltf");
   std::vector<std::uint8_t> rewritten;
   const nlohmann::json j = io::gltf_json(bytes);
+  const std::filesystem::path root = io::asset_root(path, options.asset_root);
+  const std::filesystem::path folder = io::asset_root(path, "");
   if (j.is_object()) {
     io::check_gltf_json_types(j, path);
+    check_references(j, path, root, folder);
     const std::string_view view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
     if (view.find("KHR_draco_mesh_compression") != std::string_view::npos) rewritten = io::without_draco_indices(bytes, j);
     if (!rewritten.empty()) bytes = ByteView(rewritten.data(), rewritten.size());
   }
   tinygltf::Model m;
   tinygltf::TinyGLTF loader;
-  ImageContext context{&m};
-  loader.SetImageLoader(&load_image, &context);
+  ParseContext context{&m, root, options.memory_limit};
+  loader.SetImageLoader(&keep_image, &context);
+  loader.SetFsCallbacks(tinygltf::FsCallbacks{&file_exists, &expand_nothing, &read_whole_file, &write_nothing, &context});
   std::string err, warn;
-  std::error_code ec;
-  std::string base = std::filesystem::absolute(std::filesystem::path(path).parent_path(), ec).string();
+  const std::string base = folder.string();
   const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
   const bool ok = binary ? loader.LoadBinaryFromMemory(&m, &err, &warn, bytes.data(), static_cast<unsigned>(bytes.size()), base)
                          : loader.LoadASCIIFromString(&m, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
@@ -106,6 +170,48 @@ tinygltf::Model parse(ByteView bytes, const std::string& path) {
            "requires the extension " + e + ", which quasiflat does not support (supported: KHR_texture_transform, "
            "KHR_draco_mesh_compression, KHR_mesh_quantization)");
   return m;
+}
+
+// ---- 2. What the file will cost --------------------------------------------------------------
+
+std::string image_where(const tinygltf::Image& image, std::size_t index) {
+  return "images[" + std::to_string(index) + "]" + (image.uri.empty() || image.uri.rfind("data:", 0) == 0 ? "" : " (" + image.uri + ")");
+}
+
+// RGBA8 bytes of every image once decoded, from their headers; an image whose header is not
+// PNG's or JPEG's is refused here (KTX2 and WebP by the extension that carries them).
+double decoded_images_bytes(const tinygltf::Model& m, const std::string& path) {
+  double total = 0;
+  for (std::size_t i = 0; i < m.images.size(); ++i) {
+    const tinygltf::Image& g = m.images[i];
+    if (g.component != 0 || g.image.empty()) continue;  // not loaded: MaterialTable says so if used
+    const std::optional<ImageHeader> h = image_header(g.image.data(), g.image.size());
+    const std::string_view head(reinterpret_cast<const char*>(g.image.data()), std::min<std::size_t>(g.image.size(), 16));
+    if (h && head.find("KTX") != std::string_view::npos)
+      fail(path, "image_format", image_where(g, i), "is a KTX2 image (KHR_texture_basisu), which the baker does not read as input");
+    if (h && head.rfind("RIFF", 0) == 0)
+      fail(path, "image_format", image_where(g, i), "is a WebP image (EXT_texture_webp), which the baker does not read as input");
+    if (!h) fail(path, "image_format", image_where(g, i), "is neither a PNG nor a JPEG image (or its header does not read)");
+    // Twice: the decoded image and the mesh's copy of it.
+    total += 2.0 * static_cast<double>(decoded_image_bytes(*h));
+  }
+  return total;
+}
+
+// Decodes the images keep_image kept (RGBA8).
+void decode_images(tinygltf::Model& m, const std::string& path) {
+  for (std::size_t i = 0; i < m.images.size(); ++i) {
+    tinygltf::Image& g = m.images[i];
+    if (g.component != 0) continue;
+    try {
+      TextureImage t = decode_image(g.image.data(), g.image.size(), g.uri);
+      g.width = t.width, g.height = t.height, g.component = 4, g.bits = 8;
+      g.pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+      g.image = std::move(t.rgba);
+    } catch (const std::exception& e) {
+      fail(path, "parse", "", image_where(g, i) + ": " + e.what());
+    }
+  }
 }
 
 // ---- 3. Materials and textures ---------------------------------------------------------------
@@ -308,24 +414,80 @@ struct SceneReader {
       report->warnings.push_back(text);
   }
 
-  // Depth-first over the node tree; `on_path` catches cycles (a node among its own ancestors).
-  void node(int index, const Mat4& parent, std::vector<char>& on_path, const std::string& where) {
-    if (index < 0 || static_cast<std::size_t>(index) >= m.nodes.size())
-      fail(path, "node", where, "node " + std::to_string(index) + " does not exist (" + std::to_string(m.nodes.size()) + " nodes)");
-    const std::string here = "nodes[" + std::to_string(index) + "]";
-    if (on_path[static_cast<std::size_t>(index)]) fail(path, "node_cycle", here, "is its own ancestor (the node tree has a cycle)");
-    on_path[static_cast<std::size_t>(index)] = 1;
-    const tinygltf::Node& n = m.nodes[static_cast<std::size_t>(index)];
-    const Mat4 world = multiply(parent, local_matrix(n));
-    if (n.mesh >= 0) {
-      if (static_cast<std::size_t>(n.mesh) >= m.meshes.size()) fail(path, "mesh", here + ".mesh", "names a mesh that does not exist");
-      // A skinned mesh's node transform is ignored (glTF 3.7.3.3); with the joints at rest the
-      // vertices are where the mesh stores them.
-      if (n.skin >= 0) warn("skins are not animated: " + here + " is baked in its bind pose");
-      add_mesh(n.mesh, n.skin >= 0 ? kIdentity : world);
+  // A node with a mesh, placed: what add_mesh instantiates.
+  struct Instance {
+    int node, mesh;
+    Mat4 world;
+  };
+
+  // The scene's mesh instances in depth-first order (a node's mesh, then its children's subtrees
+  // in order), walked with a stack of our own: a file's depth must not decide the call stack's
+  // (a chain of ~8,100 nodes overflowed the recursive walk). glTF requires the nodes to form a
+  // forest (glTF 2.0, 3.5.3): a node among its own ancestors is a cycle; a node reached twice
+  // (a child of two nodes, listed twice, or a root that is also a child) is refused too, as it
+  // would multiply the instances below it (nodes each naming the next twice: 2^40 from 2 KB).
+  std::vector<Instance> instances(const std::vector<int>& roots) {
+    std::vector<Instance> out;
+    std::vector<char> reached(m.nodes.size(), 0), on_path(m.nodes.size(), 0);
+    struct Step {
+      int node;
+      Mat4 parent;
+      int parent_node;  // -1 for a root
+      bool leave;       // the walk leaves `node`: no longer an ancestor
+    };
+    std::vector<Step> stack;
+    for (auto r = roots.rbegin(); r != roots.rend(); ++r) stack.push_back({*r, kIdentity, -1, false});
+    while (!stack.empty()) {
+      const Step s = stack.back();
+      stack.pop_back();
+      if (s.leave) {
+        on_path[static_cast<std::size_t>(s.node)] = 0;
+        continue;
+      }
+      const std::string where = s.parent_node < 0 ? std::string("scenes") : "nodes[" + std::to_string(s.parent_node) + "].children";
+      if (s.node < 0 || static_cast<std::size_t>(s.node) >= m.nodes.size())
+        fail(path, "node", where, "node " + std::to_string(s.node) + " does not exist (" + std::to_string(m.nodes.size()) + " nodes)");
+      const std::size_t i = static_cast<std::size_t>(s.node);
+      const std::string here = "nodes[" + std::to_string(s.node) + "]";
+      if (on_path[i]) fail(path, "node_cycle", here, "is its own ancestor (the node tree has a cycle)");
+      if (reached[i])
+        fail(path, "node_tree", here, "is reached twice (from " + where + "): a child of two nodes, or listed twice; glTF nodes form a tree");
+      reached[i] = on_path[i] = 1;
+      const tinygltf::Node& n = m.nodes[i];
+      const Mat4 world = multiply(s.parent, local_matrix(n));
+      if (n.mesh >= 0) {
+        if (static_cast<std::size_t>(n.mesh) >= m.meshes.size()) fail(path, "mesh", here + ".mesh", "names a mesh that does not exist");
+        // A skinned mesh's node transform is ignored (glTF 3.7.3.3); with the joints at rest the
+        // vertices are where the mesh stores them.
+        if (n.skin >= 0) warn("skins are not animated: " + here + " is baked in its bind pose");
+        out.push_back({s.node, n.mesh, n.skin >= 0 ? kIdentity : world});
+      }
+      stack.push_back({s.node, kIdentity, -1, true});
+      for (auto c = n.children.rbegin(); c != n.children.rend(); ++c) stack.push_back({*c, world, s.node, false});
     }
-    for (int child : n.children) node(child, world, on_path, here + ".children");
-    on_path[static_cast<std::size_t>(index)] = 0;
+    return out;
+  }
+
+  // Bytes the instances will take as the mesh and its reading's temporaries, from the accessors'
+  // declared counts, before any is read (a count of 2^62 is a figure here, not an allocation).
+  double instances_bytes(const std::vector<Instance>& list) const {
+    // Per vertex: the primitive's floats (position, normal, colour, uv: 48 bytes), the mesh's
+    // position, normal and colour (27) and the remap (4); per index: the index and its corner (8),
+    // a third of a triangle's index, material and corner uvs (40 / 3) and the vertex a flat-shaded
+    // triangle gets for each corner (27).
+    constexpr double kVertexBytes = 80, kIndexBytes = 48;
+    const auto count = [&](int accessor) {
+      return accessor >= 0 && static_cast<std::size_t>(accessor) < m.accessors.size()
+                 ? static_cast<double>(m.accessors[static_cast<std::size_t>(accessor)].count) : 0.0;
+    };
+    double total = 0;
+    for (const Instance& in : list)
+      for (const tinygltf::Primitive& p : m.meshes[static_cast<std::size_t>(in.mesh)].primitives) {
+        const auto pos = p.attributes.find("POSITION");
+        const double vertices = pos == p.attributes.end() ? 0.0 : count(pos->second);
+        total += vertices * kVertexBytes + (p.indices >= 0 ? count(p.indices) : vertices) * kIndexBytes;
+      }
+    return total;
   }
 
   void add_mesh(int index, const Mat4& world) {
@@ -470,12 +632,18 @@ std::vector<int> scene_roots(const tinygltf::Model& m, const std::string& path, 
 }  // namespace
 
 TriangleMesh decode_gltf(ByteView bytes, const std::string& path, const ReadOptions& options, ReadReport* report) {
-  // 1. JSON, buffers and images (decoded), required extensions.
-  const tinygltf::Model m = parse(bytes, path);
-  // 2. The default scene's nodes, each mesh placed by its world transform.
+  // 1. JSON (its depth first), buffers and the images' encoded bytes, required extensions.
+  tinygltf::Model m = parse(bytes, path, options);
+  // 2. The default scene's instances, and what they and the decoded images will take, checked
+  //    against the memory limit before anything is decoded or instantiated.
   SceneReader scene(m, path, options, report);
-  std::vector<char> on_path(m.nodes.size(), 0);
-  for (int root : scene_roots(m, path, report)) scene.node(root, kIdentity, on_path, "scenes");
+  const std::vector<SceneReader::Instance> instances = scene.instances(scene_roots(m, path, report));
+  check_memory_need(static_cast<std::uint64_t>(std::min(scene.instances_bytes(instances) + decoded_images_bytes(m, path), 1e19)),
+                    options.memory_limit, path, "gltf.memory", "",
+                    "reading its " + std::to_string(instances.size()) + " mesh instances and " + std::to_string(m.images.size()) +
+                        " images");
+  decode_images(m, path);
+  for (const SceneReader::Instance& in : instances) scene.add_mesh(in.mesh, in.world);
   // 3. Flat normals where a primitive has none, and one surface description for the whole mesh.
   scene.make_flat_normals();
   if (!scene.any_uvs) scene.mesh.corner_uvs.clear();

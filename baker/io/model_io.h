@@ -29,6 +29,14 @@ struct ReadOptions {
   // measuring's and report.html's truth (measure/any_scene.h load_input), so both see one set.
   // qf-bake sets 10 (--outliers).
   float outlier_factor = 0.0f;
+  // The folder an asset's external files (glTF buffers and images, OBJ mtllib, MTL map_Kd) must
+  // resolve inside, symlinks followed (io/asset_files.h); empty: the asset's own folder. A
+  // reference leading outside is an InputError. qf-bake --asset-root.
+  std::string asset_root;
+  // Bytes reading may take (glTF and OBJ: decoded images, glTF: mesh instances), checked from the
+  // headers and counts before anything is decoded; 0: the memory available (core/memory.h).
+  // qf-bake --max-memory.
+  std::size_t memory_limit = 0;
 };
 
 struct ReadReport {

@@ -7,6 +7,8 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "core/input_limits.h"
+#include "io/asset_files.h"
 #include "gltf/png.h"
 #include "io/reader_util.h"
 
@@ -20,28 +22,66 @@ std::string join_words(const std::vector<std::string_view>& words) {
 
 namespace {
 
-std::filesystem::path beside(const std::string& file, std::string relative) {
+std::string slashes(std::string relative) {
   std::replace(relative.begin(), relative.end(), '\\', '/');
-  return std::filesystem::path(file).parent_path() / relative;
+  return relative;
 }
 
-TextureImage load_texture(const std::filesystem::path& image, const std::string& mtl, std::size_t line) {
+// The image of a map_Kd line (`written` as the MTL writes it, relative to the MTL's folder),
+// confined to the asset's folder; InputError "mtl.image" where it is missing.
+std::filesystem::path texture_path(const std::filesystem::path& mtl_folder, const std::string& written, const std::string& mtl,
+                                   std::size_t line, const MaterialLibrary& library) {
+  const std::string where = "line " + std::to_string(line);
+  const std::filesystem::path image = confined_file(library.root, mtl_folder, slashes(written), written, mtl, "mtl", where);
   std::error_code ec;
   if (!std::filesystem::is_regular_file(image, ec))
-    throw InputError("mtl.image", mtl, "line " + std::to_string(line), "map_Kd names " + image.string() + ", which does not exist");
+    throw InputError("mtl.image", mtl, where, "map_Kd names " + written + ", which does not exist");
+  return image;
+}
+
+TextureImage load_texture(const std::filesystem::path& mtl_folder, const std::string& written, const std::string& mtl, std::size_t line,
+                          const MaterialLibrary& library) {
+  const std::filesystem::path image = texture_path(mtl_folder, written, mtl, line, library);
   const InputFile file(image.string());
   try {
     return decode_image(file.bytes().data(), file.bytes().size(), image.string());
   } catch (const std::runtime_error& e) {
-    throw InputError("mtl.image", mtl, "line " + std::to_string(line), "map_Kd " + image.string() + ": " + e.what());
+    throw InputError("mtl.image", mtl, "line " + std::to_string(line), "map_Kd " + written + ": " + e.what());
   }
+}
+
+// Before any image of the MTL `bytes` is decoded: every map_Kd image's decoded size from its
+// header, added to the images of the MTL files before it, checked against the memory limit (one
+// 1 MB PNG named 8 times decodes to 8 GB).
+void check_texture_memory(ByteView bytes, const std::filesystem::path& path, MaterialLibrary& library) {
+  Tokenizer tok(reinterpret_cast<const char*>(bytes.data()), reinterpret_cast<const char*>(bytes.data() + bytes.size()));
+  std::size_t images = 0;
+  while (!tok.at_end()) {
+    const std::size_t line = tok.line();
+    const std::string_view key = tok.next_on_line();
+    std::string_view last;
+    for (std::string_view t = tok.next_on_line(); !t.empty(); t = tok.next_on_line()) last = t;
+    tok.skip_line();
+    if (key != "map_Kd" || last.empty()) continue;
+    const std::string written(last);
+    const std::filesystem::path image = confined_file(library.root, path.parent_path(), slashes(written), written, path.string(), "mtl",
+                                                      "line " + std::to_string(line));
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(image, ec)) continue;  // refused where a material uses it
+    const InputFile file(image.string());
+    if (const std::optional<ImageHeader> h = image_header(file.bytes().data(), file.bytes().size()))
+      library.image_bytes += decoded_image_bytes(*h), ++images;
+  }
+  check_memory_need(library.image_bytes, library.memory_limit, path.string(), "mtl.memory", "",
+                    "decoding its " + std::to_string(images) + " map_Kd images (with those of the MTL files before it)");
 }
 
 }  // namespace
 
-void read_mtl(const std::string& obj_path, const std::string& mtl_path, TriangleMesh& mesh, MaterialLibrary& library,
-              ReadReport* report) {
-  const std::filesystem::path path = beside(obj_path, mtl_path);
+void read_mtl(const std::string& obj_path, const std::string& mtl_path, std::size_t obj_line, TriangleMesh& mesh,
+              MaterialLibrary& library, ReadReport* report) {
+  const std::filesystem::path path = confined_file(library.root, std::filesystem::path(obj_path).parent_path(), slashes(mtl_path),
+                                                   mtl_path, obj_path, "obj", "line " + std::to_string(obj_line));
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) {
     if (report) report->warnings.push_back("mtllib " + mtl_path + " not found: its materials are left uncoloured");
@@ -49,6 +89,7 @@ void read_mtl(const std::string& obj_path, const std::string& mtl_path, Triangle
   }
   const InputFile file(path.string());
   const ByteView bytes = file.bytes();
+  check_texture_memory(bytes, path, library);
   Tokenizer tok(reinterpret_cast<const char*>(bytes.data()), reinterpret_cast<const char*>(bytes.data() + bytes.size()));
   SurfaceMaterial* current = nullptr;
   while (!tok.at_end()) {
@@ -80,7 +121,7 @@ void read_mtl(const std::string& obj_path, const std::string& mtl_path, Triangle
     } else if (current && key == "map_Kd" && !words.empty()) {
       // Options (-s, -o, -bm ...) come first; the image is the last word.
       current->texture = static_cast<int>(mesh.textures.size());
-      mesh.textures.push_back(load_texture(beside(path.string(), std::string(words.back())), path.string(), line));
+      mesh.textures.push_back(load_texture(path.parent_path(), std::string(words.back()), path.string(), line, library));
     }
     tok.skip_line();
   }

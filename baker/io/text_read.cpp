@@ -6,6 +6,7 @@
 
 #include "core/file_io.h"
 #include "io/model_io.h"
+#include "io/asset_files.h"
 #include "io/mtl_read.h"
 #include "io/reader_util.h"
 
@@ -260,7 +261,10 @@ namespace {
 class ObjReader {
  public:
   ObjReader(ByteView bytes, const std::string& path, const ReadOptions& options, ReadReport* report)
-      : tok_(text_begin(bytes), text_end(bytes)), path_(path), nonfinite_(path, options), report_(report) {}
+      : tok_(text_begin(bytes), text_end(bytes)), path_(path), nonfinite_(path, options), report_(report) {
+    library_.root = io::asset_root(path, options.asset_root);
+    library_.memory_limit = options.memory_limit;
+  }
 
   // 1. Line by line, each keyword to its step; everything else (o, g, s, l, p, comments) carries
   //    nothing we use.
@@ -348,12 +352,12 @@ class ObjReader {
 
   // mtllib FILE: its materials; usemtl NAME: the material of the faces that follow. Names may
   // hold spaces (one file per word is the format; a name with spaces is far more common).
-  void material_line(std::string_view key, std::size_t) {
+  void material_line(std::string_view key, std::size_t line) {
     std::vector<std::string_view> words;
     for (std::string_view t = tok_.next_on_line(); !t.empty(); t = tok_.next_on_line()) words.push_back(t);
     const std::string name = io::join_words(words);
     if (key == "mtllib") {
-      if (!name.empty()) io::read_mtl(path_, name, mesh_, library_, report_);
+      if (!name.empty()) io::read_mtl(path_, name, line, mesh_, library_, report_);
       return;
     }
     if (!library_.by_name.count(name)) {

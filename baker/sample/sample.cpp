@@ -8,6 +8,8 @@
 #include <type_traits>
 
 #include "core/error.h"
+#include "core/input_limits.h"
+#include "core/parallel_errors.h"
 #include "core/random.h"
 #include "sample/surface_color.h"
 
@@ -170,6 +172,35 @@ void keep_points(PointSet& points, std::vector<std::uint32_t>& triangles, const 
   triangles = std::move(kept);
 }
 
+// Bytes the layers and points of `mesh` on `grid` will take, estimated before any is drawn: per
+// triangle and axis it is drawn on, its fragments (its projected area in pixels, plus its
+// perimeter and a corner for the pixels its edges touch), each 24 bytes in a vector that may
+// double and 4 as a layer entry; per axis the pixel offsets; per kept fragment (at most
+// max_layers a pixel) a point of ~64 bytes as its row blocks and the joined set hold it. An
+// upper bound for closed meshes, whose points are fewer than their fragments.
+double estimated_sampling_bytes(const TriangleMesh& mesh, const SampleGrid& grid, const SampleOptions& options) {
+  std::array<double, 3> fragments{};
+  const double px = double(grid.pixel);
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    const Vec3f& a = mesh.positions[mesh.triangles[t][0]];
+    const Vec3f& b = mesh.positions[mesh.triangles[t][1]];
+    const Vec3f& c = mesh.positions[mesh.triangles[t][2]];
+    const Vec3f n = cross(b - a, c - a);
+    const double perimeter = (double(length(b - a)) + double(length(c - b)) + double(length(a - c))) / px;
+    for (int axis = 0; axis < 3; ++axis) {
+      if (options.per_axis_triangles && sampling_axis(mesh, t) != axis) continue;
+      fragments[static_cast<std::size_t>(axis)] += std::abs(double(n[axis])) / 2 / (px * px) + perimeter + 1;
+    }
+  }
+  double total = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    const double pixels = double(grid.width(axis)) * double(grid.height(axis));
+    const double f = fragments[static_cast<std::size_t>(axis)];
+    total += f * (2 * 24 + 4) + (pixels + 1) * 4 + std::min(f, pixels * options.max_layers) * 64;
+  }
+  return total;
+}
+
 }  // namespace
 
 PointSet points_from_layers(const TriangleMesh& mesh, const SampleGrid& grid, const std::array<AxisLayers, 3>& layers,
@@ -184,10 +215,14 @@ PointSet points_from_layers(const TriangleMesh& mesh, const SampleGrid& grid, co
     const int blocks = (L.height + kRows - 1) / kRows;
     std::vector<PointSet> parts(static_cast<std::size_t>(std::max(blocks, 0)));
     std::vector<std::vector<std::uint32_t>> part_triangles(parts.size());
+    ParallelErrors errors;
 #pragma omp parallel for schedule(dynamic, 1)
     for (int b = 0; b < blocks; ++b)
-      row_points(mesh, grid, L, facts, b * kRows, std::min(L.height, (b + 1) * kRows), parts[static_cast<std::size_t>(b)],
-                 part_triangles[static_cast<std::size_t>(b)]);
+      errors.run(b, [&] {
+        row_points(mesh, grid, L, facts, b * kRows, std::min(L.height, (b + 1) * kRows), parts[static_cast<std::size_t>(b)],
+                   part_triangles[static_cast<std::size_t>(b)]);
+      });
+    errors.rethrow();
     const std::size_t before = out.size();
     for (std::size_t b = 0; b < parts.size(); ++b) {
       append_points(out, parts[b]);
@@ -224,6 +259,9 @@ PointSet sample_mesh(const TriangleMesh& mesh, const SampleOptions& options, con
   // 2. Layers by the chosen backend (GL falls back to the CPU when no context can be made).
   const auto start = std::chrono::steady_clock::now();
   const SampleGrid grid = sample_grid(mesh, options.ldi_size);
+  check_memory_need(static_cast<std::uint64_t>(std::min(estimated_sampling_bytes(mesh, grid, options), 1e19)), options.memory_limit,
+                    source, "sample.memory", "",
+                    "sampling its " + std::to_string(mesh.triangles.size()) + " triangles at LDI " + std::to_string(options.ldi_size));
   SampleStats local;
   SampleStats& st = stats ? *stats : local;
   std::array<AxisLayers, 3> layers;

@@ -41,6 +41,11 @@ struct SampleOptions {
   // the parts within it show in no camera, and would colour the quads of the shell around them.
   // visibility.views = 0 keeps every layer.
   VisibilityOptions visibility;
+  // Bytes sampling may take (qf-bake --max-memory); 0: the memory available (core/memory.h).
+  // The layers' fragments and points are estimated from the triangles' areas in pixels before
+  // any is drawn; past the limit sample_mesh throws InputError "sample.memory" (a mesh of 10^6
+  // overlapping cubes, or --ldi 16000, took all memory, then std::bad_alloc in a parallel loop).
+  std::size_t memory_limit = 0;
 };
 
 // One axis' layered depth image, as triangle ids: for pixel p (row-major, row 0 at the grid's

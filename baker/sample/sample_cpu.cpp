@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/parallel_errors.h"
 #include "sample/sample.h"
 
 namespace qf {
@@ -97,8 +98,11 @@ AxisLayers peel_axis(const TriangleMesh& mesh, const SampleGrid& grid, const Sam
 
 std::array<AxisLayers, 3> peel_layers_cpu(const TriangleMesh& mesh, const SampleGrid& grid, const SampleOptions& options) {
   std::array<AxisLayers, 3> out;
+  ParallelErrors errors;  // a std::bad_alloc of one axis' fragments must not std::terminate
 #pragma omp parallel for schedule(dynamic, 1)
-  for (int axis = 0; axis < 3; ++axis) out[static_cast<std::size_t>(axis)] = peel_axis(mesh, grid, options, axis);
+  for (int axis = 0; axis < 3; ++axis)
+    errors.run(axis, [&] { out[static_cast<std::size_t>(axis)] = peel_axis(mesh, grid, options, axis); });
+  errors.rethrow();
   return out;
 }
 

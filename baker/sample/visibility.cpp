@@ -6,6 +6,8 @@
 #include <cmath>
 #include <limits>
 
+#include "core/parallel_errors.h"
+
 namespace qf {
 namespace {
 
@@ -113,11 +115,14 @@ std::vector<char> visible_points(const TriangleMesh& mesh, const std::vector<Vec
     const int count = std::min(kBatch, o.views - first);
     std::vector<View> views(static_cast<std::size_t>(count));
     std::vector<std::vector<float>> depth(static_cast<std::size_t>(count));
+    ParallelErrors errors;
 #pragma omp parallel for schedule(dynamic, 1)
-    for (int k = 0; k < count; ++k) {
-      views[static_cast<std::size_t>(k)] = fibonacci_view(first + k, o.views);
-      depth[static_cast<std::size_t>(k)] = depth_buffer(mesh, f, views[static_cast<std::size_t>(k)]);
-    }
+    for (int k = 0; k < count; ++k)
+      errors.run(k, [&] {
+        views[static_cast<std::size_t>(k)] = fibonacci_view(first + k, o.views);
+        depth[static_cast<std::size_t>(k)] = depth_buffer(mesh, f, views[static_cast<std::size_t>(k)]);
+      });
+    errors.rethrow();
 #pragma omp parallel for schedule(static)
     for (std::ptrdiff_t i = 0; i < static_cast<std::ptrdiff_t>(positions.size()); ++i) {
       char& v = visible[static_cast<std::size_t>(i)];

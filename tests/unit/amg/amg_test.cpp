@@ -2,6 +2,8 @@
 // A_l and Psi_l, coarsening ratios, faces and creases kept apart, determinism.
 #include <gtest/gtest.h>
 #include <omp.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstring>
@@ -216,7 +218,19 @@ TEST(HierarchyCache, RoundTripsExactlyAndRejectsDamage) {
   EXPECT_FALSE(load_hierarchy(dir, key, &why));
   EXPECT_EQ(why, "missing");
   const std::vector<Vec3f> normals(p.size(), Vec3f{0, 0.6f, 0.8f});
+  // A half-written entry of a killed bake (its pid gone) is removed by the next save; a live
+  // process' one stays.
+  std::filesystem::create_directories(dir);
+  const pid_t child = ::fork();
+  if (child == 0) ::_exit(0);
+  ::waitpid(child, nullptr, 0);
+  const std::string stale = dir + "/other.qfamg.tmp-" + std::to_string(child), live = dir + "/mine.qfamg.tmp-" + std::to_string(::getpid());
+  std::ofstream(stale) << "half";
+  std::ofstream(live) << "half";
   save_hierarchy(dir, key, h, normals);
+  EXPECT_FALSE(std::filesystem::exists(stale));
+  EXPECT_TRUE(std::filesystem::exists(live));
+  std::filesystem::remove(live);
   std::vector<Vec3f> normals_back;
   const std::optional<AmgHierarchy> back = load_hierarchy(dir, key, &why, &normals_back);
   ASSERT_TRUE(back);

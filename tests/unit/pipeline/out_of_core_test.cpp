@@ -4,16 +4,19 @@
 // core, deterministically at any thread count.
 #include <gtest/gtest.h>
 #include <omp.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "amg/basis.h"
 #include "pipeline/bake.h"
 #include "pipeline/out_of_core.h"
+#include "core/scratch.h"
 #include "shapes/shapes.h"
 
 namespace qf {
@@ -46,6 +49,35 @@ TEST(OutOfCore, ScratchFileRoundTripsAndIsRemoved) {
   }
   EXPECT_FALSE(std::filesystem::exists(path));
   EXPECT_THROW(ScratchFile("test", dir + "/missing"), std::runtime_error);
+  std::filesystem::remove_all(dir);
+}
+
+// The pid of a process that has exited and been reaped: no process has it (for a while).
+pid_t dead_pid() {
+  const pid_t child = ::fork();
+  if (child == 0) ::_exit(0);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  return child;
+}
+
+// A kill -9 leaves a scratch file behind (no handler runs); the next scratch file made in that
+// folder removes it, and leaves a live process' file alone.
+TEST(OutOfCore, ScratchFilesOfDeadProcessesAreRemovedByTheNextRun) {
+  const std::string dir = temp_folder("stale-scratch");
+  const std::string dead = dir + "/qf-spill-" + std::to_string(dead_pid()) + "-AbC123.scratch";
+  const std::string live = dir + "/qf-spill-" + std::to_string(::getppid()) + "-XyZ789.scratch";
+  const std::string other = dir + "/notes-1-AbC123.scratch";
+  for (const std::string& f : {dead, live, other}) std::ofstream(f) << "x";
+  {
+    ScratchFile f("test", dir);
+    EXPECT_FALSE(std::filesystem::exists(dead));
+    EXPECT_TRUE(std::filesystem::exists(live));
+    EXPECT_TRUE(std::filesystem::exists(other));
+    // A file of this process stays while it lives: the next one made here sees it live.
+    ScratchFile g("test", dir);
+    EXPECT_TRUE(std::filesystem::exists(f.path()));
+  }
   std::filesystem::remove_all(dir);
 }
 

@@ -1,0 +1,272 @@
+#!/usr/bin/env python3
+"""Writes the hostile corpus of the readers (issue 50): small glTF, glb and OBJ files made to crash,
+exhaust memory or read files outside their folder. Seeded: the same seed writes the same files.
+
+usage: make_corpus.py OUTDIR [--seed N]
+
+OUTDIR/cases.tsv lists one case a line: NAME, the input to bake (relative to OUTDIR), whether it
+names a file outside its folder ("outside": it must never bake), and the programs to run it with
+("bake" or "bake,render"). Every case lives in OUTDIR/cases/NAME/; OUTDIR/outside/ holds the files
+the outside cases point at (a triangle's buffer, a PNG, an MTL), which a reader must not take."""
+import argparse
+import base64
+import json
+import os
+import random
+import struct
+import zlib
+
+# One triangle: positions (0,0,0) (1,0,0) (0,1,0) as floats, then indices 0 1 2 as u16.
+TRIANGLE = struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0) + struct.pack("<3H", 0, 1, 2)
+
+
+def triangle_gltf(nodes=None, scene_nodes=None, uri=None, count=3, extra=None, images=None):
+    """A one-triangle glTF; every part can be replaced by a hostile one."""
+    g = {
+        "asset": {"version": "2.0"},
+        "scene": 0,
+        "scenes": [{"nodes": scene_nodes if scene_nodes is not None else [0]}],
+        "nodes": nodes if nodes is not None else [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+        "buffers": [{"byteLength": len(TRIANGLE),
+                     "uri": uri if uri is not None else "data:application/octet-stream;base64," + base64.b64encode(TRIANGLE).decode()}],
+        "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36}, {"buffer": 0, "byteOffset": 36, "byteLength": 6}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": count, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+                      {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}],
+    }
+    if images:
+        g["images"] = images
+        g["textures"] = [{"source": i} for i in range(len(images))]
+        g["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]
+        g["meshes"][0]["primitives"][0]["material"] = 0
+    if extra:
+        g.update(extra)
+    return g
+
+
+def cube_gltf(nodes):
+    """A unit cube of 24 vertices (4 a face) and 36 u16 indices, placed by `nodes`."""
+    positions, indices = [], []
+    for axis in range(3):
+        for side in (0, 1):
+            base = len(positions) // 3
+            for a, b in ((0, 0), (1, 0), (1, 1), (0, 1)):
+                p = [0, 0, 0]
+                p[axis], p[(axis + 1) % 3], p[(axis + 2) % 3] = side, a, b
+                positions += p
+            indices += [base, base + 1, base + 2, base, base + 2, base + 3] if side else [base, base + 2, base + 1, base, base + 3, base + 2]
+    data = struct.pack(f"<{len(positions)}f", *positions) + struct.pack(f"<{len(indices)}H", *indices)
+    g = triangle_gltf(nodes=nodes, uri="data:application/octet-stream;base64," + base64.b64encode(data).decode())
+    g["buffers"][0]["byteLength"] = len(data)
+    g["bufferViews"] = [{"buffer": 0, "byteOffset": 0, "byteLength": 288}, {"buffer": 0, "byteOffset": 288, "byteLength": 72}]
+    g["accessors"][0].update(count=24, max=[1, 1, 1])
+    g["accessors"][1]["count"] = 36
+    return g
+
+
+def glb(gltf_json, binary=b""):
+    """A .glb of this JSON (text or dict) and BIN chunk."""
+    text = gltf_json if isinstance(gltf_json, str) else json.dumps(gltf_json, separators=(",", ":"))
+    j = text.encode()
+    j += b" " * (-len(j) % 4)
+    binary += b"\0" * (-len(binary) % 4)
+    chunks = struct.pack("<II", len(j), 0x4E4F534A) + j
+    if binary:
+        chunks += struct.pack("<II", len(binary), 0x004E4942) + binary
+    return struct.pack("<4sII", b"glTF", 2, 12 + len(chunks)) + chunks
+
+
+def png(width, height, rng):
+    """A PNG whose header says width x height RGBA; its data is a few random bytes (it does not decode)."""
+    ihdr = struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0)
+    chunk = lambda kind, data: struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + chunk(b"IDAT", bytes(rng.randrange(256) for _ in range(64))) + chunk(b"IEND", b"")
+
+
+def small_png():
+    """A real 2x2 RGBA PNG."""
+    raw = b"".join(b"\0" + b"\xff\x00\x00\xff" * 2 for _ in range(2))
+    chunk = lambda kind, data: struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", 2, 2, 8, 6, 0, 0, 0)) + chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b"")
+
+
+def jpeg(width, height):
+    """A JPEG header (SOI, SOF0) claiming width x height, then nothing that decodes."""
+    sof = struct.pack(">BHHB", 8, height, width, 3) + b"\x01\x11\x00\x02\x11\x00\x03\x11\x00"
+    return b"\xff\xd8" + b"\xff\xc0" + struct.pack(">H", len(sof) + 2) + sof + b"\xff\xd9"
+
+
+def webp(width, height):
+    """A lossless WebP (VP8L) header claiming width x height (at most 16384 a side)."""
+    bits = (width - 1) | (height - 1) << 14 | 1 << 28
+    data = b"\x2f" + struct.pack("<I", bits) + b"\0" * 16
+    return b"RIFF" + struct.pack("<I", 4 + 8 + len(data)) + b"WEBP" + b"VP8L" + struct.pack("<I", len(data)) + data
+
+
+def ktx2(width, height):
+    """A KTX2 header (80 bytes, one level) claiming width x height, its level past nothing."""
+    ident = b"\xabKTX 20\xbb\r\n\x1a\n"
+    head = struct.pack("<IIIIIIIII", 0, 1, width, height, 0, 0, 1, 1, 1)  # vkFormat .. supercompression
+    index = struct.pack("<IIIIQQ", 0, 0, 0, 0, 0, 0)  # dfd, kvd offsets/lengths; sgd offset/length
+    level = struct.pack("<QQQ", 104, 16, 16)
+    return ident + head + index + level + b"\0" * 16
+
+
+def image_glb(kind, payload):
+    """A glb with one triangle textured by an embedded image of `kind` (png, ktx2, webp)."""
+    g = triangle_gltf()
+    g["buffers"] = [{"byteLength": 0}]
+    bin_ = TRIANGLE + b"\0\0"
+    g["bufferViews"].append({"buffer": 0, "byteOffset": len(bin_), "byteLength": len(payload)})
+    bin_ += payload
+    g["buffers"][0]["byteLength"] = len(bin_)
+    mime = {"png": "image/png", "ktx2": "image/ktx2", "webp": "image/webp"}[kind]
+    g["images"] = [{"bufferView": 2, "mimeType": mime}]
+    ext = {"ktx2": "KHR_texture_basisu", "webp": "EXT_texture_webp"}.get(kind)
+    g["textures"] = [{"extensions": {ext: {"source": 0}}} if ext else {"source": 0}]
+    if ext:
+        g["extensionsUsed"] = [ext]
+    g["materials"] = [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}]
+    g["meshes"][0]["primitives"][0]["material"] = 0
+    return glb(g, bin_)
+
+
+class Corpus:
+    def __init__(self, out):
+        self.out = out
+        self.rows = []
+
+    def case(self, name, filename, content, outside=False, programs="bake", files=None, links=None, fifos=None, folders=None):
+        folder = os.path.join(self.out, "cases", name)
+        os.makedirs(folder, exist_ok=True)
+        for sub in folders or []:
+            os.makedirs(os.path.join(folder, sub), exist_ok=True)
+        for rel, data in (files or {}).items():
+            with open(os.path.join(folder, rel), "wb") as f:
+                f.write(data)
+        for rel, target in (links or {}).items():
+            os.symlink(target, os.path.join(folder, rel))
+        for rel in fifos or []:
+            os.mkfifo(os.path.join(folder, rel))
+        data = content if isinstance(content, bytes) else (content if isinstance(content, str) else json.dumps(content)).encode()
+        with open(os.path.join(folder, filename), "wb") as f:
+            f.write(data)
+        self.rows.append((name, os.path.join("cases", name, filename), "outside" if outside else "inside", programs))
+
+
+def chain(n, twice=False):
+    nodes = [{"children": [i + 1, i + 1] if twice else [i + 1]} for i in range(n - 1)]
+    return nodes + [{"mesh": 0}]
+
+
+def write(out, seed):
+    rng = random.Random(seed)
+    os.makedirs(os.path.join(out, "outside"), exist_ok=True)
+    outside = os.path.abspath(os.path.join(out, "outside"))
+    for name, data in {"secret.bin": TRIANGLE, "secret.png": small_png(),
+                       "secret.mtl": b"newmtl m\nKd 1 0 0\nmap_Kd secret.png\n"}.items():
+        with open(os.path.join(outside, name), "wb") as f:
+            f.write(data)
+    c = Corpus(out)
+    # --- Depth: JSON nesting past any parser's stack, node chains past any recursion ---
+    for depth in (600, 15000, 200000):
+        deep = "[" * depth + "]" * depth
+        c.case(f"json_depth_{depth}", "a.gltf", json.dumps(triangle_gltf())[:-1] + ',"extras":' + deep + "}", programs="bake,render")
+    c.case("json_depth_glb", "a.glb", glb(json.dumps(triangle_gltf())[:-1] + ',"extras":' + "{\"a\":" * 20000 + "1" + "}" * 20000 + "}"),
+           programs="bake,render")
+    c.case("json_depth_in_node", "a.gltf", json.dumps(triangle_gltf())[:-1] + ',"asset2":' + "[{\"x\":" * 8000 + "0" + "}]" * 8000 + "}")
+    c.case("json_depth_unclosed", "a.gltf", '{"asset":' + "[" * 100000)
+    for n in (10000, 100000):
+        c.case(f"node_chain_{n}", "a.gltf", triangle_gltf(nodes=chain(n)))
+    # --- Node graphs that are not trees: instances multiply ---
+    c.case("node_dag_2_40", "a.gltf", triangle_gltf(nodes=chain(41, twice=True)))
+    c.case("node_dag_wide", "a.gltf", triangle_gltf(nodes=[{"children": [1] * 4096}, {"children": [2] * 4096}, {"mesh": 0}]))
+    c.case("node_two_parents", "a.gltf", triangle_gltf(nodes=[{"children": [2]}, {"children": [2]}, {"mesh": 0}], scene_nodes=[0, 1]))
+    c.case("node_root_twice", "a.gltf", triangle_gltf(scene_nodes=[0] * 1000))
+    c.case("node_cycle", "a.gltf", triangle_gltf(nodes=[{"children": [1]}, {"children": [0], "mesh": 0}]))
+    c.case("node_self", "a.gltf", triangle_gltf(nodes=[{"children": [0], "mesh": 0}]))
+    c.case("node_index_huge", "a.gltf", triangle_gltf(nodes=[{"children": [2 ** 31 + 5]}, {"mesh": 0}]))
+    c.case("node_no_scene_cycle", "a.gltf", {k: v for k, v in triangle_gltf(nodes=[{"children": [1]}, {"children": [0], "mesh": 0}]).items()
+                                             if k not in ("scene", "scenes")})
+    # 10^6 instances of one cube (24 vertices, 12 triangles) as siblings: a tree, but 2.7 GB of mesh.
+    c.case("instances_1e6_cubes", "a.gltf", cube_gltf(nodes=[{"children": list(range(1, 1000001))}] + [{"mesh": 0}] * 1000000))
+    # --- Counts past their buffers ---
+    for count in (2 ** 62, 2 ** 32 + 3, 10 ** 12):
+        c.case(f"accessor_count_{count}", "a.gltf", triangle_gltf(count=count))
+    big_stride = triangle_gltf()
+    big_stride["bufferViews"][0]["byteStride"] = 252
+    big_stride["accessors"][0]["count"] = 2 ** 40
+    c.case("accessor_stride", "a.gltf", big_stride)
+    offset = triangle_gltf()
+    offset["accessors"][0]["byteOffset"] = 2 ** 63
+    c.case("accessor_offset_2_63", "a.gltf", offset)
+    prims = triangle_gltf()
+    prims["meshes"][0]["primitives"] = prims["meshes"][0]["primitives"] * 5000
+    prims["accessors"][0]["count"] = 2 ** 31
+    c.case("primitives_5000_huge", "a.gltf", prims)
+    c.case("glb_chunk_length", "a.glb", struct.pack("<4sIIII", b"glTF", 2, 2 ** 32 - 1, 2 ** 32 - 8, 0x4E4F534A) + b"{}")
+    c.case("glb_truncated", "a.glb", glb(triangle_gltf())[:40])
+    # --- Images whose headers claim more than the memory allows ---
+    c.case("png_16384_x8", "a.gltf", triangle_gltf(images=[{"uri": "big.png"}] * 8), files={"big.png": png(16384, 16384, rng)})
+    c.case("png_2_31", "a.gltf", triangle_gltf(images=[{"uri": "big.png"}]), files={"big.png": png(2 ** 31 - 1, 2 ** 31 - 1, rng)})
+    c.case("jpeg_65535", "a.gltf", triangle_gltf(images=[{"uri": "big.jpg"}] * 4), files={"big.jpg": jpeg(65535, 65535)})
+    c.case("png_embedded_16384", "a.glb", image_glb("png", png(16384, 16384, rng)), programs="bake,render")
+    c.case("webp_16383", "a.glb", image_glb("webp", webp(16384, 16384)), programs="bake,render")
+    c.case("ktx2_16384", "a.glb", image_glb("ktx2", ktx2(16384, 16384)), programs="bake,render")
+    obj_faces = "usemtl m\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1\n"
+    c.case("obj_png_16384_x8", "a.obj", "mtllib a.mtl\n" + obj_faces,
+           files={"a.mtl": ("newmtl m\n" + "map_Kd big.png\n" * 8).encode(), "big.png": png(16384, 16384, rng)})
+    # --- References outside the asset's folder (each names a file that exists) ---
+    rel = os.path.relpath(outside, os.path.join(out, "cases", "x"))
+    for name, uri in {"uri_dotdot": rel + "/secret.bin", "uri_pct_dotdot": rel.replace("..", "%2e%2e") + "/secret.bin",
+                      "uri_pct_slash": rel.replace("/", "%2F") + "%2Fsecret.bin", "uri_pct_nul": "%2e%2e%00/" + rel + "/secret.bin", "uri_absolute": outside + "/secret.bin",
+                      "uri_file_scheme": "file://" + outside + "/secret.bin", "uri_etc_passwd": "/etc/passwd",
+                      "uri_home": "~/../../" + outside + "/secret.bin", "uri_variable": "$HOME/../.." + outside + "/secret.bin",
+                      "uri_dev_zero": "/dev/zero", "uri_proc": "/proc/self/environ"}.items():
+        c.case(name, "a.gltf", triangle_gltf(uri=uri), outside=True)
+    c.case("uri_symlink", "a.gltf", triangle_gltf(uri="link.bin"), outside=True, links={"link.bin": outside + "/secret.bin"})
+    c.case("uri_symlink_relative", "a.gltf", triangle_gltf(uri="link.bin"), outside=True, links={"link.bin": rel + "/secret.bin"})
+    c.case("uri_symlink_folder", "a.gltf", triangle_gltf(uri="up/secret.bin"), outside=True, links={"up": outside})
+    c.case("uri_symlink_dotdot", "a.gltf", triangle_gltf(uri="sub/up/" + rel + "/secret.bin"), outside=True, folders=["sub"],
+           links={"sub/up": ".."})
+    c.case("uri_symlink_dangling", "a.gltf", triangle_gltf(uri="link.bin"), outside=True, links={"link.bin": outside + "/absent.bin"})
+    c.case("image_dotdot", "a.gltf", triangle_gltf(images=[{"uri": rel + "/secret.png"}]), outside=True)
+    c.case("image_symlink", "a.gltf", triangle_gltf(images=[{"uri": "t.png"}]), outside=True, links={"t.png": outside + "/secret.png"})
+    c.case("obj_mtllib_dotdot", "a.obj", "mtllib " + rel + "/secret.mtl\n" + obj_faces, outside=True)
+    c.case("obj_mtllib_absolute", "a.obj", "mtllib " + outside + "/secret.mtl\n" + obj_faces, outside=True)
+    c.case("obj_mtllib_backslash", "a.obj", "mtllib " + rel.replace("/", "\\") + "\\secret.mtl\n" + obj_faces, outside=True)
+    c.case("obj_map_kd_dotdot", "a.obj", "mtllib a.mtl\n" + obj_faces, outside=True,
+           files={"a.mtl": ("newmtl m\nmap_Kd -s 1 1 1 " + rel + "/secret.png\n").encode()})
+    c.case("obj_map_kd_symlink", "a.obj", "mtllib a.mtl\n" + obj_faces, outside=True,
+           files={"a.mtl": b"newmtl m\nmap_Kd t.png\n"}, links={"t.png": outside + "/secret.png"})
+    c.case("obj_mtllib_symlink", "a.obj", "mtllib a.mtl\n" + obj_faces, outside=True, links={"a.mtl": outside + "/secret.mtl"})
+    # --- Not regular files ---
+    c.case("uri_fifo", "a.gltf", triangle_gltf(uri="fifo.bin"), fifos=["fifo.bin"], programs="bake,render")
+    c.case("uri_folder", "a.gltf", triangle_gltf(uri="sub"), folders=["sub"], programs="bake,render")
+    c.case("uri_dot", "a.gltf", triangle_gltf(uri="."))
+    c.case("uri_empty_name", "a.gltf", triangle_gltf(uri="sub/"), folders=["sub"])
+    c.case("image_fifo", "a.gltf", triangle_gltf(images=[{"uri": "fifo.png"}]), fifos=["fifo.png"], programs="bake,render")
+    c.case("obj_mtllib_fifo", "a.obj", "mtllib fifo.mtl\n" + obj_faces, fifos=["fifo.mtl"])
+    c.case("obj_mtllib_folder", "a.obj", "mtllib sub\n" + obj_faces, folders=["sub"])
+    c.case("obj_map_kd_fifo", "a.obj", "mtllib a.mtl\n" + obj_faces, files={"a.mtl": b"newmtl m\nmap_Kd fifo.png\n"}, fifos=["fifo.png"])
+    # --- Random bytes where JSON is expected, seeded ---
+    for k in range(3):
+        noise = bytes(rng.choice(b'{}[]":,0123456789abcdefnulltrue \n') for _ in range(4096))
+        c.case(f"json_noise_{k}", "a.gltf", noise)
+    with open(os.path.join(out, "cases.tsv"), "w") as f:
+        for row in c.rows:
+            f.write("\t".join(row) + "\n")
+    return len(c.rows)
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("out")
+    p.add_argument("--seed", type=int, default=50)
+    a = p.parse_args()
+    n = write(a.out, a.seed)
+    print(f"{n} cases in {a.out}")
+
+
+if __name__ == "__main__":
+    main()
