@@ -7,7 +7,7 @@ import sys
 
 report, name, threads, wall = sys.argv[1], sys.argv[2], sys.argv[3], float(sys.argv[4])
 r = json.load(open(report))
-texels = {str(l["level"]): l["texels"] for l in r["levels"]}
+texels = {str(l["level"]): l["quad_texels"] for l in r["levels"]}  # what the resampler made (before packing)
 prims = {str(l["level"]): l["primitives"] for l in r["levels"]}
 print(f"\n{name}: {r['points']} points, {threads} thread(s), {r['hierarchy_levels']} AMG levels, wall {wall:.2f} s")
 print(f"{'stage':<24}{'seconds':>9}{'RSS MB':>9}{'peak MB':>9}   notes")

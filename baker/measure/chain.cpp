@@ -29,9 +29,11 @@ struct Pick {
 
 // 1. Among the derived files no larger than `cap` (a nearer derived file's bytes: farther away never
 // costs more), and no larger than the asset unless they draw better: the smallest that holds.
-// Else the asset itself, where it is within the cap; else the best trade of PSNR against bytes
-// (1 dB per doubling) among those files, below the bar; else the nearer band's file again.
-Pick choose(const Measurements& m, std::size_t band, std::size_t cap, std::size_t nearer, const HoldBar& bar) {
+// Else the asset itself, where it is within the cap; else, below the bar, the best trade of PSNR
+// against bytes (1 dB per doubling) among those files that hold at half the size or more (never a
+// file shown above twice the largest size at which it holds); else the asset itself after all.
+// `largest[i]`: the largest size at which file i holds (0: none).
+Pick choose(const Measurements& m, std::size_t band, std::size_t cap, const std::vector<int>& largest, const HoldBar& bar) {
   const std::size_t n = m.files.size();
   const Scores& asset = m.asset.at_size[band];
   const int size = m.sizes[band];
@@ -42,14 +44,14 @@ Pick choose(const Measurements& m, std::size_t band, std::size_t cap, std::size_
     const Scores& s = f.at_size[band];
     if (f.bytes > cap || (f.bytes > m.asset.bytes && !draws_better(s, asset))) continue;
     if (holds(s, asset, bar) && (pick == n || f.bytes < m.files[pick].bytes)) pick = i;
-    if (s.evidence() && (trade == n || trade_of(i) > trade_of(trade))) trade = i;
+    if (s.evidence() && 2 * largest[i] >= size && (trade == n || trade_of(i) > trade_of(trade))) trade = i;
   }
   if (pick < n) return {pick, true, ""};
   const std::string at = " at " + std::to_string(size) + " px";
   if (m.asset.bytes <= cap) return {n, true, "no derived file holds" + at + ": the asset itself"};
-  const std::string why = "no file within the nearer band's " + std::to_string(cap) + " bytes holds" + at + "; the asset itself (" +
-                          std::to_string(m.asset.bytes) + " bytes) would";
-  return {trade < n ? trade : nearer, false, trade < n ? why + ": the best file per byte" : why + ": the nearer band's file"};
+  const std::string why = "no file within the nearer band's " + std::to_string(cap) + " bytes holds" + at;
+  if (trade < n) return {trade, false, why + "; the asset itself (" + std::to_string(m.asset.bytes) + " bytes) would: the best file per byte"};
+  return {n, true, why + ", nor within twice its size: the asset itself (" + std::to_string(m.asset.bytes) + " bytes)"};
 }
 
 // 2. The chain, nearest first: one entry per run of bands with the same file, shown from the
@@ -63,10 +65,12 @@ nlohmann::json chain_entries(const Measurements& m, double diagonal, const Chain
   chain.push_back({{"file", m.asset.file}, {"kind", "asset"}, {"bytes", m.asset.bytes}, {"max_pixels", nullptr}, {"min_pixels", m.sizes[0]},
                    {"switch_distance", nullptr}, {"measured_at_pixels", nullptr}, {"error", nullptr}, {"bar_met", true},
                    {"reason", "above " + std::to_string(m.sizes[0]) + " px, the largest size measured: the asset itself"}});
+  std::vector<int> largest;
+  for (const FileScores& f : m.files) largest.push_back(holding_window(m.sizes, f.at_size, m.asset.at_size, o.bar).max_pixels);
   std::size_t last = n;
   for (std::size_t band = 0; band < m.sizes.size(); ++band) {
     const std::size_t cap = last < n ? m.files[last].bytes : std::numeric_limits<std::size_t>::max();
-    const Pick p = choose(m, band, cap, last, o.bar);
+    const Pick p = choose(m, band, cap, largest, o.bar);
     const int min_pixels = band + 1 < m.sizes.size() ? m.sizes[band + 1] : 0;
     if (p.file == last) {
       // One entry for the run: it met the bar only where every band of it did.

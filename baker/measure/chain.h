@@ -1,8 +1,8 @@
 // The recommended chain from near to far, starting at the asset itself: for each screen-size band,
 // the fewest bytes that hold there (measure/screen_sizes.h: about as good as the asset as drawn at
 // that size), never more bytes than a nearer derived file; where no derived file holds, the asset
-// itself, or, where the asset costs more than the nearer band's file, the best file per byte with
-// the reason. Chosen from the bake's measurements of every candidate (mesh LODs, impostor levels,
+// itself, or, where the asset costs more than the nearer band's file, the best file per byte among
+// those that hold at half the band's size or more, with the reason (else the asset after all). Chosen from the bake's measurements of every candidate (mesh LODs, impostor levels,
 // the point impostor; measure/measurements.h) and of the asset as drawn.
 #pragma once
 

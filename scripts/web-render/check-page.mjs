@@ -68,8 +68,23 @@ async function checkBake(page) {
   const listed = Object.fromEntries(m.files.map((f) => [f.name, f.bytes]));
   const entries = [...m.levels.map((e) => ['impostor_level', e]), ...(m.mesh_lods ? m.mesh_lods.levels.map((e) => ['mesh_lod', e]) : []),
                    ...(m.point_impostor ? [['point_impostor', m.point_impostor]] : [])];
-  check(rows.length === entries.length + (m.lod_file ? 1 : 0), `files table has ${rows.length} rows, manifest ${entries.length} files`);
+  // The input itself as drawn heads the table where the bake measured: its figures are measuring.asset.
+  const asset = m.measuring && m.measuring.asset ? 1 : 0;
+  check(rows.length === entries.length + (m.lod_file ? 1 : 0) + asset, `files table has ${rows.length} rows, manifest ${entries.length} files`);
   const cells = await page.$$eval('#files tbody tr', (trs) => trs.map((tr) => [...tr.querySelectorAll('td.measured')].map((td) => ({ ...td.dataset }))));
+  const sameFigures = (what, shown, measured) => {
+    check(shown.length === measured.length, `${what}: ${shown.length} measured cells, manifest ${measured.length}`);
+    for (const s of measured) {
+      const c = shown.find((y) => num(y.pixels) === s.pixels);
+      check(c && num(c.psnr) === s.psnr && num(c.iou) === s.iou && num(c.coverage) === s.coverage,
+            `${what} at ${s.pixels} px: shown ${JSON.stringify(c)}, manifest ${s.psnr} dB / ${s.iou} / ${s.coverage}`);
+    }
+  };
+  if (asset) {
+    const k = rows.findIndex((x) => x.kind === 'asset');
+    check(k === 0, `the input's row is row ${k}, not the first`);
+    if (k >= 0) sameFigures('the input as drawn', cells[k], m.measuring.asset);
+  }
   for (const [kindName, e] of entries) {
     const x = row(e.file);
     if (!x) { problems.push(`no row for ${e.file}`); continue; }
@@ -81,18 +96,8 @@ async function checkBake(page) {
     check(num(x.texels) === texels, `${e.file}: texels ${x.texels}, its images ${texels}`);
     const gpu = e.gpu_bytes ?? Math.round(num(x.texels) * 16 / 3);
     check(num(x.gpuBytes) === gpu, `${e.file}: GPU bytes ${x.gpuBytes}, expected ${gpu}`);
-    // Measured figures: the level's own, else the chain's candidates'.
-    let measured = e.measured;
-    if (!measured && m.recommended_chain) {
-      const c = m.recommended_chain.measured.find((f) => f.file === e.file);
-      if (c) measured = c.at_pixels.map((s, k) => s && { ...s, pixels: m.recommended_chain.sizes[k] }).filter((s) => s);
-    }
-    const shown = cells[rows.indexOf(x)];
-    check(shown.length === (measured ? measured.length : 0), `${e.file}: ${shown.length} measured cells, manifest ${measured ? measured.length : 0}`);
-    for (const s of measured || []) {
-      const c = shown.find((y) => num(y.pixels) === s.pixels);
-      check(c && num(c.psnr) === s.psnr && num(c.iou) === s.iou, `${e.file} at ${s.pixels} px: shown ${JSON.stringify(c)}, manifest ${s.psnr} dB / ${s.iou}`);
-    }
+    // Measured figures: the file's own (every measured file has them).
+    sameFigures(e.file, cells[rows.indexOf(x)], e.measured || []);
   }
   // The chain's bands (or the impostor levels' when there is no chain).
   const bands = await figures(page, '#chain .band');
@@ -101,8 +106,9 @@ async function checkBake(page) {
     check(bands.length === chain.length, `chain: ${bands.length} bands, manifest ${chain.length}`);
     chain.forEach((e, k) => {
       const b = bands[k] || {};
-      check(b.file === e.file && num(b.minPixels) === e.min_pixels && num(b.maxPixels) === e.max_pixels && num(b.psnr) === e.error.psnr &&
-            num(b.iou) === e.error.iou, `chain band ${k}: shown ${JSON.stringify(b)}, manifest ${JSON.stringify(e)}`);
+      const error = e.error || {};  // the input's first entry, above the largest size measured, has none
+      check(b.file === e.file && num(b.minPixels) === e.min_pixels && num(b.maxPixels) === e.max_pixels && num(b.psnr) === (error.psnr ?? null) &&
+            num(b.iou) === (error.iou ?? null), `chain band ${k}: shown ${JSON.stringify(b)}, manifest ${JSON.stringify(e)}`);
     });
   } else {
     check(bands.length === m.levels.length, `level bands: ${bands.length}, manifest ${m.levels.length} levels`);

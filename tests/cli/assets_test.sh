@@ -32,7 +32,7 @@ valid=(glTF2/BoxTextured-glTF/BoxTextured.gltf glTF2/textureTransform/TextureTra
        glTF2/draco/2CylinderEngine.gltf OBJ/spider.obj)
 for m in "${valid[@]}"; do
   out="$work/ok/$(echo "$m" | tr '/' '_')"
-  if "$bake" bake "$models/$m" -o "$out" --ldi 64 --no-cache >"$work/log" 2>&1; then
+  if "$bake" bake "$models/$m" -o "$out" --ldi 64 --no-cache --cheap-triangles 0 >"$work/log" 2>&1; then
     for f in "$out"/*.glb; do
       if node "$validator/validate.js" "$f" >"$work/v" 2>&1; then ok; else bad "$m: $(basename "$f") does not validate: $(tail -3 "$work/v")"; fi
     done
@@ -75,7 +75,7 @@ expect_error OBJ/box_UTF16BE.obj "binary data"
 #    floor of its own sampled points drawn as splats, both against the asset drawn at the size
 #    (--truth 1: supersampled splats are smoother than any engine draws them).
 box="$models/glTF2/BoxTextured-glTF/BoxTextured.gltf"
-"$bake" bake "$box" -o "$work/box" --no-cache >/dev/null 2>&1 || bad "BoxTextured.gltf did not bake"
+"$bake" bake "$box" -o "$work/box" --no-cache --cheap-triangles 0 >/dev/null 2>&1 || bad "BoxTextured.gltf did not bake"
 "$bake" convert "$box" "$work/box_points.ply" >/dev/null 2>&1 || bad "BoxTextured.gltf did not sample"
 finest=$(ls "$work"/box/BoxTextured_L*.glb | sort -V | head -1)
 psnr() {
@@ -85,6 +85,17 @@ psnr() {
 level=$(psnr "$finest") floor=$(psnr "$work/box_points.ply")
 if python3 -c "import sys; sys.exit(0 if $level >= $floor - 2 else 1)"; then ok; else bad "BoxTextured finest level $level dB, points' floor $floor dB"; fi
 echo "BoxTextured: finest level $level dB, sampled points (floor) $floor dB"
+# By default the cube (12 triangles, opaque) is cheap already: measured, not baked; no file but the
+# manifest and reports, and its chain is the cube itself at every size.
+"$bake" bake "$box" -o "$work/box_default" --no-cache >/dev/null 2>&1 || bad "BoxTextured.gltf default bake"
+python3 - "$work/box_default" <<'PY' && ok || bad "BoxTextured's default bake is not the cube itself"
+import json, os, sys
+d = sys.argv[1]
+m = json.load(open(os.path.join(d, "manifest.json")))
+assert m["cheap_asset"]["triangles"] == 12 and not [f for f in os.listdir(d) if f.endswith(".glb")], os.listdir(d)
+c = m["recommended_chain"]["chain"]
+assert [e["kind"] for e in c] == ["asset"] and c[0]["min_pixels"] == 0, c
+PY
 
 echo "assets: $pass passed, $fail failed"
 [[ $fail -eq 0 ]]

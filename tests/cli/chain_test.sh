@@ -48,10 +48,10 @@ for k in range(len(sizes)):
     good = [e for e in allowed if holds(e["at_pixels"][k], a)]
     if good: pick, ok = min(good, key=lambda e: e["bytes"]), True
     elif asset["bytes"] <= cap: pick, ok = None, True
-    else:
-        trade = [e for e in allowed if ev(e["at_pixels"][k])]
-        pick = max(trade, key=lambda e: e["at_pixels"][k]["psnr"] - math.log2(max(1, e["bytes"]))) if trade else last
-        ok = False
+    else:  # below the bar: the best trade among files that hold at half the size or more, else the input
+        trade = [e for e in allowed if ev(e["at_pixels"][k]) and 2 * e["max_screen_pixels"] >= sizes[k]]
+        pick = max(trade, key=lambda e: e["at_pixels"][k]["psnr"] - math.log2(max(1, e["bytes"]))) if trade else None
+        ok = not trade
     rule.append(pick["file"] if pick else asset["file"])
     met.append(ok)
     last, cap = pick, (pick["bytes"] if pick else float("inf"))
@@ -68,9 +68,10 @@ for e in chain:  # an entry met the bar where every band of it did
     ks = [k for k, s in enumerate(sizes) if (e["max_pixels"] is None or s <= e["max_pixels"]) and (sizes[k + 1] if k + 1 < len(sizes) else 0) >= e["min_pixels"]]
     if e["bar_met"] != all(met[k] for k in ks): sys.exit(f"bar_met wrong in {e}")
     if not e["bar_met"] and "would" not in e.get("reason", ""): sys.exit(f"no reason in {e}")
-    if e["kind"] != "asset":  # a derived file is never shown above the largest size at which it holds
+    if e["kind"] != "asset":  # a derived file is never shown above twice the largest size at which it holds
         f = next(x for x in measured if x["file"] == e["file"])
-        if e["max_pixels"] is None or (e["bar_met"] and e["max_pixels"] > f["max_screen_pixels"]): sys.exit(f"{e} shown above where it holds")
+        if e["max_pixels"] is None or e["max_pixels"] > 2 * f["max_screen_pixels"] or (e["bar_met"] and e["max_pixels"] > f["max_screen_pixels"]):
+            sys.exit(f"{e} shown above where it holds")
 if chain[-1]["min_pixels"] != 0 or chain[-1]["switch_distance"] is not None: sys.exit("the chain does not run down to 0")
 z0 = 1080 / (2 * math.tan(math.radians(30)))
 for a, b in zip(chain, chain[1:]):

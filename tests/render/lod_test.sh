@@ -34,11 +34,11 @@ for how in "${hows[@]}"; do
 import json, math, sys
 m = json.load(open(sys.argv[1]))
 z0 = 512 / (2 * math.tan(math.radians(30)))
-if "recommended_chain" in m:
-    pixels = [e["max_pixels"] for e in m["recommended_chain"]["chain"]]
+if "recommended_chain" in m:  # the baked files of the chain (no asset is passed: its entries are left out)
+    pixels = [None] + [e["max_pixels"] for e in m["recommended_chain"]["chain"] if e["kind"] != "asset"][1:]
     if len(pixels) < 2: sys.exit("a chain of one file switches nothing")
 else:
-    pixels = [None] + [l["max_screen_pixels"] for l in sorted(m["levels"], key=lambda l: -l["primitives"])[1:]]
+    pixels = [None] + [l["max_screen_pixels"] for l in sorted(m["levels"], key=lambda l: -l["primitives"]) if l["max_screen_pixels"] > 0][1:]
 starts = [0 if p is None else m["bounding_box_diagonal"] * z0 / p for p in pixels]
 ds, want = [], []
 for i, s in enumerate(starts):
