@@ -76,13 +76,13 @@ CommandSpec bake_spec() {
                     {"no-measure", 0, "", "", "do not measure the outputs on screen: each level keeps its geometric max_screen_pixels\n"
                                               "(error under half a pixel) and there is no chain (needs no GL driver)"},
                     {"measure-views", 0, "N", "4", "directions each output and the input are drawn from when measured, by the engine method,\n"
-                                                   "at sizes from 256 px (up to 1024 px, as far as the finest file claims by its geometry)\n"
-                                                   "halving down to 16 px, against the truth (the input drawn once at 2x the largest size,\n"
-                                                   "box-filtered to each). A file's max_screen_pixels is the largest of those sizes at which it\n"
+                                                   "at 256, 128, 64, 32 and 16 px, then doubling up to 1024 px while a file holds, against\n"
+                                                   "the truth (the input drawn once per view at 2x the size, box-filtered down). A file's\n"
+                                                   "max_screen_pixels is the largest of those sizes at which it\n"
                                                    "holds: as good as the input itself as an engine draws it there (footprint PSNR within\n"
                                                    "--hold-psnr, soft IoU within 0.1, coverage within 0.3 of it and at least half the\n"
                                                    "truth's; manifest measuring)"},
-                    {"hold-psnr", 0, "DB", "3", "how far a file's footprint PSNR may fall below the input as drawn at a size and still hold"},
+                    {"hold-psnr", 0, "DB", "2.5", "how far a file's footprint PSNR may fall below the input as drawn at a size and still hold"},
                     {"no-chain", 0, "", "", "no recommended chain (manifest recommended_chain, made by default): nearest first, the\n"
                                             "input itself above the largest size measured; then per band the smallest file that holds\n"
                                             "there, never more bytes than a nearer file (nor than the input, unless it draws better);\n"

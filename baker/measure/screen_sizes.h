@@ -13,10 +13,12 @@ namespace qf {
 // below, its coverage at most `coverage_drop` below the asset's (taken as 1 where the asset covers
 // more than the truth), and never under `min_coverage` (half of what the truth covers: a level
 // that draws nothing scores a fine PSNR on a frame of background, but covers 0). A size without
-// evidence (the truth covers under half a pixel) holds for no file. 3 dB and half the coverage
-// are issue 48's bounds; docs/manifest.md gives the measurements behind the other two.
+// evidence (the truth covers under half a pixel) holds for no file. Issue 48's bounds are 3 dB and
+// half the coverage, judged from 8 views; the bake measures from 4 (--measure-views), so the PSNR
+// bound keeps 0.5 dB for that: 2CylinderEngine's 63-quad level held at 32 px by the bake's 4 views
+// at 2.9 dB below the asset, and 8 views put it at 3.13 dB (scripts/bench.sh holds).
 struct HoldBar {
-  double psnr_drop = 3.0;
+  double psnr_drop = 2.5;
   double soft_iou_drop = 0.1;
   double coverage_drop = 0.3;
   double min_coverage = 0.5;
