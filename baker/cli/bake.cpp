@@ -82,7 +82,7 @@ CommandSpec bake_spec() {
                                                    "holds: as good as the input itself as an engine draws it there (footprint PSNR within\n"
                                                    "--hold-psnr, soft IoU within 0.1, coverage within 0.3 of it and at least half the\n"
                                                    "truth's; manifest measuring)"},
-                    {"hold-psnr", 0, "DB", "2.5", "how far a file's footprint PSNR may fall below the input as drawn at a size and still hold"},
+                    {"hold-psnr", 0, "DB", "2", "how far a file's footprint PSNR may fall below the input as drawn at a size and still hold"},
                     {"no-chain", 0, "", "", "no recommended chain (manifest recommended_chain, made by default): nearest first, the\n"
                                             "input itself above the largest size measured; then per band the smallest file that holds\n"
                                             "there, never more bytes than a nearer file (nor than the input, unless it draws better);\n"

@@ -14,11 +14,12 @@ namespace qf {
 // more than the truth), and never under `min_coverage` (half of what the truth covers: a level
 // that draws nothing scores a fine PSNR on a frame of background, but covers 0). A size without
 // evidence (the truth covers under half a pixel) holds for no file. Issue 48's bounds are 3 dB and
-// half the coverage, judged from 8 views; the bake measures from 4 (--measure-views), so the PSNR
-// bound keeps 0.5 dB for that: 2CylinderEngine's 63-quad level held at 32 px by the bake's 4 views
-// at 2.9 dB below the asset, and 8 views put it at 3.13 dB (scripts/bench.sh holds).
+// half the coverage, judged from 8 views against a 4x truth; the bake measures from 4 views
+// (--measure-views) against a 2x truth, so the PSNR bound keeps 1 dB for that: 2CylinderEngine's
+// 63-quad level at 32 px was 2.24 dB below the asset by the bake's figures and 3.13 dB by 8 views
+// (scripts/bench.sh holds).
 struct HoldBar {
-  double psnr_drop = 2.5;
+  double psnr_drop = 2.0;
   double soft_iou_drop = 0.1;
   double coverage_drop = 0.3;
   double min_coverage = 0.5;

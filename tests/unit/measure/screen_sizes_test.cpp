@@ -46,12 +46,12 @@ TEST(ScreenSizes, NoEvidenceIsNoMatch) {
 }
 
 TEST(ScreenSizes, HoldsRelativeToTheAssetAsDrawn) {
-  const HoldBar bar;  // 2.5 dB, 0.1 soft IoU, 0.3 coverage, at least 0.5
+  const HoldBar bar;  // 2 dB, 0.1 soft IoU, 0.3 coverage, at least 0.5
   const Scores asset = score(25, 0.8, 1.2);
-  EXPECT_TRUE(holds(score(22.5, 0.7, 0.7), asset, bar));   // at every bound: coverage floor is min(1.2, 1) - 0.3
-  EXPECT_FALSE(holds(score(22.4, 0.7, 0.7), asset, bar));  // PSNR 2.6 dB below
-  EXPECT_FALSE(holds(score(22.5, 0.69, 0.7), asset, bar)); // soft IoU 0.11 below
-  EXPECT_FALSE(holds(score(22.5, 0.7, 0.69), asset, bar)); // coverage under 0.7
+  EXPECT_TRUE(holds(score(23.0, 0.7, 0.7), asset, bar));   // at every bound: coverage floor is min(1.2, 1) - 0.3
+  EXPECT_FALSE(holds(score(22.9, 0.7, 0.7), asset, bar));  // PSNR 2.1 dB below
+  EXPECT_FALSE(holds(score(23.0, 0.69, 0.7), asset, bar)); // soft IoU 0.11 below
+  EXPECT_FALSE(holds(score(23.0, 0.7, 0.69), asset, bar)); // coverage under 0.7
   // Better than the asset is holding too (foliage the asset itself loses in its mipmaps).
   EXPECT_TRUE(holds(score(27, 0.95, 1.0), score(20, 0.3, 0.4), bar));
 }
@@ -60,7 +60,7 @@ TEST(ScreenSizes, HoldsRelativeToTheAssetAsDrawn) {
 // run below it: never a size where it does not hold, and holds_from <= max.
 TEST(ScreenSizes, WindowIsTheLargestHoldingSizeAndTheRunBelow) {
   const ScreenWindow w = holding_window(kSizes, curve({25, 27, 23, 12}, {0.7, 0.85, 0.75, 0.2}, {0.9, 0.9, 0.9, 0.3}), kAsset);
-  EXPECT_EQ(w.max_pixels, 64);  // at 128 px 25 dB is more than 2.5 dB below the asset's 30
+  EXPECT_EQ(w.max_pixels, 64);  // at 128 px 25 dB is more than 2 dB below the asset's 30
   EXPECT_EQ(w.min_pixels, 32);  // at 16 px 12 dB against 22
 }
 
