@@ -63,7 +63,7 @@ def table(name, seconds, m):
             print(f"| {lod['file']} | {lod['bytes'] / 1024:.0f} | {s} | {v['psnr']:.1f} / {v['iou']:.3f} | {best['file']} "
                   f"({best['bytes'] / 1024:.0f} KB) | {b['psnr']:.1f} / {b['iou']:.3f} | {margin:+.1f} |")
     print(f"\nImpostor ahead in {wins[0]} of {wins[0] + wins[1]} comparisons.")
-    print("Chain: " + ", ".join(f"{e['file']} down to {e['min_pixels']} px ({e['error']['psnr']} dB"
+    print("Chain: " + ", ".join(f"{e['file']} down to {e['min_pixels']} px ({(e['error'] or {}).get('psnr')} dB"
                                 + ("" if e["bar_met"] else ", under the bar") + ")" for e in c["chain"]))
     return wins
 

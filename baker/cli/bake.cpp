@@ -239,8 +239,12 @@ void print_bake_summary(const AssetBake& a, const std::string& in, const std::st
     std::fprintf(stderr, "  recommended chain:");
     const char* sep = " ";
     for (const nlohmann::json& e : a.manifest["recommended_chain"]["chain"]) {
-      std::fprintf(stderr, "%s%s to %d px (%.1f dB%s)", sep, e["file"].get<std::string>().c_str(), e["min_pixels"].get<int>(),
-                   e["error"]["psnr"].get<double>(), e["bar_met"].get<bool>() ? "" : ", under the bar");
+      // The input's first entry, above the largest size measured, has no figure (error null).
+      char figure[64] = "";
+      if (e["error"].is_object() && e["error"]["psnr"].is_number())
+        std::snprintf(figure, sizeof figure, " (%.1f dB%s)", e["error"]["psnr"].get<double>(), e["bar_met"].get<bool>() ? "" : ", under the bar");
+      std::fprintf(stderr, "%s%s to %d px%s", sep, e["kind"] == "asset" ? "the input" : e["file"].get<std::string>().c_str(), e["min_pixels"].get<int>(),
+                   figure);
       sep = ", ";
     }
     std::fprintf(stderr, "\n");
