@@ -118,6 +118,13 @@ bool read_regular_file(std::vector<unsigned char>* out, std::string* err, const 
     if (err) *err += path + " is not a readable regular file\n";
     return false;
   }
+  // An empty file is refused here: tinygltf's binary loader indexes its first byte unchecked
+  // (std::out_of_range escaped the loader; its own file reader refuses an empty file too).
+  if (st.st_size == 0) {
+    ::close(fd);
+    if (err) *err += path + " is empty\n";
+    return false;
+  }
   out->resize(static_cast<std::size_t>(st.st_size));
   std::size_t done = 0;
   for (ssize_t n = 1; done < out->size() && n > 0; done += static_cast<std::size_t>(std::max<ssize_t>(n, 0)))
