@@ -12,7 +12,7 @@
 namespace qf {
 namespace {
 
-double rounded(double v, double step) { return canonical_double(static_cast<float>(std::round(v / step) * step)); }
+double rounded(double v, double step) { return manifest_figure(v, step); }
 nlohmann::json figure(double v, double step) { return std::isnan(v) ? nlohmann::json(nullptr) : nlohmann::json(rounded(v, step)); }
 
 // A file larger than the asset is worth its bytes only where it draws better than the asset.

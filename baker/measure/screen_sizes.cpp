@@ -5,16 +5,19 @@
 #include <cassert>
 #include <cmath>
 
+#include "core/types.h"
+
 namespace qf {
 
 namespace {
 
-// A figure as the manifest rounds it (measure/chain.h scores_entry), so that the rule can be
-// checked from the manifest; comparisons allow for the rounding's last bit.
-double rounded(double v, double step) { return std::round(v / step) * step; }
-constexpr double kSlack = 1e-9;
+// Comparisons allow for float's last bit in the rounded figures.
+constexpr double kSlack = 1e-6;
+double rounded(double v, double step) { return manifest_figure(v, step); }
 
 }  // namespace
+
+double manifest_figure(double v, double step) { return canonical_double(static_cast<float>(std::round(v / step) * step)); }
 
 bool holds(const Scores& file, const Scores& asset, const HoldBar& bar) {
   if (!file.evidence() || !asset.evidence()) return false;

@@ -25,6 +25,11 @@ struct HoldBar {
   double min_coverage = 0.5;
 };
 
+// A figure as the manifest writes it: to `step` (0.01 dB, 0.001 for the ratios), through float as
+// every JSON figure of the project (core/types.h canonical_double). The rule compares these, so
+// that it can be checked from the manifest alone.
+double manifest_figure(double v, double step);
+
 // Whether `file` holds where the asset as drawn scores `asset` (both at one size).
 bool holds(const Scores& file, const Scores& asset, const HoldBar& bar = {});
 
