@@ -1,0 +1,70 @@
+// Runs tools/qf-runtime/three.mjs (loadImpostorLOD) in headless Chromium on bake folders and prints, per
+// case, a line of JSON: the file shown and renderer.info.memory's geometries and textures with the
+// camera at each distance from lod.centre (fov 60, a SIZE x SIZE canvas), first outward, then back.
+// Each position is drawn (the renderer calls lod.update), then drawn again once lod.ready() says
+// the file for it is shown. tests/render/runtime_test.sh writes the cases and checks the answers.
+// usage: node runtime-check.mjs CASES.json
+//   CASES.json: {"size": px, "dirs": {"NAME": folder}, "cases": [{"url": "/files/NAME/manifest.json",
+//                "asset": bool, "ktx2": bool, "diagonal": number|null, "distances": [d, ...]}]}
+import fs from 'node:fs';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+import { chromium, threePage } from './browser.mjs';
+import { withPage } from '../web-render/page.mjs';
+
+const here = path.dirname(fileURLToPath(import.meta.url));
+const pageScript = `
+import * as THREE from 'three';
+import { KTX2Loader } from 'three/addons/loaders/KTX2Loader.js';
+import { loadImpostorLOD } from 'qf-runtime/three.mjs';
+window.qfRun = async (size, c) => {
+  const renderer = new THREE.WebGLRenderer({ antialias: false });
+  renderer.setSize(size, size, false);
+  const camera = new THREE.PerspectiveCamera(60, 1, 0.01, 1e6);
+  const scene = new THREE.Scene();
+  scene.add(new THREE.AmbientLight(0xffffff, 1));
+  // The app's own model for the chain's "asset" entries: a box it owns (never disposed by the loader).
+  const asset = c.asset ? new THREE.Mesh(new THREE.BoxGeometry(2, 2, 2), new THREE.MeshBasicMaterial()) : null;
+  if (asset) asset.name = 'app-asset';
+  const ktx2Loader = c.ktx2 ? new KTX2Loader().setTranscoderPath('/three/examples/jsm/libs/basis/') : null;
+  const before = { ...renderer.info.memory };
+  const t0 = performance.now();
+  const lod = await loadImpostorLOD(c.url, { renderer, camera, ktx2Loader, assetModel: asset, diagonal: c.diagonal });
+  const loadMs = performance.now() - t0;
+  scene.add(lod.object);
+  const samples = [];
+  const at = async (d) => {
+    camera.position.copy(lod.centre).add(new THREE.Vector3(0, 0, d));
+    camera.lookAt(lod.centre);
+    renderer.render(scene, camera);  // the renderer calls lod.object.update(camera)
+    await lod.ready();
+    renderer.render(scene, camera);
+    const step = lod.steps[lod.level];
+    samples.push({ d, file: step.kind === 'asset' ? 'asset' : step.file ?? 'level ' + lod.level, level: lod.level,
+                   geometries: renderer.info.memory.geometries, textures: renderer.info.memory.textures });
+  };
+  for (const d of c.distances) await at(d);
+  for (const d of [...c.distances].reverse()) await at(d);
+  const switches = lod.switchDistances(camera);
+  lod.dispose();
+  renderer.render(scene, camera);
+  const after = { ...renderer.info.memory };
+  const assetAlive = asset ? asset.geometry.attributes.position.count > 0 : null;
+  ktx2Loader?.dispose();
+  renderer.dispose();
+  return { samples, switches, before, after, loadMs, assetAlive, steps: lod.steps.map((s) => s.kind === 'asset' ? 'asset' : s.file ?? 'node ' + s.node) };
+};
+`;
+
+const spec = JSON.parse(fs.readFileSync(process.argv[2], 'utf8'));
+const page = threePage(pageScript);
+page.imports['qf-runtime/'] = '/qf-runtime/';
+page.roots['/qf-runtime/'] = path.join(here, '..', '..', 'tools', 'qf-runtime');
+const files = (p) => {
+  const [name, ...rest] = p.split('/');
+  return spec.dirs[name] === undefined ? null : path.join(spec.dirs[name], ...rest);
+};
+await withPage(chromium, page, files, async (tab) => {
+  for (const c of spec.cases) console.log(JSON.stringify(await tab.evaluate(([s, k]) => window.qfRun(s, k), [spec.size, c])));
+});
