@@ -7,8 +7,7 @@
 // high, that is D * H / (2 d tan(fov / 2)) (docs/manifest.md, baker/measure/chain.cpp).
 
 // 1. Steps: [{file, kind, max, node?}] nearest first; step i is shown while the object spans at
-// most `max` (null: any size) and more than step i+1's `max`. `unit` is 'pixels' (a manifest's
-// figures) or 'coverage' (a `_lods.glb`'s MSFT_screencoverage: pixels over the screen's height).
+// most `max` pixels (null: any size) and more than step i+1's `max`.
 
 // From manifest.json. hasAsset: the app passes its own model for the entries of kind "asset" (the
 // input itself, at the sizes where no baked file holds). Without one, those entries leave their
@@ -56,19 +55,22 @@ function normalised(steps, what) {
 }
 
 // From a `_lods.glb`'s JSON: the scene's root node and the nodes its MSFT_lod names, finest first;
-// MSFT_screencoverage[i] is the coverage down to which part i is shown (the last 0).
-export function stepsFromLodGlb(json) {
+// MSFT_screencoverage[i] is the coverage down to which part i is shown (the last 0): the object's
+// pixels over the height of the screen the bake computed it for (qf-bake --lod-screen-height,
+// 1080; the manifest's lod_file.screen_height). The pixels are what the bake measured a file to
+// hold at, so they, not the fraction of the screen, decide on a screen of another height.
+export function stepsFromLodGlb(json, lodScreenHeight = 1080) {
   const scene = json.scenes[json.scene ?? 0];
   if (!scene || scene.nodes.length !== 1) throw new Error('a _lods.glb has one root node in its scene');
   const root = json.nodes[scene.nodes[0]];
   const ids = [scene.nodes[0], ...(root.extensions?.MSFT_lod?.ids ?? [])];
   const coverage = root.extras?.MSFT_screencoverage ?? [];
   if (ids.length > 1 && coverage.length !== ids.length) throw new Error('MSFT_lod without one MSFT_screencoverage per level');
-  const steps = ids.map((node, i) => ({ file: null, node, kind: 'lod_node', max: i === 0 ? null : coverage[i - 1] }));
+  const steps = ids.map((node, i) => ({ file: null, node, kind: 'lod_node', max: i === 0 ? null : coverage[i - 1] * lodScreenHeight }));
   return normalised(steps, 'the file');
 }
 
-// 2. The pick: the farthest step whose `max` the size does not exceed. `size` is in the steps' unit.
+// 2. The pick: the farthest step whose `max` the object's size in pixels does not exceed.
 export function pickStep(steps, size) {
   let i = 0;
   while (i + 1 < steps.length && size <= steps[i + 1].max) ++i;
@@ -82,11 +84,10 @@ export function pixelsAt(diagonal, distance, heightPixels, fovRadians) {
 }
 
 // Where step i (i >= 1) takes over: the distance at which the object spans its `max`.
-export function switchDistances(steps, diagonal, heightPixels, fovRadians, unit) {
+export function switchDistances(steps, diagonal, heightPixels, fovRadians) {
   return steps.map((s, i) => {
     if (i === 0) return 0;
-    const pixels = unit === 'coverage' ? s.max * heightPixels : s.max;
-    return pixels > 0 ? (diagonal * heightPixels) / (2 * pixels * Math.tan(fovRadians / 2)) : Infinity;
+    return s.max > 0 ? (diagonal * heightPixels) / (2 * s.max * Math.tan(fovRadians / 2)) : Infinity;
   });
 }
 
@@ -286,10 +287,10 @@ export class Switcher {
 
 // 5. A bake opened from its URL: a manifest.json (the recommended chain's files, each fetched when
 // shown) or a `_lods.glb` (fetched once; each MSFT_lod level parsed as a file of its own when
-// shown). Returns {unit, steps, diagonal, centre, glb(i) -> {buffer, json, name}}: centre is the
+// shown). Returns {steps, diagonal, centre, glb(i) -> {buffer, json, name}}: centre is the
 // bounds' centre of a baked file's positions in its frame (null where every step is the app's
 // model), the point distances are measured from.
-export async function openBake(url, hasAsset, diagonal = null, fetchImpl = globalThis.fetch) {
+export async function openBake(url, { hasAsset = false, diagonal = null, lodScreenHeight = 1080, fetchImpl = globalThis.fetch } = {}) {
   const get = async (u) => {
     const r = await fetchImpl(u);
     if (!r.ok) throw new Error(`${u}: HTTP ${r.status}`);
@@ -298,7 +299,7 @@ export async function openBake(url, hasAsset, diagonal = null, fetchImpl = globa
   if (/\.glb$/i.test(new URL(url).pathname)) {
     const buffer = await (await get(url)).arrayBuffer();
     const { json, bin } = readGlb(buffer);
-    const steps = stepsFromLodGlb(json);
+    const steps = stepsFromLodGlb(json, lodScreenHeight);
     // The coverages were computed with the input's diagonal (the manifest's bounding_box_diagonal),
     // which the file does not carry: the caller's, else the finest level's own bounds (an impostor
     // level's quads reach past the input's: the torus's finest level spans 4.28 where the input
@@ -306,7 +307,7 @@ export async function openBake(url, hasAsset, diagonal = null, fetchImpl = globa
     const box = glbBounds(json, steps[0].node);
     if (!box) throw new Error(`${url}: its finest level has no positions`);
     const name = new URL(url).pathname.split('/').pop();
-    return { unit: 'coverage', steps, diagonal: diagonal ?? diagonalOf(box), centre: centreOf(box),
+    return { steps, diagonal: diagonal ?? diagonalOf(box), centre: centreOf(box),
              glb: async (i) => ({ buffer: glbOfNode(json, bin, steps[i].node), json, name: `${name} (MSFT_lod level ${i})` }) };
   }
   const manifest = await (await get(url)).json();
@@ -331,5 +332,5 @@ export async function openBake(url, hasAsset, diagonal = null, fetchImpl = globa
     if (box) centre = centreOf(box);
     kept = k;
   }
-  return { unit: 'pixels', steps, diagonal: manifest.bounding_box_diagonal, centre, glb };
+  return { steps, diagonal: manifest.bounding_box_diagonal, centre, glb };
 }

@@ -35,15 +35,17 @@ class ImpostorLODObject extends Object3D {
 //   screenHeight  the screen's height in pixels, where no renderer is passed
 //   diagonal      a `_lods.glb`'s input diagonal (the manifest's bounding_box_diagonal), which the
 //                 file does not carry; without it, its finest level's bounds
+//   lodScreenHeight  the screen height a `_lods.glb`'s MSFT_screencoverage was computed for
+//                 (qf-bake --lod-screen-height; default 1080, as qf-bake's)
 //   manager       a LoadingManager for the GLTFLoader
 // Without an asset, the "asset" entries' bands go to the nearest baked file. A `_lods.glb` carries
 // no asset entries (pass the manifest to use the app's model). Resolves once the first file is shown.
 export async function loadImpostorLOD(url, options = {}) {
   const { renderer = null, camera = null, ktx2Loader = null, meshoptDecoder = null, dracoLoader = null,
-          assetModel = null, assetUrl = null, screenHeight = null, diagonal = null, manager } = options;
+          assetModel = null, assetUrl = null, screenHeight = null, diagonal = null, lodScreenHeight = 1080, manager } = options;
   if (!renderer && !screenHeight) throw new Error('loadImpostorLOD: pass renderer (or screenHeight) for the screen\'s pixels');
   const absolute = new URL(url, globalThis.location?.href).href;
-  const bake = await openBake(absolute, Boolean(assetModel || assetUrl), diagonal);
+  const bake = await openBake(absolute, { hasAsset: Boolean(assetModel || assetUrl), diagonal, lodScreenHeight });
   const loader = new GLTFLoader(manager);
   if (ktx2Loader) {
     loader.setKTX2Loader(ktx2Loader);
@@ -91,7 +93,6 @@ export async function loadImpostorLOD(url, options = {}) {
   Object.assign(lod, {
     object,
     steps: bake.steps,
-    unit: bake.unit,
     diagonal: bake.diagonal,
     centre,
     // The object's size on screen in pixels (its bounding-box diagonal) seen from `cam`.
@@ -105,14 +106,14 @@ export async function loadImpostorLOD(url, options = {}) {
     // Picks the step for `cam` and starts loading it where it is not shown; returns its index.
     update(cam) {
       const px = lod.pixels(cam);
-      const i = pickStep(bake.steps, bake.unit === 'coverage' ? px / heightOf() : px);
+      const i = pickStep(bake.steps, px);
       switcher.want(i);
       return i;
     },
     // The distances from lod.centre (in lod.object's units) at which each step takes over, for
     // `cam`'s field of view and this screen (step 0: 0).
     switchDistances(cam) {
-      return switchDistances(bake.steps, bake.diagonal, heightOf(), fovOf(cam), bake.unit);
+      return switchDistances(bake.steps, bake.diagonal, heightOf(), fovOf(cam));
     },
     ready: () => switcher.ready(),
     dispose() {
