@@ -22,10 +22,19 @@ import { CreateBox } from '@babylonjs/core/Meshes/Builders/boxBuilder.js';
 import { createEngine, createScene } from 'qf/scene.mjs';
 import { loadImpostorLOD } from 'qf-runtime/babylon.mjs';
 window.qfRun = async (size, c) => {
+  try {
+    return await run(size, c);
+  } catch (e) {
+    return { error: String(e.message ?? e) };
+  }
+};
+async function run(size, c) {
   const canvas = document.createElement('canvas');
   canvas.width = size; canvas.height = size;
   const engine = createEngine(canvas);
   const scene = createScene(engine);
+  // A left-handed scene (Babylon's default): the glTF loader turns each file under its __root__.
+  if (c.leftHanded) scene.useRightHandedSystem = false;
   const camera = new TargetCamera('camera', new Vector3(0, 0, 1), scene);
   camera.fov = Math.PI / 3;
   camera.minZ = 0.01;
@@ -44,7 +53,14 @@ window.qfRun = async (size, c) => {
   // The app's own model for the chain's "asset" entries: a box it owns (never disposed by the loader).
   const asset = c.asset ? CreateBox('app-asset', { size: 2 }, scene) : null;
   const t0 = performance.now();
-  const lod = await loadImpostorLOD(c.url, { scene, camera, assetModel: asset, diagonal: c.diagonal });
+  // The toolchain's decoders: the copies @babylonjs/core ships, from /babylon/core/assets/.
+  const here = (p) => new URL(p, location.href).href;
+  const decoders = c.decoders ? {
+    meshopt: { url: here('/babylon/core/assets/meshopt/meshopt_decoder.js') },
+    draco: { wasmUrl: here('/babylon/core/assets/Draco/draco_wasm_wrapper_gltf.js'), wasmBinaryUrl: here('/babylon/core/assets/Draco/draco_decoder_gltf.wasm'),
+             fallbackUrl: here('/babylon/core/assets/Draco/draco_decoder_gltf.js'), numWorkers: 0 },
+  } : {};
+  const lod = await loadImpostorLOD(c.url, { scene, camera, assetModel: asset, diagonal: c.diagonal, ...decoders });
   const loadMs = performance.now() - t0;
   const samples = [];
   const at = async (d) => {
@@ -69,7 +85,7 @@ window.qfRun = async (size, c) => {
   // appAsset: what the app's box holds (it stays: the app owns it).
   return { samples, switches, before, after, loadMs, ms, assetAlive, appAsset: { textures: 0, geometries: 1, meshes: 1 },
            steps: lod.steps.map((s) => s.kind === 'asset' ? 'asset' : s.file ?? 'node ' + s.node) };
-};
+}
 `;
 
 const spec = JSON.parse(fs.readFileSync(process.argv[2], 'utf8'));

@@ -17,8 +17,17 @@ const here = path.dirname(fileURLToPath(import.meta.url));
 const pageScript = `
 import * as THREE from 'three';
 import { KTX2Loader } from 'three/addons/loaders/KTX2Loader.js';
+import { DRACOLoader } from 'three/addons/loaders/DRACOLoader.js';
+import { MeshoptDecoder } from 'three/addons/libs/meshopt_decoder.module.js';
 import { loadImpostorLOD } from 'qf-runtime/three.mjs';
 window.qfRun = async (size, c) => {
+  try {
+    return await run(size, c);
+  } catch (e) {
+    return { error: String(e.message ?? e) };
+  }
+};
+async function run(size, c) {
   const renderer = new THREE.WebGLRenderer({ antialias: false });
   renderer.setSize(size, size, false);
   const camera = new THREE.PerspectiveCamera(60, 1, 0.01, 1e6);
@@ -37,7 +46,10 @@ window.qfRun = async (size, c) => {
   const memory = () => ({ geometries: renderer.info.memory.geometries, textures: renderer.info.memory.textures });
   const before = memory();
   const t0 = performance.now();
-  const lod = await loadImpostorLOD(c.url, { renderer, camera, ktx2Loader, assetModel: asset, diagonal: c.diagonal });
+  // The toolchain's decoders: three.js's own copies, from /three/.
+  const dracoLoader = c.decoders ? new DRACOLoader().setDecoderPath('/three/examples/jsm/libs/draco/gltf/') : null;
+  const meshoptDecoder = c.decoders ? MeshoptDecoder : null;
+  const lod = await loadImpostorLOD(c.url, { renderer, camera, ktx2Loader, dracoLoader, meshoptDecoder, assetModel: asset, diagonal: c.diagonal });
   const loadMs = performance.now() - t0;
   scene.add(lod.object);
   const samples = [];
@@ -60,10 +72,11 @@ window.qfRun = async (size, c) => {
   const after = memory();
   const assetAlive = asset ? asset.geometry.attributes.position.count > 0 : null;
   ktx2Loader?.dispose();
+  dracoLoader?.dispose();
   renderer.dispose();
   // appAsset: what the app's box holds (it stays: the app owns it).
   return { samples, switches, before, after, loadMs, ms, assetAlive, appAsset: { geometries: 1, textures: 0 }, steps: lod.steps.map((s) => s.kind === 'asset' ? 'asset' : s.file ?? 'node ' + s.node) };
-};
+}
 `;
 
 const spec = JSON.parse(fs.readFileSync(process.argv[2], 'utf8'));

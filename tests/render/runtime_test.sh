@@ -30,6 +30,18 @@ start=$SECONDS
 "$bake" "$work/torus.ply" -o "$work/torus" --measure-views 2 --lod-file -q || fail "bake torus"
 "$bake" "$work/octa.ply" -o "$work/octa" --points --no-measure --primitives 100,30 -q || fail "bake octa"
 dirs=(torus octa)
+# Files through the toolchain (tools/gltf-transform-qf, installed by scripts/install-deps.sh): the
+# octahedron's mesh LODs compressed with meshopt (quantized positions too) and Draco, to load with
+# the decoders passed in.
+gt="$src/tools/gltf-transform-qf/node_modules/.bin/gltf-transform"
+if [[ -x $gt ]]; then
+  "$gt" draco "$work/octa/octa_S0.glb" "$work/octa/octa_S0_draco.glb" --config "$src/tools/gltf-transform-qf/gltf-transform.config.mjs" > /dev/null ||
+    fail "gltf-transform draco"
+  "$gt" meshopt "$work/octa/octa_S1.glb" "$work/octa/octa_S1_meshopt.glb" --config "$src/tools/gltf-transform-qf/gltf-transform.config.mjs" > /dev/null ||
+    fail "gltf-transform meshopt"
+else
+  echo "note: no tools/gltf-transform-qf/node_modules: the meshopt and Draco cases are left out (scripts/install-deps.sh installs it)"
+fi
 if [[ $engine == three ]]; then
   # KTX2 (three.js's KTX2Loader; Babylon.js fetches its KTX2 decoder from a CDN): the impostor levels
   # by their geometric sizes (measured, a KTX2 level of the torus holds at no size) and their _lods.glb.
@@ -39,7 +51,7 @@ fi
 echo "bakes: $((SECONDS - start)) s"
 python3 - "$engine" "$work" "${dirs[@]}" > "$work/cases.json" <<'PY' || fail "cases"
 # The cases, each with what the manifest says: the files from near to far and where each takes over.
-import json, math, struct, sys
+import json, math, os, struct, sys
 engine, work, dirs = sys.argv[1], sys.argv[2], sys.argv[3:]
 size = 256                                            # the canvas, px
 z0 = size / (2 * math.tan(math.radians(30)))          # fov 60
@@ -77,12 +89,23 @@ def distances(starts):
         out.append(round(d, 6)); d *= ratio
     return out
 cases = []
-def add(name, url, files, starts, asset=False, ktx2=False, diagonal=None):
-    cases.append({"name": name, "url": url, "asset": asset, "ktx2": ktx2, "diagonal": diagonal,
-                  "files": files, "starts": starts, "distances": distances(starts)})
+def add(name, url, files, starts, asset=False, ktx2=False, diagonal=None, decoders=False, error=None, left_handed=False):
+    cases.append({"name": name, "url": url, "asset": asset, "ktx2": ktx2, "diagonal": diagonal, "decoders": decoders, "leftHanded": left_handed,
+                  "error": error, "files": files, "starts": starts, "distances": distances(starts)})
+def write_chain(m, d, name, entries):
+    # A chain of the given (file, kind, max_pixels, min_pixels) beside a bake's files, each entry's
+    # switch_distance by the manifest's formula, as baker/measure/chain.cpp writes it.
+    D = m["bounding_box_diagonal"]
+    m = dict(m, recommended_chain={"screen_height": 1080, "fov_degrees": 60, "chain": [
+        {"file": f, "kind": k, "max_pixels": mx, "min_pixels": mn,
+         "switch_distance": D * 1080 / (2 * math.tan(math.radians(30)) * mn) if mn else None} for f, k, mx, mn in entries]})
+    json.dump(m, open(f"{work}/{d}/{name}", "w"), indent=1)
+    return m
 t = manifest("torus")
 add("torus chain", "/files/torus/manifest.json", *chain_expect(t, False))
 add("torus chain + app model", "/files/torus/manifest.json", *chain_expect(t, True), asset=True)
+if engine == "babylon":  # the loader's centre through the glTF loader's turn into a left-handed scene
+    add("torus chain, left-handed scene", "/files/torus/manifest.json", *chain_expect(t, False), left_handed=True)
 # _lods.glb: its levels are the chain's files it keeps, each shown down to its chain entry's
 # min_pixels; the loader is given the manifest's diagonal, which the file does not carry.
 entry = {e["file"]: e for e in t["recommended_chain"]["chain"]}
@@ -91,23 +114,28 @@ files, starts = lod_starts("torus", t)
 if any(abs(a - entry[p]["switch_distance"] * scale) > 1e-3 * a for a, p in zip(starts[1:], parts)):
     sys.exit(f"torus_lods.glb's coverages {starts} are not its chain's distances")
 add("torus _lods.glb", "/files/torus/torus_lods.glb", files, starts, diagonal=t["bounding_box_diagonal"])
-# Every kind of output in one chain, written beside the octahedron's files: the mesh LOD, the two
-# impostor levels, the point impostor, from 256 px down (each entry's switch_distance by the
-# manifest's formula, as baker/measure/chain.cpp writes it).
+# Every kind of output in one chain, written beside the octahedron's files: the app's model, the mesh
+# LOD, the two impostor levels, the point impostor, from 256 px down.
 o = manifest("octa")
-D = o["bounding_box_diagonal"]
 kinds = [("octa.ply", "asset", None, 256), (o["mesh_lods"]["levels"][0]["file"], "mesh_lod", 256, 128)]
 kinds += [(l["file"], "impostor_level", p, p // 2) for l, p in zip(sorted(o["levels"], key=lambda l: -l["primitives"]), (128, 64))]
 kinds += [(o["point_impostor"]["file"], "point_impostor", 32, 0)]
-o["recommended_chain"] = {"screen_height": 1080, "fov_degrees": 60, "chain": [
-    {"file": f, "kind": k, "max_pixels": mx, "min_pixels": mn,
-     "switch_distance": D * 1080 / (2 * math.tan(math.radians(30)) * mn) if mn else None} for f, k, mx, mn in kinds]}
-json.dump(o, open(f"{work}/octa/manifest-kinds.json", "w"), indent=1)
-add("octa every kind + app model", "/files/octa/manifest-kinds.json", *chain_expect(o, True), asset=True)
+add("octa every kind + app model", "/files/octa/manifest-kinds.json", *chain_expect(write_chain(o, "octa", "manifest-kinds.json", kinds), True), asset=True)
+# The toolchain's files: an impostor level, the Draco mesh LOD, the meshopt one (quantized: the
+# farthest file, the one the loader reads the centre from).
+if os.path.exists(f"{work}/octa/octa_S1_meshopt.glb"):
+    finest = sorted(o["levels"], key=lambda l: -l["primitives"])[0]["file"]
+    tc = write_chain(o, "octa", "manifest-toolchain.json", [(finest, "impostor_level", None, 128), ("octa_S0_draco.glb", "mesh_lod", 128, 32),
+                                                            ("octa_S1_meshopt.glb", "mesh_lod", 32, 0)])
+    add("octa meshopt + Draco", "/files/octa/manifest-toolchain.json", *chain_expect(tc, False), decoders=True)
+    if engine == "three":  # Babylon.js fetches decoders it is not given from its CDN
+        add("octa meshopt + Draco, no decoders passed", "/files/octa/manifest-toolchain.json", *chain_expect(tc, False),
+            error="KHR_draco_mesh_compression: pass dracoLoader")
 if "torusk" in dirs:
     k = manifest("torusk")
     add("torus KTX2 levels (no chain)", "/files/torusk/manifest.json", *levels_expect(k), ktx2=True)
     add("torus KTX2 _lods.glb", "/files/torusk/torus_lods.glb", *lod_starts("torusk", k), ktx2=True, diagonal=k["bounding_box_diagonal"])
+    add("torus KTX2, no ktx2Loader passed", "/files/torusk/manifest.json", *levels_expect(k), error="KHR_texture_basisu: pass ktx2Loader")
 json.dump({"size": size, "ratio": ratio, "dirs": {d: f"{work}/{d}" for d in dirs}, "cases": cases}, sys.stdout)
 PY
 start=$SECONDS
@@ -125,6 +153,13 @@ def complain(case, msg):
     bad += 1
     print(f"  {case['name']}: {msg}")
 for case, r in zip(spec["cases"], results, strict=True):
+    # 0. A file that needs a decoder not passed: refused with a message naming the option.
+    if case["error"] or "error" in r:
+        if not case["error"] or case["error"] not in r.get("error", ""):
+            complain(case, f"error {r.get('error')!r}, expected one naming {case['error']!r}")
+        else:
+            print(f"{case['name']}: refused: {r['error']}")
+        continue
     files, starts, n = case["files"], case["starts"], len(case["distances"])
     out, back = r["samples"][:n], r["samples"][n:]
     # 1. The file shown at every distance is the manifest's, but within one step of a switch.
