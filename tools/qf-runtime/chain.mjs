@@ -110,13 +110,14 @@ export function readGlb(buffer) {
 
 // A GLB whose scene is node `node` of `json` alone, the same BIN chunk: one part of a `_lods.glb`
 // as a file of its own, for an engine's ordinary glTF loader (three.js reads no MSFT_lod, and
-// Babylon.js would load every level at once). MSFT_lod is taken off the root node.
+// Babylon.js would load every level at once). MSFT_lod is taken off every node (a valid file
+// names every extension its nodes use).
 export function glbOfNode(json, bin, node) {
   const part = structuredClone(json);
   part.scenes = [{ nodes: [node] }];
   part.scene = 0;
-  const n = part.nodes[node];
-  if (n.extensions) {
+  for (const n of part.nodes) {
+    if (!n.extensions) continue;
     delete n.extensions.MSFT_lod;
     if (!Object.keys(n.extensions).length) delete n.extensions;
   }
