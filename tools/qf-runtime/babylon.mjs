@@ -13,7 +13,7 @@ import { TransformNode } from '@babylonjs/core/Meshes/transformNode.js';
 import { KhronosTextureContainer2 } from '@babylonjs/core/Misc/khronosTextureContainer2.js';
 import '@babylonjs/loaders/glTF';
 
-import { Switcher, openBake, pickStep, pixelsAt, switchDistances } from './chain.mjs';
+import { Switcher, openBake, pickStepKeeping, pixelsAt, switchDistances } from './chain.mjs';
 
 // url: a manifest.json or a STEM_lods.glb (relative to the page or absolute). options:
 //   scene         the Scene to load into (required); lod.object is a TransformNode in it
@@ -30,11 +30,12 @@ import { Switcher, openBake, pickStep, pixelsAt, switchDistances } from './chain
 //   assetUrl      or a glTF of the model, loaded where shown and disposed where not
 //   screenHeight  the screen's height in pixels (default: the engine's render height)
 //   diagonal, lodScreenHeight   for a `_lods.glb`, as in three.mjs
+//   hysteresis    as in three.mjs (default 0: switch exactly at the manifest's distances)
 // Without an asset, the "asset" entries' bands go to the nearest baked file. Resolves once the first
 // file is shown.
 export async function loadImpostorLOD(url, options = {}) {
   const { scene, camera = null, autoUpdate = true, ktx2 = null, meshopt = null, draco = null, assetModel = null,
-          assetUrl = null, screenHeight = null, diagonal = null, lodScreenHeight = 1080 } = options;
+          assetUrl = null, screenHeight = null, diagonal = null, lodScreenHeight = 1080, hysteresis = 0 } = options;
   if (!scene) throw new Error('loadImpostorLOD: pass the scene');
   if (ktx2) KhronosTextureContainer2.URLConfig = { ...KhronosTextureContainer2.URLConfig, ...ktx2 };
   if (meshopt) MeshoptCompression.Configuration = { decoder: { ...MeshoptCompression.Configuration.decoder, ...meshopt } };
@@ -105,13 +106,14 @@ export async function loadImpostorLOD(url, options = {}) {
       const eye = cam.getWorldMatrix().getTranslation();
       const local = Vector3.TransformCoordinates(eye, Matrix.Invert(object.computeWorldMatrix(true)));
       const h = heightOf(cam);
-      if (cam.mode === Camera.ORTHOGRAPHIC_CAMERA) return (bake.diagonal * h) / ((cam.orthoTop ?? 1) - (cam.orthoBottom ?? -1));
+      // Orthographic: Babylon's extents default to the render size in world units.
+      if (cam.mode === Camera.ORTHOGRAPHIC_CAMERA) return (bake.diagonal * h) / ((cam.orthoTop ?? h / 2) - (cam.orthoBottom ?? -h / 2));
       return pixelsAt(bake.diagonal, Vector3.Distance(local, centre), h, fovOf(cam));
     },
     // Picks the step for `cam` and starts loading it where it is not shown; returns its index.
     update(cam = camera ?? scene.activeCamera) {
       if (!cam) return switcher.wanted;
-      const i = pickStep(bake.steps, lod.pixels(cam));
+      const i = pickStepKeeping(bake.steps, lod.pixels(cam), switcher.current, hysteresis);
       switcher.want(i);
       return i;
     },

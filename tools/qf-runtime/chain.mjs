@@ -77,6 +77,16 @@ export function pickStep(steps, size) {
   return i;
 }
 
+// The pick with hysteresis h (a fraction, 0: none): the step shown stays while the size is within a
+// factor 1 + h of its band, so a camera that hovers at a switch distance does not load and free the
+// two files at every crossing. h = 0 switches exactly at the manifest's distances.
+export function pickStepKeeping(steps, size, current, h) {
+  const i = pickStep(steps, size);
+  if (h <= 0 || current < 0 || i === current) return i;
+  const nearest = pickStep(steps, size * (1 + h)), farthest = pickStep(steps, size / (1 + h));
+  return current >= nearest && current <= farthest ? current : i;
+}
+
 // The object's size on screen in pixels, D at distance d (model units) with a vertical field of view
 // fovRadians on a screen heightPixels high. d = 0 (the camera at the centre): any size.
 export function pixelsAt(diagonal, distance, heightPixels, fovRadians) {

@@ -5,7 +5,7 @@
 import { Box3, MathUtils, Object3D, Vector2, Vector3 } from 'three';
 import { GLTFLoader } from 'three/addons/loaders/GLTFLoader.js';
 
-import { Switcher, missingDecoders, openBake, pickStep, pixelsAt, switchDistances } from './chain.mjs';
+import { Switcher, missingDecoders, openBake, pickStepKeeping, pixelsAt, switchDistances } from './chain.mjs';
 
 // The object the renderer switches by itself: three.js's renderer calls update(camera) on every
 // object with isLOD and autoUpdate while it walks the scene (as it does for THREE.LOD).
@@ -37,12 +37,16 @@ class ImpostorLODObject extends Object3D {
 //                 file does not carry; without it, its finest level's bounds
 //   lodScreenHeight  the screen height a `_lods.glb`'s MSFT_screencoverage was computed for
 //                 (qf-bake --lod-screen-height; default 1080, as qf-bake's)
+//   hysteresis    keep the file shown while the size is within this fraction of its band (default 0:
+//                 switch exactly at the manifest's distances; 0.05 stops a camera that hovers at a
+//                 switch distance from loading and freeing two files at every crossing)
 //   manager       a LoadingManager for the GLTFLoader
 // Without an asset, the "asset" entries' bands go to the nearest baked file. A `_lods.glb` carries
 // no asset entries (pass the manifest to use the app's model). Resolves once the first file is shown.
 export async function loadImpostorLOD(url, options = {}) {
   const { renderer = null, camera = null, ktx2Loader = null, meshoptDecoder = null, dracoLoader = null,
-          assetModel = null, assetUrl = null, screenHeight = null, diagonal = null, lodScreenHeight = 1080, manager } = options;
+          assetModel = null, assetUrl = null, screenHeight = null, diagonal = null, lodScreenHeight = 1080, hysteresis = 0,
+          manager } = options;
   if (!renderer && !screenHeight) throw new Error('loadImpostorLOD: pass renderer (or screenHeight) for the screen\'s pixels');
   const absolute = new URL(url, globalThis.location?.href).href;
   const bake = await openBake(absolute, { hasAsset: Boolean(assetModel || assetUrl), diagonal, lodScreenHeight });
@@ -106,7 +110,7 @@ export async function loadImpostorLOD(url, options = {}) {
     // Picks the step for `cam` and starts loading it where it is not shown; returns its index.
     update(cam) {
       const px = lod.pixels(cam);
-      const i = pickStep(bake.steps, px);
+      const i = pickStepKeeping(bake.steps, px, switcher.current, hysteresis);
       switcher.want(i);
       return i;
     },

@@ -4,7 +4,7 @@
 import assert from 'node:assert/strict';
 import test from 'node:test';
 
-import { Switcher, glbBounds, glbOfNode, pickStep, readGlb, stepsFromLodGlb, stepsFromManifest, switchDistances } from '../chain.mjs';
+import { Switcher, glbBounds, glbOfNode, pickStep, pickStepKeeping, readGlb, stepsFromLodGlb, stepsFromManifest, switchDistances } from '../chain.mjs';
 
 const entry = (file, kind, max) => ({ file, kind, max_pixels: max });
 const chain = (...entries) => ({ bounding_box_diagonal: 2, levels: [], recommended_chain: { chain: entries } });
@@ -110,4 +110,15 @@ test('switching: the shown step stays until the next arrives, then is freed; a f
   assert.equal(s.current, 1);  // and what was shown stays
   s.dispose();
   assert.deepEqual(log.slice(-2), ['hide f1', 'free f1']);
+});
+
+test('hysteresis: the step shown stays within a factor 1 + h of its band, and moves beyond it', () => {
+  const steps = [{ max: null }, { max: 100 }, { max: 50 }];
+  assert.equal(pickStepKeeping(steps, 99, 0, 0), 1);  // none: exactly at the bounds
+  assert.equal(pickStepKeeping(steps, 99, 0, 0.05), 0);  // 99 * 1.05 > 100: 0 stays
+  assert.equal(pickStepKeeping(steps, 95, 0, 0.05), 1);
+  assert.equal(pickStepKeeping(steps, 101, 1, 0.05), 1);  // 101 / 1.05 <= 100: 1 stays
+  assert.equal(pickStepKeeping(steps, 106, 1, 0.05), 0);
+  assert.equal(pickStepKeeping(steps, 30, 0, 0.05), 2);  // a jump over a band
+  assert.equal(pickStepKeeping(steps, 99, -1, 0.05), 1);  // nothing shown yet: the plain pick
 });
