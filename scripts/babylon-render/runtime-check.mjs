@@ -28,10 +28,16 @@ window.qfRun = async (size, c) => {
     return { error: String(e.message ?? e) };
   }
 };
+const engines = new Map();
 async function run(size, c) {
-  const canvas = document.createElement('canvas');
-  canvas.width = size; canvas.height = size;
-  const engine = createEngine(canvas);
+  // One engine for every case (its compiled shaders are kept: SwiftShader takes seconds per PBR
+  // variant), a scene of its own per case.
+  if (!engines.has(size)) {
+    const canvas = document.createElement('canvas');
+    canvas.width = size; canvas.height = size;
+    engines.set(size, createEngine(canvas));
+  }
+  const engine = engines.get(size);
   const scene = createScene(engine);
   // A left-handed scene (Babylon's default): the glTF loader turns each file under its __root__.
   if (c.leftHanded) scene.useRightHandedSystem = false;
@@ -60,7 +66,7 @@ async function run(size, c) {
     draco: { wasmUrl: here('/babylon/core/assets/Draco/draco_wasm_wrapper_gltf.js'), wasmBinaryUrl: here('/babylon/core/assets/Draco/draco_decoder_gltf.wasm'),
              fallbackUrl: here('/babylon/core/assets/Draco/draco_decoder_gltf.js'), numWorkers: 0 },
   } : {};
-  const lod = await loadImpostorLOD(c.url, { scene, camera, assetModel: asset, diagonal: c.diagonal, ...decoders });
+  const lod = await loadImpostorLOD(c.url, { scene, camera, assetModel: asset, assetUrl: c.assetUrl, diagonal: c.diagonal, ...decoders });
   const loadMs = performance.now() - t0;
   const samples = [];
   const at = async (d) => {
@@ -81,7 +87,7 @@ async function run(size, c) {
   scene.render();
   const after = memory();
   const assetAlive = asset ? !asset.isDisposed() && asset.getTotalVertices() > 0 : null;
-  engine.dispose();
+  scene.dispose();
   // appAsset: what the app's box holds (it stays: the app owns it).
   return { samples, switches, before, after, loadMs, ms, assetAlive, appAsset: { textures: 0, geometries: 1, meshes: 1 },
            steps: lod.steps.map((s) => s.kind === 'asset' ? 'asset' : s.file ?? 'node ' + s.node) };

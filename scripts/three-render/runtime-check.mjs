@@ -5,7 +5,9 @@
 // the file for it is shown. tests/render/runtime_test.sh writes the cases and checks the answers.
 // usage: node runtime-check.mjs CASES.json
 //   CASES.json: {"size": px, "dirs": {"NAME": folder}, "cases": [{"url": "/files/NAME/manifest.json",
-//                "asset": bool, "ktx2": bool, "diagonal": number|null, "distances": [d, ...]}]}
+//                "asset": bool (the app's own box), "assetUrl": url|null, "ktx2": bool, "decoders": bool
+//                (meshopt, Draco), "diagonal": number|null, "distances": [d, ...]}]}
+//   A case whose load or switch fails prints {"error": message}.
 import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -27,9 +29,15 @@ window.qfRun = async (size, c) => {
     return { error: String(e.message ?? e) };
   }
 };
+const renderers = new Map();
 async function run(size, c) {
-  const renderer = new THREE.WebGLRenderer({ antialias: false });
-  renderer.setSize(size, size, false);
+  // One renderer for every case (its compiled programs are kept), the memory counted per case.
+  if (!renderers.has(size)) {
+    const r = new THREE.WebGLRenderer({ antialias: false });
+    r.setSize(size, size, false);
+    renderers.set(size, r);
+  }
+  const renderer = renderers.get(size);
   const camera = new THREE.PerspectiveCamera(60, 1, 0.01, 1e6);
   const scene = new THREE.Scene();
   scene.add(new THREE.AmbientLight(0xffffff, 1));
@@ -49,7 +57,7 @@ async function run(size, c) {
   // The toolchain's decoders: three.js's own copies, from /three/.
   const dracoLoader = c.decoders ? new DRACOLoader().setDecoderPath('/three/examples/jsm/libs/draco/gltf/') : null;
   const meshoptDecoder = c.decoders ? MeshoptDecoder : null;
-  const lod = await loadImpostorLOD(c.url, { renderer, camera, ktx2Loader, dracoLoader, meshoptDecoder, assetModel: asset, diagonal: c.diagonal });
+  const lod = await loadImpostorLOD(c.url, { renderer, camera, ktx2Loader, dracoLoader, meshoptDecoder, assetModel: asset, assetUrl: c.assetUrl, diagonal: c.diagonal });
   const loadMs = performance.now() - t0;
   scene.add(lod.object);
   const samples = [];
@@ -73,7 +81,7 @@ async function run(size, c) {
   const assetAlive = asset ? asset.geometry.attributes.position.count > 0 : null;
   ktx2Loader?.dispose();
   dracoLoader?.dispose();
-  renderer.dispose();
+  asset?.geometry.dispose();  // the app's, after the count
   // appAsset: what the app's box holds (it stays: the app owns it).
   return { samples, switches, before, after, loadMs, ms, assetAlive, appAsset: { geometries: 1, textures: 0 }, steps: lod.steps.map((s) => s.kind === 'asset' ? 'asset' : s.file ?? 'node ' + s.node) };
 }

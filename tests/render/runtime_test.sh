@@ -89,8 +89,8 @@ def distances(starts):
         out.append(round(d, 6)); d *= ratio
     return out
 cases = []
-def add(name, url, files, starts, asset=False, ktx2=False, diagonal=None, decoders=False, error=None, left_handed=False):
-    cases.append({"name": name, "url": url, "asset": asset, "ktx2": ktx2, "diagonal": diagonal, "decoders": decoders, "leftHanded": left_handed,
+def add(name, url, files, starts, asset=False, ktx2=False, diagonal=None, decoders=False, error=None, left_handed=False, asset_url=None):
+    cases.append({"name": name, "url": url, "asset": asset, "assetUrl": asset_url, "ktx2": ktx2, "diagonal": diagonal, "decoders": decoders, "leftHanded": left_handed,
                   "error": error, "files": files, "starts": starts, "distances": distances(starts)})
 def write_chain(m, d, name, entries):
     # A chain of the given (file, kind, max_pixels, min_pixels) beside a bake's files, each entry's
@@ -104,6 +104,9 @@ def write_chain(m, d, name, entries):
 t = manifest("torus")
 add("torus chain", "/files/torus/manifest.json", *chain_expect(t, False))
 add("torus chain + app model", "/files/torus/manifest.json", *chain_expect(t, True), asset=True)
+# The app's model by URL (here the torus's coarsest mesh LOD stands in for it): loaded where shown,
+# disposed where not, like the baked files.
+add("torus chain + app model by URL", "/files/torus/manifest.json", *chain_expect(t, True), asset_url="/files/torus/torus_S4.glb")
 if engine == "babylon":  # the loader's centre through the glTF loader's turn into a left-handed scene
     add("torus chain, left-handed scene", "/files/torus/manifest.json", *chain_expect(t, False), left_handed=True)
 # _lods.glb: its levels are the chain's files it keeps, each shown down to its chain entry's

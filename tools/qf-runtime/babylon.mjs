@@ -43,12 +43,16 @@ export async function loadImpostorLOD(url, options = {}) {
   const absolute = new URL(url, globalThis.location?.href).href;
   const bake = await openBake(absolute, { hasAsset: Boolean(assetModel || assetUrl), diagonal, lodScreenHeight });
   const rootUrl = new URL('.', absolute).href;
+  const assetAbsolute = assetUrl && new URL(assetUrl, globalThis.location?.href).href;
   const object = new TransformNode('impostorLOD', scene);
 
   // A loaded file: an AssetContainer whose root nodes go under lod.object (the glTF loader's
   // __root__, which turns glTF's right-handed frame into a left-handed scene's).
+  // A baked file comes as bytes (a GLB, its images inside), the app's model by its URL (any format
+  // Babylon.js reads, found by its extension).
   const loadContainer = async (source, name) => {
-    const container = await LoadAssetContainerAsync(source, scene, { rootUrl, pluginExtension: '.glb', name });
+    const options = typeof source === 'string' ? {} : { rootUrl, pluginExtension: '.glb', name };
+    const container = await LoadAssetContainerAsync(source, scene, options);
     const roots = [...container.meshes, ...container.transformNodes].filter((n) => !n.parent);
     return { container, roots, owned: true };
   };
@@ -57,7 +61,7 @@ export async function loadImpostorLOD(url, options = {}) {
       const step = bake.steps[i];
       if (step.kind === 'asset') {
         if (assetModel) return { roots: [assetModel], owned: false };
-        return loadContainer(assetUrl, assetUrl);
+        return loadContainer(assetAbsolute);
       }
       const { buffer, name } = await bake.glb(i);
       return loadContainer(new Uint8Array(buffer), name);
@@ -83,7 +87,7 @@ export async function loadImpostorLOD(url, options = {}) {
     centre = scene.useRightHandedSystem ? new Vector3(x, y, z) : new Vector3(-x, y, z);
   } else {
     // Every step the app's model: the centre of its bounds.
-    const loaded = assetModel ? null : await loadContainer(assetUrl, assetUrl);
+    const loaded = assetModel ? null : await loadContainer(assetAbsolute);
     const { min, max } = (assetModel ?? loaded.roots[0]).getHierarchyBoundingVectors(true);
     centre = Vector3.TransformCoordinates(min.add(max).scale(0.5), Matrix.Invert(object.computeWorldMatrix(true)));
     loaded?.container.dispose();
