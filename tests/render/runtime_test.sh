@@ -8,7 +8,9 @@
 # the manifest gives, each switch within one step of the manifest's distance (switch_distance, for
 # 1080 px at 60 degrees, scaled to the canvas), and the engine's memory (three.js:
 # renderer.info.memory; Babylon.js: its textures, geometries and meshes) the same every time a file
-# is shown (what is no longer shown was freed), and back to the start after lod.dispose().
+# is shown (what is no longer shown was freed), and back to the start after lod.dispose(). Files
+# through the toolchain load with the decoders passed in; three.js refuses a file whose decoder was
+# not passed with the option's name. docs/engines.md's call names only options the module takes.
 # usage: runtime_test.sh ENGINE QF_BAKE SOURCE_DIR
 set -u
 engine=$1 bake=$2 src=$3
@@ -22,6 +24,20 @@ case $engine in
   *) fail "unknown engine $engine" ;;
 esac
 [[ -f "$dir/node_modules/$package/package.json" ]] || fail "$package not installed: run scripts/install-deps.sh"
+# docs/engines.md's one-line call for this engine names only options the module takes.
+python3 - "$src/docs/engines.md" "$src/tools/qf-runtime/$engine.mjs" <<'PY' || fail "docs/engines.md's call of tools/qf-runtime/$engine.mjs"
+import re, sys
+doc, module = open(sys.argv[1]).read(), open(sys.argv[2]).read()
+taken = set(re.findall(r"\b(\w+)\s*(?:=[^,}]*)?[,}]", re.search(r"const \{([^}]*)\} = options;", module).group(1) + "}"))
+name = sys.argv[2].rsplit("/", 1)[1]
+calls = [c for block in re.findall(r"```js\n(.*?)```", doc, re.S) if f"qf-runtime/{name}" in block
+         for c in re.findall(r"loadImpostorLOD\([^,]+,\s*\{([^}]*)\}\)", block)]
+if not calls: sys.exit(f"no call of {name}'s loadImpostorLOD in a js block")
+for c in calls:
+    unknown = [o.strip() for o in c.split(",") if o.strip().split(":")[0] not in taken]
+    if unknown: sys.exit(f"the call names {unknown}, which {name} does not take ({sorted(taken)})")
+print(f"docs/engines.md: {name}'s call takes " + "; ".join(c.strip() for c in calls))
+PY
 start=$SECONDS
 "$bake" generate torus -o "$work/torus.ply" -q || fail "generate torus"
 "$bake" generate octahedron --mesh --subdivisions 8 -o "$work/octa.ply" -q || fail "generate octahedron"
