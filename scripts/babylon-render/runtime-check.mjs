@@ -25,9 +25,12 @@ window.qfRun = async (size, c) => {
   try {
     return await run(size, c);
   } catch (e) {
+    live?.dispose();  // a case that failed half-way frees its files: the next case's count starts clean
+    live = null;
     return { error: String(e.message ?? e) };
   }
 };
+let live = null;
 const engines = new Map();
 async function run(size, c) {
   // One engine for every case (its compiled shaders are kept: SwiftShader takes seconds per PBR
@@ -68,6 +71,7 @@ async function run(size, c) {
   } : {};
   const lod = await loadImpostorLOD(c.url, { scene, camera, assetModel: asset, assetUrl: c.assetUrl, diagonal: c.diagonal, ...decoders });
   const loadMs = performance.now() - t0;
+  live = lod;
   const samples = [];
   const at = async (d) => {
     camera.position = lod.centre.add(new Vector3(0, 0, d));
@@ -84,6 +88,7 @@ async function run(size, c) {
   const ms = performance.now() - t1;
   const switches = lod.switchDistances(camera);
   lod.dispose();
+  live = null;
   scene.render();
   const after = memory();
   const assetAlive = asset ? !asset.isDisposed() && asset.getTotalVertices() > 0 : null;

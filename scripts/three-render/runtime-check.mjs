@@ -26,9 +26,12 @@ window.qfRun = async (size, c) => {
   try {
     return await run(size, c);
   } catch (e) {
+    live?.dispose();  // a case that failed half-way frees its files: the next case's count starts clean
+    live = null;
     return { error: String(e.message ?? e) };
   }
 };
+let live = null;
 const renderers = new Map();
 async function run(size, c) {
   // One renderer for every case (its compiled programs are kept), the memory counted per case.
@@ -59,6 +62,7 @@ async function run(size, c) {
   const meshoptDecoder = c.decoders ? MeshoptDecoder : null;
   const lod = await loadImpostorLOD(c.url, { renderer, camera, ktx2Loader, dracoLoader, meshoptDecoder, assetModel: asset, assetUrl: c.assetUrl, diagonal: c.diagonal });
   const loadMs = performance.now() - t0;
+  live = lod;
   scene.add(lod.object);
   const samples = [];
   const at = async (d) => {
@@ -76,6 +80,7 @@ async function run(size, c) {
   const ms = performance.now() - t1;
   const switches = lod.switchDistances(camera);
   lod.dispose();
+  live = null;
   renderer.render(scene, camera);
   const after = memory();
   const assetAlive = asset ? asset.geometry.attributes.position.count > 0 : null;
