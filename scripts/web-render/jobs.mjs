@@ -92,25 +92,3 @@ export async function renderMain(label, chromium, page) {
   }
   process.exit(failed ? 1 : 0);
 }
-
-// The command line both engines' lod-check.mjs share: run the engine's LOD example (docs/engines.md) on bake
-// folders (one browser for all) and print, per folder, a line of JSON: the level it shows (0 =
-// finest) with the camera at each distance from the object's centre. The page must define
-// window.qfLevels(baseUrl, distances) -> [level, ...]; folder i is served at /files/i/.
-// usage: node lod-check.mjs BAKE_DIR DISTANCE,DISTANCE... [BAKE_DIR DISTANCE,...]...
-export async function lodCheckMain(chromium, page) {
-  const args = process.argv.slice(2);
-  if (args.length === 0 || args.length % 2) {
-    console.error('usage: node lod-check.mjs BAKE_DIR DISTANCE,DISTANCE... [BAKE_DIR DISTANCE,...]...');
-    process.exit(2);
-  }
-  const dirs = args.filter((a, i) => i % 2 === 0);
-  const files = (p) => {
-    const [i, ...rest] = p.split('/');
-    return dirs[Number(i)] === undefined ? null : path.join(dirs[Number(i)], ...rest);
-  };
-  await withPage(chromium, page, files, async (tab) => {
-    for (let i = 0; i < dirs.length; ++i)
-      console.log(JSON.stringify(await tab.evaluate(([u, d]) => window.qfLevels(u, d), [`/files/${i}/`, args[2 * i + 1].split(',').map(Number)])));
-  });
-}
