@@ -418,14 +418,19 @@ std::vector<double> paint_from_mesh(const MeshSurface& surface, const std::vecto
 }
 
 // Alpha no higher than the coverage says (TextureOptions::coverage_gain, encoded as Psi is);
-// `covered` recounted.
-void cap_by_coverage(const std::vector<double>& coverage, const TextureOptions& o, Texture& tex) {
+// `covered` recounted. Returns the quad's fill: the mean coverage of the texels Psi shows (alpha at
+// or above the cutoff before the cap), 1 where it shows none.
+double cap_by_coverage(const std::vector<double>& coverage, const TextureOptions& o, Texture& tex) {
   tex.covered = 0;
+  const std::uint8_t cutoff = std::max<std::uint8_t>(1, to8(255.0 * o.edge_cutoff));
+  double covered = 0, shown = 0;
   for (std::size_t k = 0; k < coverage.size(); ++k) {
     std::uint8_t& a = tex.rgba[4 * k + 3];
+    if (a >= cutoff) covered += std::min(1.0, coverage[k]), shown += 1;
     a = std::min(a, to8(255.0 * encode_alpha(std::min(1.0, o.coverage_gain * coverage[k]), o.alpha_exponent)));
     tex.covered += a > 0;
   }
+  return shown > 0 ? covered / shown : 1.0;
 }
 
 // A domain with many points a texel is merged per cell of 1/kMergeCells of a texel before the
@@ -496,12 +501,13 @@ std::vector<Sample> domain_samples(const std::vector<Vec3f>& positions, const st
   return samples;
 }
 
-}  // namespace
-
-Texture resample_texture(const std::vector<Vec3f>& positions, const std::vector<Rgb8>& colors,
-                         const std::vector<Vec3f>& normals, const std::vector<float>& radii, const SparseMatrix& psi,
-                         const Domains& domains, const SupportRect& rect, const TextureOptions& o, const MeshSurface* surface) {
+// resample_texture at the texel size `o` gives; `fill` gets the quad's fill (cap_by_coverage), 1
+// for a point set.
+Texture resample_at(const std::vector<Vec3f>& positions, const std::vector<Rgb8>& colors, const std::vector<Vec3f>& normals,
+                    const std::vector<float>& radii, const SparseMatrix& psi, const Domains& domains, const SupportRect& rect,
+                    const TextureOptions& o, const MeshSurface* surface, double& fill) {
   Texture tex;
+  fill = 1;
   // 1. The texel grid: texel = factor x mean radius (or min_texel where larger), at most max_side
   //    texels a side. With sub-texel edges, one texel more on every side: the support's edge may
   //    lie anywhere in the rectangle's outer texel, and its ramp needs a texel centre beyond it (an
@@ -557,12 +563,25 @@ Texture resample_texture(const std::vector<Vec3f>& positions, const std::vector<
   std::vector<double> coverage;
   if (surface && surface->mesh) {
     coverage = paint_from_mesh(*surface, domain_triangles(*surface, domains, d), r, grid, slab + 2.0 * rect.mean_radius, min_z, o, tex);
-    cap_by_coverage(coverage, o, tex);
+    (void)cap_by_coverage(coverage, o, tex);
   }
   if (o.extend_colors) extend_colors(tex);
   if (ramp) ramp_edges(samples, outline, acc.done, grid, rect.mean_radius, o, tex);
-  if (!coverage.empty()) cap_by_coverage(coverage, o, tex);  // the ramp's outside texels too
+  if (!coverage.empty()) fill = cap_by_coverage(coverage, o, tex);  // the ramp's outside texels too
   return tex;
+}
+
+}  // namespace
+
+Texture resample_texture(const std::vector<Vec3f>& positions, const std::vector<Rgb8>& colors,
+                         const std::vector<Vec3f>& normals, const std::vector<float>& radii, const SparseMatrix& psi,
+                         const Domains& domains, const SupportRect& rect, const TextureOptions& o, const MeshSurface* surface) {
+  double fill = 1;
+  Texture tex = resample_at(positions, colors, normals, radii, psi, domains, rect, o, surface, fill);
+  if (!(fill < o.sparse_fill) || !(o.min_texel > 0) || !(o.sparse_texel_factor > 1)) return tex;
+  TextureOptions coarse = o;  // a sparse quad: texels for the bottom of its level's band
+  coarse.min_texel *= o.sparse_texel_factor;
+  return resample_at(positions, colors, normals, radii, psi, domains, rect, coarse, surface, fill);
 }
 
 }  // namespace qf

@@ -87,6 +87,18 @@ struct TextureOptions {
   // surface covers in part or not at all, and a leaf or a beam narrower than a texel covers each
   // of its texels in part (pipeline/bake.h use_surface_edges sets it).
   double coverage_gain = 1;
+  // A mesh input's sparse quads (issue 49): where the surface fills less than `sparse_fill` of the
+  // texels Psi shows (foliage, lattices, branches: the texels are mostly partly covered), the quad
+  // is painted again with texels `sparse_texel_factor` times min_texel. An engine box-filters a
+  // PNG's mips: an alpha-tested leaf or beam a texel wide averages with the empty texels about
+  // it, drops below the cutoff, and vanishes as soon as the engine samples a finer mip than the
+  // base, which a quad seen at an angle does already at its level's size. Texels the size of a
+  // pixel at the bottom of the level's band (half its size) keep the engine at the base level
+  // through the band. Measured in the bake's comment (pipeline/bake.h use_surface_edges).
+  // A closed surface fills its texels (the CGAL meshes: 98-99% of quads at 0.7 or more) and
+  // keeps its sharper texels. 0 = off.
+  double sparse_fill = 0;
+  double sparse_texel_factor = 2;
 };
 
 // What a mesh input's quads show (issue 31): the input mesh itself, drawn onto each quad

@@ -402,6 +402,42 @@ TEST(Texture, MeshSurfaceCoverageIsFractional) {
   EXPECT_EQ(a(0.58f), 0);
 }
 
+// A sparse quad (issue 49) is painted with coarser texels: the strip fills a few of the texels Psi
+// shows, so with sparse_fill 0.7 its texels are sparse_texel_factor x min_texel; a square that
+// fills them keeps min_texel.
+TEST(Texture, SparseQuadsGetCoarserTexels) {
+  const Scene s = grid([](float, float) { return true; });
+  DomainOptions all;
+  all.tau = 0.0;
+  const Domains d = make_domains(s.psi, all);
+  const SupportRect r = support_rectangles(s.positions, s.normals, s.radii, s.psi, d)[0];
+  TextureOptions o;
+  o.coverage_samples = 20;  // subsamples 0.004 apart: the strip covers ~19% of its texels
+  o.coverage_gain = 2;
+  o.min_texel = 0.08;
+  o.sparse_fill = 0.7;
+  o.sparse_texel_factor = 2;
+  TriangleMesh strip;
+  strip.positions = {{0.51f, -0.1f, 0}, {0.525f, -0.1f, 0}, {0.525f, 2.1f, 0}, {0.51f, 2.1f, 0}};
+  strip.triangles = {{0, 1, 2}, {0, 2, 3}};
+  TriangleMesh square = strip;
+  square.positions = {{-0.1f, -0.1f, 0}, {2.1f, -0.1f, 0}, {2.1f, 2.1f, 0}, {-0.1f, 2.1f, 0}};
+  for (const TriangleMesh* mesh : {&strip, &square}) {
+    MeshSurface surface;
+    surface.mesh = mesh;
+    surface.point_triangles.assign(s.positions.size(), 0);
+    surface.point_triangles[0] = 1;
+    const Texture t = resample_texture(s.positions, s.colors, {}, s.radii, s.psi, d, r, o, &surface);
+    EXPECT_FLOAT_EQ(t.texel, mesh == &strip ? 0.16f : 0.08f);
+  }
+  // Off (sparse_fill 0), the strip keeps min_texel.
+  o.sparse_fill = 0;
+  MeshSurface surface;
+  surface.mesh = &strip;
+  surface.point_triangles.assign(s.positions.size(), 0);
+  EXPECT_FLOAT_EQ(resample_texture(s.positions, s.colors, {}, s.radii, s.psi, d, r, o, &surface).texel, 0.08f);
+}
+
 // A quad shows the surface nearest its front (the side its normal points to): of two squares
 // 0.01 apart, within the slab, the one in front gives the colour, whichever is listed first.
 TEST(Texture, MeshSurfaceShowsTheNearestFragment) {
