@@ -158,6 +158,8 @@ const std::vector<Command>& commands() {
             "               leaf textures: a textured game asset (OUT must be .glb), where mesh\n"
             "               simplification has nothing to collapse\n"
             "  bush         stems and --leaves (default 1800) small alpha-masked leaves: foliage (.glb)\n"
+            "  oak          a broadleaf tree as game assets make one: limbs and --leaves (default 220)\n"
+            "               alpha-masked cards of 40 leaves each, cut-away texels black (.glb)\n"
             "  bare-tree    a trunk and limbs branching down to twigs far thinner than a pixel, no leaves\n"
             "               (.glb); --seed sets the branching\n"
             "  lattice      a tower of thin square beams, flat-shaded, one material (.glb); --seed sets\n"
@@ -171,7 +173,7 @@ const std::vector<Command>& commands() {
          {"seed", 0, "S", "1", "random seed"},
          {"mesh", 0, "", "", "write a closed triangle mesh instead (octahedron, cube, sphere; OUT must be .ply)"},
          {"subdivisions", 0, "N", "16", "--mesh: each face split into N x N triangles"},
-         {"leaves", 0, "N", "3000", "tree, bush: number of leaf quads (bush default: 1800)"},
+         {"leaves", 0, "N", "3000", "tree, bush, oak: number of leaf quads or cards (bush default: 1800, oak: 220)"},
          quiet_option()},
         1, 1},
        run_generate},
@@ -287,7 +289,7 @@ int run_generate(const ParsedArgs& args) {
   o.seed = static_cast<std::uint64_t>(args.get_int("seed", static_cast<long long>(o.seed), 0, (1ll << 62)));
   const std::string out = args.get("output");
   const std::string& shape = args.positional[0];
-  if (shape == "tree" || shape == "bush" || shape == "bare-tree" || shape == "lattice" || shape == "plate") {
+  if (shape == "tree" || shape == "bush" || shape == "oak" || shape == "bare-tree" || shape == "lattice" || shape == "plate") {
     if (file_extension(out) != "glb") throw UsageError("generate " + shape + " writes a .glb, not '" + out + "'");
     TriangleMesh asset;
     if (shape == "tree") {
@@ -300,6 +302,11 @@ int run_generate(const ParsedArgs& args) {
       b.seed = o.seed;
       b.leaves = static_cast<std::size_t>(args.get_int("leaves", static_cast<long long>(b.leaves), 1, 1000000));
       asset = generate_bush(b);
+    } else if (shape == "oak") {
+      CardTreeOptions c;
+      c.seed = o.seed;
+      c.cards = static_cast<std::size_t>(args.get_int("leaves", static_cast<long long>(c.cards), 1, 100000));
+      asset = generate_card_tree(c);
     } else if (shape == "bare-tree") {
       asset = generate_bare_tree(o.seed);
     } else if (shape == "plate") {

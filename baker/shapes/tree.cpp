@@ -151,7 +151,70 @@ void add_branch(TriangleMesh& mesh, SplitMix64& random, Vec3f from, Vec3f dir, d
   }
 }
 
+// A card of leaves: `count` leaves (the leaf's pointed oval, ~1/5 of the card long, turned at
+// random) scattered over a 128 x 128 image, greens varied per leaf. Texels outside every leaf
+// are transparent black, as many exported game textures leave them (no colour dilated into the
+// cut-away): an engine's mips and bilinear filter then mix that black into the leaves' edges.
+TextureImage leaf_card_texture(SplitMix64& random, int count) {
+  constexpr int kSide = 128;
+  TextureImage t{kSide, kSide, std::vector<std::uint8_t>(kSide * kSide * 4, 0)};
+  for (int l = 0; l < count; ++l) {
+    const double cx = 12 + (kSide - 24) * random.uniform(), cy = 12 + (kSide - 24) * random.uniform();
+    const double angle = 2 * kPi * random.uniform(), length = 20 + 10 * random.uniform();
+    const double tone = 0.75 + 0.5 * random.uniform();
+    const double ca = std::cos(angle), sa = std::sin(angle);
+    for (int y = 0; y < kSide; ++y)
+      for (int x = 0; x < kSide; ++x) {
+        const double dx = x + 0.5 - cx, dy = y + 0.5 - cy;
+        const double v = (dx * ca + dy * sa) / length + 0.5, u = (-dx * sa + dy * ca) / (0.5 * length);  // v 0..1 along
+        if (v < 0 || v > 1) continue;
+        const double half_width = 0.95 * std::sin(kPi * v) * std::sqrt(v);
+        if (std::fabs(u) > half_width) continue;
+        const double shade = tone * (0.75 + 0.25 * (1 - std::fabs(u) / std::max(half_width, 1e-6)));
+        std::uint8_t* p = &t.rgba[static_cast<std::size_t>(y * kSide + x) * 4];
+        p[0] = static_cast<std::uint8_t>(std::min(255.0, 55 * shade)), p[1] = static_cast<std::uint8_t>(std::min(255.0, 105 * shade));
+        p[2] = static_cast<std::uint8_t>(std::min(255.0, 30 * shade)), p[3] = 255;
+      }
+  }
+  return t;
+}
+
 }  // namespace
+
+TriangleMesh generate_card_tree(const CardTreeOptions& options) {
+  if (options.cards == 0 || options.cards > 100000) throw UsageError("a card tree needs 1..100000 cards");
+  SplitMix64 random(options.seed);
+  TriangleMesh mesh;
+  // 1. Materials: bark, and the leaf card (cut out by alpha, seen from both sides).
+  add_plant_materials(mesh, random);
+  mesh.textures[1] = leaf_card_texture(random, 40);
+  // 2. The trunk, and limbs leaving it upwards in a spiral, branching twice.
+  add_tube(mesh, {0, 0, 0}, {0, 1, 0}, 2.4, 0.18, 0.08);
+  std::vector<Vec3f> tips;
+  for (int i = 0; i < 6; ++i) {
+    const double angle = 2.4 * i + 0.5 * random.uniform(), height = 1.4 + 1.0 * i / 5;
+    const Vec3f dir = normalized(vec(std::cos(angle), 0.6 + 0.4 * random.uniform(), std::sin(angle)));
+    const double length = 1.0 + 0.3 * random.uniform();
+    const Vec3f from{0, static_cast<float>(height), 0};
+    add_branch(mesh, random, from, dir, length, 0.06, 1);
+    tips.push_back(from + dir * static_cast<float>(length));
+  }
+  tips.push_back({0, 2.4f, 0});
+  // 3. Cards about the tips, each facing a random direction, 0.6-0.9 units a side, within 0.8 of
+  //    its tip: a crown of ~2.4 units across, as game trees build theirs from a few hundred cards.
+  for (std::size_t c = 0; c < options.cards; ++c) {
+    const Vec3f tip = tips[static_cast<std::size_t>(random.next() % tips.size())];
+    const double z = 2 * random.uniform() - 1, phi = 2 * kPi * random.uniform(), r = 0.8 * std::cbrt(random.uniform());
+    const Vec3f offset = vec(std::sqrt(1 - z * z) * std::cos(phi) * r, z * r * 0.7 + 0.1, std::sqrt(1 - z * z) * std::sin(phi) * r);
+    const double nz = 2 * random.uniform() - 1, nphi = 2 * kPi * random.uniform();
+    const Vec3f n = vec(std::sqrt(1 - nz * nz) * std::cos(nphi), nz, std::sqrt(1 - nz * nz) * std::sin(nphi));
+    Vec3f along, other;
+    frame(n, along, other);
+    const float size = static_cast<float>(0.6 + 0.3 * random.uniform());
+    add_leaf(mesh, tip + offset - along * (0.5f * size), n, along, size, size);
+  }
+  return mesh;
+}
 
 TriangleMesh generate_bare_tree(std::uint64_t seed) {
   SplitMix64 random(seed);

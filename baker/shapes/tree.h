@@ -29,6 +29,17 @@ struct BushOptions {
 // 1.6 wide, standing on y = 0. Foliage without a trunk: its look is the leaves' coverage.
 TriangleMesh generate_bush(const BushOptions& options = {});
 
+struct CardTreeOptions {
+  std::size_t cards = 220;
+  std::uint64_t seed = 1;
+};
+
+// A broadleaf tree as game assets build one (issue 49): a trunk and limbs (bark, material 0) and
+// `cards` square cards 0.6-0.9 a side (material 1, alpha MASK at 0.5, double-sided), each a
+// texture of 40 scattered leaves whose cut-away texels are transparent black, facing random
+// directions in a crown about the limbs' tips; about 4 units tall, standing on y = 0.
+TriangleMesh generate_card_tree(const CardTreeOptions& options = {});
+
 // A bare tree: a trunk and six limbs branching four times down to twigs far thinner than a pixel
 // at the sizes it is seen far away (~0.004 units in a tree ~4 tall), bark only (material 0, as the
 // tree's), opaque. The thin parts an impostor must not lose (issue 48); `seed` sets the branching.
