@@ -15,6 +15,7 @@
 #include "cli/commands.h"
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/output_folder.h"
 #include "core/memory.h"
 #include "core/progress.h"
 #include "pipeline/asset.h"
@@ -267,13 +268,16 @@ int run_bake(const ParsedArgs& args) {
   const std::string& in = args.positional[0];
   const std::string outdir = args.require("output");
   const AssetOptions options = read_asset_options(args);
+  // Taken before any work: a second bake into the folder is refused at once (exit 5), not after
+  // minutes of baking.
+  OutputFolder out(outdir);
   AssetBake a;
   {
     // A bake of millions of points runs for minutes: its steps on stderr while it runs.
     const progress::ProgressDisplay shown(stderr, ::isatty(2) != 0, !args.flag("quiet"), "qf-bake bake", progress_seconds());
     a = bake_asset(in, options, in);
     progress::step("writing " + outdir);
-    write_asset(outdir, a.files, a.manifest, a.report, "qf-bake", a.page);
+    write_asset(out, a.files, a.manifest, a.report, a.page);
   }
   if (!args.flag("quiet")) print_bake_summary(a, in, outdir);
   return 0;

@@ -223,15 +223,18 @@ def write(out, seed):
                       "uri_file_scheme": "file://" + outside + "/secret.bin", "uri_etc_passwd": "/etc/passwd",
                       "uri_home": "~/../../" + outside + "/secret.bin", "uri_variable": "$HOME/../.." + outside + "/secret.bin",
                       "uri_dev_zero": "/dev/zero", "uri_proc": "/proc/self/environ"}.items():
-        c.case(name, "a.gltf", triangle_gltf(uri=uri), outside=True)
-    c.case("uri_symlink", "a.gltf", triangle_gltf(uri="link.bin"), outside=True, links={"link.bin": outside + "/secret.bin"})
+        # qf-render's loader confines references as the baker does (runtime_gl/loader.cpp).
+        c.case(name, "a.gltf", triangle_gltf(uri=uri), outside=True, programs="bake,render")
+    c.case("uri_symlink", "a.gltf", triangle_gltf(uri="link.bin"), outside=True, links={"link.bin": outside + "/secret.bin"},
+           programs="bake,render")
     c.case("uri_symlink_relative", "a.gltf", triangle_gltf(uri="link.bin"), outside=True, links={"link.bin": rel + "/secret.bin"})
-    c.case("uri_symlink_folder", "a.gltf", triangle_gltf(uri="up/secret.bin"), outside=True, links={"up": outside})
+    c.case("uri_symlink_folder", "a.gltf", triangle_gltf(uri="up/secret.bin"), outside=True, links={"up": outside}, programs="bake,render")
     c.case("uri_symlink_dotdot", "a.gltf", triangle_gltf(uri="sub/up/" + rel + "/secret.bin"), outside=True, folders=["sub"],
            links={"sub/up": ".."})
     c.case("uri_symlink_dangling", "a.gltf", triangle_gltf(uri="link.bin"), outside=True, links={"link.bin": outside + "/absent.bin"})
-    c.case("image_dotdot", "a.gltf", triangle_gltf(images=[{"uri": rel + "/secret.png"}]), outside=True)
-    c.case("image_symlink", "a.gltf", triangle_gltf(images=[{"uri": "t.png"}]), outside=True, links={"t.png": outside + "/secret.png"})
+    c.case("image_dotdot", "a.gltf", triangle_gltf(images=[{"uri": rel + "/secret.png"}]), outside=True, programs="bake,render")
+    c.case("image_symlink", "a.gltf", triangle_gltf(images=[{"uri": "t.png"}]), outside=True, links={"t.png": outside + "/secret.png"},
+           programs="bake,render")
     c.case("obj_mtllib_dotdot", "a.obj", "mtllib " + rel + "/secret.mtl\n" + obj_faces, outside=True)
     c.case("obj_mtllib_absolute", "a.obj", "mtllib " + outside + "/secret.mtl\n" + obj_faces, outside=True)
     c.case("obj_mtllib_backslash", "a.obj", "mtllib " + rel.replace("/", "\\") + "\\secret.mtl\n" + obj_faces, outside=True)
