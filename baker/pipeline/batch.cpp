@@ -153,6 +153,13 @@ std::deque<std::size_t> check_assets(const BatchManifest& m, const std::vector<s
     }
     state.entries[i]["key"] = state.keys[i];
     if (!o.force && asset_up_to_date(o.output + "/" + a.name, state.keys[i])) {
+      // A bake killed after its swap leaves a complete folder, and beside it its lock file and the
+      // old content it was removing: taking the lock a moment removes them (a folder another run
+      // is writing now is left to it).
+      try {
+        const OutputFolder tidy(o.output + "/" + a.name);
+      } catch (const std::exception&) {
+      }
       state.entries[i]["seconds"] = round_to(since(t), 6);
       state.settle(i, AssetStatus::kUpToDate, progress);
     } else if (o.dry_run) {

@@ -96,6 +96,17 @@ def jpeg(width, height):
     return b"\xff\xd8" + b"\xff\xc0" + struct.pack(">H", len(sof) + 2) + sof + b"\xff\xd9"
 
 
+def bmp(width, height):
+    """A BMP header (BITMAPINFOHEADER, 32 bits) claiming width x height, then a few pixels."""
+    info = struct.pack("<IiiHHIIiiII", 40, width, height, 1, 32, 0, 0, 2835, 2835, 0, 0)
+    return b"BM" + struct.pack("<IHHI", 14 + len(info) + 16, 0, 0, 14 + len(info)) + info + b"\0" * 16
+
+
+def tga(width, height):
+    """A TGA header (true colour, 32 bits) claiming width x height, then a few pixels."""
+    return struct.pack("<BBBHHBHHHHBB", 0, 0, 2, 0, 0, 0, 0, 0, width, height, 32, 8) + b"\0" * 16
+
+
 def webp(width, height):
     """A lossless WebP (VP8L) header claiming width x height (at most 16384 a side)."""
     bits = (width - 1) | (height - 1) << 14 | 1 << 28
@@ -214,6 +225,10 @@ def write(out, seed):
     c.case("webp_16383", "a.glb", image_glb("webp", webp(16384, 16384)), programs="bake,render")
     c.case("ktx2_16384", "a.glb", image_glb("ktx2", ktx2(16384, 16384)), programs="bake,render")
     obj_faces = "usemtl m\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1\n"
+    c.case("obj_bmp_16384_x8", "a.obj", "mtllib a.mtl\n" + obj_faces,
+           files={"a.mtl": ("newmtl m\n" + "map_Kd big.bmp\n" * 8).encode(), "big.bmp": bmp(16384, 16384)})
+    c.case("obj_tga_65535", "a.obj", "mtllib a.mtl\n" + obj_faces, files={"a.mtl": b"newmtl m\nmap_Kd big.tga\n", "big.tga": tga(65535, 65535)})
+    c.case("gltf_bmp_16384_x8", "a.gltf", triangle_gltf(images=[{"uri": "big.bmp"}] * 8), files={"big.bmp": bmp(16384, 16384)})
     c.case("obj_png_16384_x8", "a.obj", "mtllib a.mtl\n" + obj_faces,
            files={"a.mtl": ("newmtl m\n" + "map_Kd big.png\n" * 8).encode(), "big.png": png(16384, 16384, rng)})
     # --- References outside the asset's folder (each names a file that exists) ---
