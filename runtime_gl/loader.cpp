@@ -109,6 +109,8 @@ void check_file_json_depth(const std::string& path) {
 // the baker applies: an outside file must not become a texture or a buffer); and only regular
 // files, opened without blocking (a FIFO named as a buffer hung the reader), within the memory
 // limit. `user` is the FsContext.
+constexpr const char* kOutside = "leads outside the file's folder: refused (a glTF file reads only the files in its folder)";
+
 struct FsContext {
   std::filesystem::path root;  // canonical; empty: nothing outside the bytes given may be read
   std::string main;            // the file itself, as named on the command line (a symlink may lead anywhere)
@@ -121,12 +123,15 @@ std::optional<std::filesystem::path> inside_root(const std::string& abs, void* u
   return io::resolve_inside(c.root, "/", abs);
 }
 
-// True for what is outside the root too, so that read_regular_file says why (the same words
-// whether the outside file exists or not: nothing about it is given away).
+// Every path tinygltf asks about is absolute (the file's folder joined to a URI) but for its
+// fallback to the working folder, which is never searched. An outside path and a folder or FIFO
+// inside "exist", so that read_regular_file says why they are refused (for an outside path the
+// same words whether the file exists or not: nothing about it is given away).
 bool regular_file_exists(const std::string& abs, void* user) {
+  if (abs.empty() || abs[0] != '/') return false;
   const std::optional<std::filesystem::path> p = inside_root(abs, user);
   struct stat st {};
-  return !p || (::stat(p->c_str(), &st) == 0 && S_ISREG(st.st_mode));
+  return !p || ::stat(p->c_str(), &st) == 0;
 }
 
 std::string path_as_written(const std::string& path, void*) { return path; }
@@ -134,7 +139,7 @@ std::string path_as_written(const std::string& path, void*) { return path; }
 bool read_regular_file(std::vector<unsigned char>* out, std::string* err, const std::string& abs, void* user) {
   const std::optional<std::filesystem::path> p = inside_root(abs, user);
   if (!p) {
-    if (err) *err += abs + " leads outside the file's folder: refused (a glTF file reads only the files in its folder)\n";
+    if (err) *err += std::string(kOutside) + "\n";
     return false;
   }
   // The references' symlinks were resolved inside the root; one swapped in since is not followed.
@@ -143,14 +148,14 @@ bool read_regular_file(std::vector<unsigned char>* out, std::string* err, const 
   struct stat st {};
   if (fd < 0 || ::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
     if (fd >= 0) ::close(fd);
-    if (err) *err += abs + " is not a readable regular file\n";
+    if (err) *err += "not a readable regular file\n";
     return false;
   }
   // An empty file is refused here: tinygltf's binary loader indexes its first byte unchecked
   // (std::out_of_range escaped the loader; its own file reader refuses an empty file too).
   if (st.st_size == 0 || static_cast<std::uint64_t>(st.st_size) > memory_limit(0)) {
     ::close(fd);
-    if (err) *err += abs + (st.st_size == 0 ? " is empty\n" : " is larger than the memory available\n");
+    if (err) *err += st.st_size == 0 ? "empty\n" : "larger than the memory available\n";
     return false;
   }
   out->resize(static_cast<std::size_t>(st.st_size));
@@ -198,6 +203,12 @@ tinygltf::Model parse_gltf(const std::string& path, const std::vector<std::uint8
     if (head.find("KHR_draco_mesh_compression") != std::string::npos)
       fail(path, "draco", "requires KHR_draco_mesh_compression, which qf-render does not decode; render the uncompressed .glb");
     fail(path, "parse", err.empty() ? "not a readable glTF file" : err);
+  }
+  // tinygltf takes an image it could not read as a warning and goes on without it: one refused
+  // for leading outside is an error, in its own words.
+  if (warn.find(kOutside) != std::string::npos) {
+    while (!warn.empty() && (warn.back() == '\n' || warn.back() == ' ')) warn.pop_back();
+    fail(path, "outside_file", warn);
   }
   return m;
 }
