@@ -123,6 +123,33 @@ def ktx2(width, height):
     return ident + head + index + level + b"\0" * 16
 
 
+def varint(n):
+    """A Draco varUI32 (LEB128)."""
+    out = b""
+    while True:
+        out += bytes([(n & 0x7F) | (0x80 if n > 0x7F else 0)])
+        n >>= 7
+        if not n:
+            return out
+
+
+def draco_glb(method, faces):
+    """A .glb whose one primitive is a KHR_draco_mesh_compression stream (bitstream 2.2) whose
+    connectivity header claims `faces` faces and as many points, and holds nothing more."""
+    head = b"DRACO" + bytes([2, 2, 1, method]) + b"\0\0"
+    counts = varint(faces) + varint(faces) if method == 0 else b"\0" + varint(faces) + varint(faces) + b"\0" + varint(faces) + b"\0"
+    stream = head + counts + b"\0" * 16
+    draco = {"bufferView": 0, "attributes": {"POSITION": 0}}
+    return glb({"asset": {"version": "2.0"}, "extensionsUsed": ["KHR_draco_mesh_compression"],
+                "extensionsRequired": ["KHR_draco_mesh_compression"],
+                "buffers": [{"byteLength": len(stream)}], "bufferViews": [{"buffer": 0, "byteLength": len(stream)}],
+                "accessors": [{"componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+                              {"componentType": 5125, "count": 3, "type": "SCALAR"}],
+                "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1,
+                                            "extensions": {"KHR_draco_mesh_compression": draco}}]}],
+                "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0}, stream)
+
+
 def image_glb(kind, payload):
     """A glb with one triangle textured by an embedded image of `kind` (png, ktx2, webp)."""
     g = triangle_gltf()
@@ -215,6 +242,9 @@ def write(out, seed):
     prims["meshes"][0]["primitives"] = prims["meshes"][0]["primitives"] * 5000
     prims["accessors"][0]["count"] = 2 ** 31
     c.case("primitives_5000_huge", "a.gltf", prims)
+    # Draco streams whose headers claim 2^31 - 1 faces: budgeted from the header, before decoding.
+    c.case("draco_sequential_2_31", "a.glb", draco_glb(0, 2 ** 31 - 1))
+    c.case("draco_edgebreaker_2_31", "a.glb", draco_glb(1, 2 ** 31 - 1))
     c.case("glb_chunk_length", "a.glb", struct.pack("<4sIIII", b"glTF", 2, 2 ** 32 - 1, 2 ** 32 - 8, 0x4E4F534A) + b"{}")
     c.case("glb_truncated", "a.glb", glb(triangle_gltf())[:40])
     # --- Images whose headers claim more than the memory allows ---
