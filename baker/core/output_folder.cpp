@@ -37,10 +37,14 @@ void test_stop(const char* point) {
 
 // Takes the lock on `lock_path` without waiting. The lock file is removed by its holder on release;
 // a process that opened it just before that would lock a file no longer there, so the lock counts
-// only while the path still names the file locked (else open again).
-int take_lock(const fs::path& lock_path, const std::string& shown) {
+// only while the path still names the file locked (else open again). `fresh`: this call created
+// the file, so no writer died holding it (a clean release removes it) and nothing needs repair.
+int take_lock(const fs::path& lock_path, const std::string& shown, bool& fresh) {
   for (int attempt = 0; attempt < 64; ++attempt) {
-    const int fd = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    int fd = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+    fresh = fd >= 0;
+    if (fd < 0 && errno == EEXIST) fd = ::open(lock_path.c_str(), O_RDWR | O_CLOEXEC);
+    if (fd < 0 && errno == ENOENT) continue;  // removed by its holder between the two opens
     if (fd < 0) throw_output_error("cannot create the lock file '" + lock_path.string() + "'", errno);
     if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
       const int err = errno;
@@ -136,9 +140,14 @@ OutputFolder::OutputFolder(const std::string& path) : path_(path), folder_(resol
     throw_output_error("cannot create the folder '" + folder_.parent_path().string() + "'", e.code().value());
   }
   lock_path_ = sibling("lock", "");
-  lock_ = take_lock(lock_path_, path_);
+  bool fresh = false;
+  lock_ = take_lock(lock_path_, path_, fresh);
   try {
-    repair();
+    // A lock file left by a dead writer says what a scan of the parent would find; without one,
+    // scanning it (thousands of asset folders in a batch's) for every asset would cost O(N^2).
+    if (!fresh) repair();
+    std::error_code ec;
+    if (fs::is_directory(folder_, ec)) remove_stale_temporaries(folder_.string());
   } catch (...) {
     ::close(lock_);
     throw;
@@ -147,7 +156,9 @@ OutputFolder::OutputFolder(const std::string& path) : path_(path), folder_(resol
 
 OutputFolder::~OutputFolder() {
   if (lock_ < 0) return;
-  ::unlink(lock_path_.c_str());  // while still held: see take_lock
+  // While still held (see take_lock); kept when a sibling could not be removed (an NFS client's
+  // ".nfs" files of open ones), so that the next owner scans for it.
+  if (clean_) ::unlink(lock_path_.c_str());
   ::close(lock_);
 }
 
@@ -155,7 +166,7 @@ fs::path OutputFolder::sibling(const char* kind, const std::string& pid) const {
   return folder_.parent_path() / ("." + folder_.filename().string() + ".qf-" + kind + (pid.empty() ? "" : "-" + pid));
 }
 
-void OutputFolder::repair() const {
+void OutputFolder::repair() {
   // 1. The siblings a dead writer left (no live one can own any: it would hold the lock).
   const std::string prefix = "." + folder_.filename().string() + ".qf-";
   std::vector<fs::path> olds, others;
@@ -173,10 +184,11 @@ void OutputFolder::repair() const {
     rename_or_throw(olds.front(), folder_);
     olds.erase(olds.begin());
   }
-  for (const fs::path& p : olds) fs::remove_all(p, ec);
-  for (const fs::path& p : others) fs::remove_all(p, ec);
-  // 3. Inside the folder, what writers before whole-folder swaps left (".qf-bake-PID" staging).
-  if (fs::is_directory(folder_, ec)) remove_stale_temporaries(folder_.string());
+  for (const std::vector<fs::path>* list : {&olds, &others})
+    for (const fs::path& p : *list) {
+      fs::remove_all(p, ec);
+      clean_ = clean_ && !fs::exists(fs::symlink_status(p, ec));
+    }
 }
 
 void OutputFolder::replace(const std::function<void(const std::string& staging)>& fill,
@@ -206,6 +218,7 @@ void OutputFolder::replace(const std::function<void(const std::string& staging)>
   } else if (exchange(staging, folder_)) {
     test_stop("swapped");
     fs::remove_all(staging, ec);  // now the old content
+    clean_ = clean_ && !fs::exists(fs::symlink_status(staging, ec));
   } else {
     const fs::path old = sibling("old", pid);
     try {
@@ -223,6 +236,7 @@ void OutputFolder::replace(const std::function<void(const std::string& staging)>
     }
     test_stop("swapped");
     fs::remove_all(old, ec);
+    clean_ = clean_ && !fs::exists(fs::symlink_status(old, ec));
   }
   sync_folder(folder_.parent_path());
 }

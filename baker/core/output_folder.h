@@ -9,7 +9,9 @@
 //   .NAME.qf-old-PID    the old content set aside during a two-rename swap (file systems without
 //                       renameat2's RENAME_EXCHANGE, e.g. NFS)
 // A sibling exists only while its writer holds the lock, so whoever takes the lock knows every
-// sibling it finds is a dead writer's, whatever machine that writer ran on (no PID is trusted).
+// sibling it finds is a dead writer's, whatever machine that writer ran on (no PID is trusted);
+// and only while the lock file exists (a clean release removes both), so an owner that creates
+// the lock file anew has nothing to look for.
 #pragma once
 
 #include <filesystem>
@@ -21,8 +23,9 @@ namespace qf {
 class OutputFolder {
  public:
   // Takes FOLDER's lock without waiting, creating FOLDER's parent folders if needed, then repairs
-  // what a killed writer left: a folder a two-rename swap had set aside is put back (FOLDER missing,
-  // ".NAME.qf-old-PID" there), and every ".NAME.qf-new-*" / ".NAME.qf-old-*" is removed.
+  // what a killed writer left (when it finds that writer's lock file): a folder a two-rename swap
+  // had set aside is put back (FOLDER missing, ".NAME.qf-old-PID" there), and every
+  // ".NAME.qf-new-*" / ".NAME.qf-old-*" is removed.
   // `path` may be relative or a symlink (the folder it leads to is the one replaced).
   // Throws BusyError naming the folder when another process holds the lock; UsageError when `path`
   // is a file, the file system's root, or the current folder or one that holds it (replacing the
@@ -49,12 +52,13 @@ class OutputFolder {
 
  private:
   std::filesystem::path sibling(const char* kind, const std::string& pid) const;
-  void repair() const;
+  void repair();
 
   std::string path_;              // as given
   std::filesystem::path folder_;  // absolute, symlinks resolved
   std::filesystem::path lock_path_;
   int lock_ = -1;
+  bool clean_ = true;  // no sibling left that the next owner must find (else the lock file stays)
 };
 
 }  // namespace qf

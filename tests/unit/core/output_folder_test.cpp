@@ -65,7 +65,9 @@ TEST(OutputFolder, ASecondOwnerIsRefusedAndAFailedFillChangesNothing) {
 TEST(OutputFolder, TheNextOwnerRepairsWhatAKilledWriterLeft) {
   test::TempDir dir;
   const std::string out = dir.path("out");
-  // A two-rename swap killed between its renames: the old folder aside, the new one complete.
+  // A two-rename swap killed between its renames: the old folder aside, the new one complete,
+  // and the writer's lock file (free: the kernel released its lock).
+  dir.write(".out.qf-lock", "");
   fs::create_directories(dir.path(".out.qf-old-999999"));
   put(dir.path(".out.qf-old-999999/a.glb"), "old");
   fs::create_directories(dir.path(".out.qf-new-999999"));
