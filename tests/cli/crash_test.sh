@@ -43,8 +43,9 @@ wait_stopped() {
 }
 reset_old() { rm -rf "$work/out"; cp -a "$work/ref-old" "$work/out"; }
 
-# --- 1. SIGKILL at each step of the swap, on both paths (one exchange; two renames, as on NFS) ---
-for point in filled swapped two-renames,filled two-renames,aside two-renames,swapped; do
+# --- 1. SIGKILL at each step of the swap, on both paths (one exchange; two renames, as on NFS;
+# before the swap, "filled", the two paths are one) ---
+for point in filled swapped two-renames,aside two-renames,swapped; do
   reset_old
   QF_TEST_SWAP="stop:${point##*,},$point" "$bake" bake "$work/octa.ply" -o "$work/out" "${common[@]}" "${new[@]}" &
   pid=$!
@@ -75,7 +76,7 @@ for point in filled swapped two-renames,filled two-renames,aside two-renames,swa
 done
 
 # --- 2. SIGKILL at moments mid-bake (wherever it is then) ---
-for delay in 0.1 0.4; do
+for delay in 0.3; do
   reset_old
   "$bake" bake "$work/octa.ply" -o "$work/out" "${common[@]}" "${new[@]}" &
   pid=$!
