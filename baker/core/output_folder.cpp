@@ -209,6 +209,7 @@ void OutputFolder::replace(const std::function<void(const std::string& staging)>
     sync_folder(staging);
   } catch (...) {
     fs::remove_all(staging, ec);
+    clean_ = clean_ && !fs::exists(fs::symlink_status(staging, ec));
     throw;
   }
   test_stop("filled");
