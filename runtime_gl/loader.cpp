@@ -26,6 +26,7 @@
 #include "core/error.h"
 #include "core/gltf_keys.h"
 #include "core/input_limits.h"
+#include "io/asset_files.h"
 
 namespace qf::render {
 namespace {
@@ -52,6 +53,18 @@ bool load_image_checked(tinygltf::Image* image, const int index, std::string* er
       return false;
     }
   }
+  // Every image's size from its header first, against the memory available: a 1 MB PNG can decode
+  // to 16384 x 16384 texels (1 GB), and a 6 KB KTX2 or WebP header can claim as much (it cost
+  // 1.18 GB before it was refused when decoded).
+  if (const std::optional<ImageHeader> h = image_header(bytes, static_cast<std::size_t>(std::max(size, 0)))) {
+    try {
+      check_memory_need(decoded_image_bytes(*h), 0, "", "render.gltf.memory", "",
+                        "image[" + std::to_string(index) + "] of " + std::to_string(h->width) + " x " + std::to_string(h->height) + " texels");
+    } catch (const InputError& e) {
+      if (err) *err += e.detail();
+      return false;
+    }
+  }
   // KTX2 (KHR_texture_basisu): kept as bytes, transcoded with its mip levels by to_image.
   if (bytes && size > 0 && is_ktx2(bytes, static_cast<std::size_t>(size))) {
     image->image.assign(bytes, bytes + size);
@@ -67,17 +80,7 @@ bool load_image_checked(tinygltf::Image* image, const int index, std::string* er
     image->width = image->height = -1;
     return true;
   }
-  // PNG and JPEG are decoded here by stb_image: their size from the header first, against the
-  // memory available (a 1 MB PNG can decode to 16384 x 16384 texels, 1 GB).
-  if (const std::optional<ImageHeader> h = image_header(bytes, static_cast<std::size_t>(std::max(size, 0)))) {
-    try {
-      check_memory_need(decoded_image_bytes(*h), 0, "", "render.gltf.memory", "",
-                        "image[" + std::to_string(index) + "] of " + std::to_string(h->width) + " x " + std::to_string(h->height) + " texels");
-    } catch (const InputError& e) {
-      if (err) *err += e.detail();
-      return false;
-    }
-  }
+  // PNG and JPEG: decoded here by stb_image.
   return tinygltf::LoadImageData(image, index, err, warn, width, height, bytes, size, nullptr);
 }
 
@@ -101,28 +104,58 @@ void check_file_json_depth(const std::string& path) {
 }
 
 // tinygltf opens a .gltf and its external buffers and images through these instead of its
-// defaults: no "~" or "$VAR" expansion (the default runs wordexp on the file's text), and only
-// regular files, opened without blocking (a FIFO named as a buffer hung the reader).
-bool regular_file_exists(const std::string& path, void*) {
+// defaults: no "~" or "$VAR" expansion (the default runs wordexp on the file's text); only paths
+// that stay inside the file's folder, every ".." and symlink followed (io/asset_files.h, the rule
+// the baker applies: an outside file must not become a texture or a buffer); and only regular
+// files, opened without blocking (a FIFO named as a buffer hung the reader), within the memory
+// limit. `user` is the FsContext.
+constexpr const char* kOutside = "leads outside the file's folder: refused (a glTF file reads only the files in its folder)";
+
+struct FsContext {
+  std::filesystem::path root;  // canonical; empty: nothing outside the bytes given may be read
+  std::string main;            // the file itself, as named on the command line (a symlink may lead anywhere)
+};
+
+std::optional<std::filesystem::path> inside_root(const std::string& abs, void* user) {
+  const FsContext& c = *static_cast<const FsContext*>(user);
+  if (!c.main.empty() && abs == c.main) return std::filesystem::path(abs);
+  if (c.root.empty()) return std::nullopt;
+  return io::resolve_inside(c.root, "/", abs);
+}
+
+// Every path tinygltf asks about is absolute (the file's folder joined to a URI) but for its
+// fallback to the working folder, which is never searched. An outside path and a folder or FIFO
+// inside "exist", so that read_regular_file says why they are refused (for an outside path the
+// same words whether the file exists or not: nothing about it is given away).
+bool regular_file_exists(const std::string& abs, void* user) {
+  if (abs.empty() || abs[0] != '/') return false;
+  const std::optional<std::filesystem::path> p = inside_root(abs, user);
   struct stat st {};
-  return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+  return !p || ::stat(p->c_str(), &st) == 0;
 }
 
 std::string path_as_written(const std::string& path, void*) { return path; }
 
-bool read_regular_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+bool read_regular_file(std::vector<unsigned char>* out, std::string* err, const std::string& abs, void* user) {
+  const std::optional<std::filesystem::path> p = inside_root(abs, user);
+  if (!p) {
+    if (err) *err += std::string(kOutside) + "\n";
+    return false;
+  }
+  // The references' symlinks were resolved inside the root; one swapped in since is not followed.
+  const int nofollow = abs == static_cast<const FsContext*>(user)->main ? 0 : O_NOFOLLOW;
+  const int fd = ::open(p->c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | nofollow);
   struct stat st {};
   if (fd < 0 || ::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
     if (fd >= 0) ::close(fd);
-    if (err) *err += path + " is not a readable regular file\n";
+    if (err) *err += "not a readable regular file\n";
     return false;
   }
   // An empty file is refused here: tinygltf's binary loader indexes its first byte unchecked
   // (std::out_of_range escaped the loader; its own file reader refuses an empty file too).
-  if (st.st_size == 0) {
+  if (st.st_size == 0 || static_cast<std::uint64_t>(st.st_size) > memory_limit(0)) {
     ::close(fd);
-    if (err) *err += path + " is empty\n";
+    if (err) *err += st.st_size == 0 ? "empty\n" : "larger than the memory available\n";
     return false;
   }
   out->resize(static_cast<std::size_t>(st.st_size));
@@ -144,12 +177,20 @@ tinygltf::Model parse_gltf(const std::string& path, const std::vector<std::uint8
   tinygltf::Model m;
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(&load_image_checked, &m);
-  loader.SetFsCallbacks(tinygltf::FsCallbacks{&regular_file_exists, &path_as_written, &read_regular_file, &write_no_file, nullptr});
+  // A file's references stay in its folder (bytes in memory, the baker's own, read none). tinygltf
+  // joins each to the file's folder: given the file's canonical path, every path it opens is absolute.
+  FsContext fs;
+  std::string file = path;
+  if (!glb) {
+    fs.root = io::asset_root(path, "");
+    file = fs.main = (fs.root / std::filesystem::path(path).filename()).string();
+  }
+  loader.SetFsCallbacks(tinygltf::FsCallbacks{&regular_file_exists, &path_as_written, &read_regular_file, &write_no_file, &fs});
   std::string err, warn;
   const bool binary = glb || (path.size() >= 4 && path.compare(path.size() - 4, 4, ".glb") == 0);
   const bool ok = glb ? loader.LoadBinaryFromMemory(&m, &err, &warn, glb->data(), static_cast<unsigned int>(glb->size()))
-                  : binary ? loader.LoadBinaryFromFile(&m, &err, &warn, path)
-                           : loader.LoadASCIIFromFile(&m, &err, &warn, path);
+                  : binary ? loader.LoadBinaryFromFile(&m, &err, &warn, file)
+                           : loader.LoadASCIIFromFile(&m, &err, &warn, file);
   if (!ok) {
     while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
     std::string head;
@@ -162,6 +203,12 @@ tinygltf::Model parse_gltf(const std::string& path, const std::vector<std::uint8
     if (head.find("KHR_draco_mesh_compression") != std::string::npos)
       fail(path, "draco", "requires KHR_draco_mesh_compression, which qf-render does not decode; render the uncompressed .glb");
     fail(path, "parse", err.empty() ? "not a readable glTF file" : err);
+  }
+  // tinygltf takes an image it could not read as a warning and goes on without it: one refused
+  // for leading outside is an error, in its own words.
+  if (warn.find(kOutside) != std::string::npos) {
+    while (!warn.empty() && (warn.back() == '\n' || warn.back() == ' ')) warn.pop_back();
+    fail(path, "outside_file", warn);
   }
   return m;
 }

@@ -1,6 +1,7 @@
 // qf-diff OLD NEW: how two bakes differ (tools/diff.h), for people (text) or CI (--json).
 // Exit codes: 0 identical or within the thresholds, 1 beyond them, 2 bad usage or unreadable
-// input (a comparison that could not be made is not a pass), 3 internal error.
+// input (a comparison that could not be made is not a pass), 3 internal error, 4 an --html or
+// --images output that cannot be written.
 #include <filesystem>
 #include <iostream>
 #include <map>
@@ -24,7 +25,8 @@ qf::cli::CommandSpec diff_spec() {
       "views framing both (PSNR, share of changed pixels; EXR and PNG difference images with --images).\n"
       "Folders pair their files by relative path; report.json, report.html and batch-report*.json\n"
       "(times, pages) and hidden files are left out; added or removed files are beyond any threshold.\n"
-      "Exit status: 0 identical or within the thresholds, 1 beyond them, 2 bad usage or unreadable input.",
+      "Exit status: 0 identical or within the thresholds, 1 beyond them, 2 bad usage or unreadable input,\n"
+      "3 internal error, 4 the --html or --images output cannot be written (disk full, read-only).",
       {{"json", 0, "", "", "print the report as JSON (default: text)"},
        {"min-psnr", 0, "DB", "40", "a changed .glb passes when every view's PSNR is at least DB"},
        {"max-changed", 0, "SHARE", "0.005", "... and at most this share of each view's pixels changed"},

@@ -528,7 +528,8 @@ bool always(const std::string&) { return true; }
 int main(int argc, char** argv) {
   using namespace qf::render;
   const qf::cli::Program program{"qf-render", "the GL 1.1 renderer of quasiflat's baked levels (headless through EGL)", kUsage,
-                                 "exit codes: 0 ok, 1 bad input, 2 bad usage, 3 internal error (including no GL context).\n",
+                                 "exit codes: 0 ok, 1 bad input, 2 bad usage, 3 internal error (including no GL context),\n"
+                                 "4 an output that cannot be written (disk full, read-only, no permission).\n",
                                  {{render_spec(), run_render}, {eval_spec(), run_eval}, {view_spec(), run_view}},
                                  10, "render", always};
   return qf::cli::run_program(program, argc, argv);

@@ -1,7 +1,7 @@
 // The bake command (the main job): a point set or mesh in, one .glb per chosen level (and the mesh
-// outputs), a manifest and a report out (pipeline/asset). Everything is written into a temporary
-// folder inside OUTDIR and moved into place, the manifest last, so a failed or killed bake leaves
-// no half-written file.
+// outputs), a manifest and a report out (pipeline/asset). OUTDIR is built beside itself and swapped
+// in whole under a lock (core/output_folder.h), so a failed or killed bake leaves the old bake or
+// the new one, and a second bake into OUTDIR is refused while one runs.
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 
@@ -15,6 +15,7 @@
 #include "cli/commands.h"
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/output_folder.h"
 #include "core/memory.h"
 #include "core/progress.h"
 #include "pipeline/asset.h"
@@ -30,7 +31,9 @@ CommandSpec bake_spec() {
                    "as alpha, normal maps when the input has normals) in one atlas, and the QF_impostor_level\n"
                    "extension (schemas/QF_impostor_level). manifest.json lists the levels; report.json the\n"
                    "settings, times and counts; report.html shows it all in a browser (see --no-report-html).\n"
-                   "Nothing is left half-written if the bake fails.",
+                   "OUTDIR is replaced whole (built beside it, then swapped in): a failed or killed bake\n"
+                   "leaves the old bake or the new one, never a mix; files of your own in it are kept. A\n"
+                   "second bake into OUTDIR while one runs is refused (exit 5).",
                    {output_option("OUTDIR", "output folder (created if needed); required"),
                     {"primitives", 'n', "N,N,...", "1000,300,100,30", "bake the levels nearest these numbers of primitives"},
                     {"levels", 0, "K,K,...", "", "instead: these level numbers (0 = points, negative = from the coarsest)"},
@@ -267,13 +270,16 @@ int run_bake(const ParsedArgs& args) {
   const std::string& in = args.positional[0];
   const std::string outdir = args.require("output");
   const AssetOptions options = read_asset_options(args);
+  // Taken before any work: a second bake into the folder is refused at once (exit 5), not after
+  // minutes of baking.
+  OutputFolder out(outdir);
   AssetBake a;
   {
     // A bake of millions of points runs for minutes: its steps on stderr while it runs.
     const progress::ProgressDisplay shown(stderr, ::isatty(2) != 0, !args.flag("quiet"), "qf-bake bake", progress_seconds());
     a = bake_asset(in, options, in);
     progress::step("writing " + outdir);
-    write_asset(outdir, a.files, a.manifest, a.report, "qf-bake", a.page);
+    write_asset(out, a.files, a.manifest, a.report, a.page);
   }
   if (!args.flag("quiet")) print_bake_summary(a, in, outdir);
   return 0;

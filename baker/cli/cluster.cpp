@@ -80,7 +80,8 @@ int run_cluster(const ParsedArgs& args) {
                                              "thick line width = _THICKNESS / R pixels"},
                                 {"levels", levels},
                                 {"generator", "quasiflat qf-bake cluster"}};
-  write_asset(outdir, files, manifest, nullptr, "qf-cluster");
+  OutputFolder out(outdir);
+  write_asset(out, files, manifest, nullptr);
   if (!args.flag("quiet")) {
     std::fprintf(stderr, "qf-bake cluster: %s (%zu triangles) -> %s, %zu levels in %.3f s\n", in.c_str(), mesh.triangles.size(),
                  outdir.c_str(), lods.size(), seconds);

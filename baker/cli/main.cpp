@@ -1,5 +1,6 @@
 // qf-bake entry point: the command table (commands.cpp) as a program (cli/program.h), which maps
-// errors to exit codes (0 ok, 1 bad input, 2 bad usage, 3 internal error).
+// errors to exit codes (0 ok, 1 bad input, 2 bad usage, 3 internal error, 4 output not written,
+// 5 output folder busy).
 #include "cli/commands.h"
 #include "cli/program.h"
 
@@ -17,7 +18,10 @@ constexpr const char* kUsage =
     "       qf-bake --version\n";
 constexpr const char* kExitCodes =
     "exit codes: 0 ok, 1 bad input (the message names the file, the line or byte, and what was\n"
-    "expected), 2 bad usage, 3 internal error.\n";
+    "expected), 2 bad usage (an output path naming a missing folder included), 3 internal error,\n"
+    "4 an output that cannot be written (disk or quota full, read-only, no permission, I/O error),\n"
+    "5 the output folder is being written by another bake now (nothing written; retry later).\n"
+    "A batch exits 1 when an asset failed; each asset's own code is in its report.\n";
 
 int main(int argc, char** argv) {
   const qf::cli::Program program{"qf-bake", "extreme simplification of point sets and meshes into textured quads", kUsage, kExitCodes,

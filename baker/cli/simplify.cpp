@@ -72,7 +72,8 @@ int run_simplify(const ParsedArgs& args) {
                                 {"generator", "quasiflat qf-bake simplify"}};
   for (const char* key : {"skipped", "stopped"})
     if (lods.contains(key)) manifest[key] = lods[key];
-  write_asset(outdir, files, manifest, nullptr, "qf-simplify");
+  OutputFolder out(outdir);
+  write_asset(out, files, manifest, nullptr);
   if (!args.flag("quiet")) {
     std::fprintf(stderr, "qf-bake simplify: %s (%zu triangles) -> %s, %zu LODs in %.3f s\n", in.c_str(), model.mesh.triangles.size(),
                  outdir.c_str(), levels.size(), seconds);

@@ -5,6 +5,7 @@
 #include "cli/commands.h"
 #include "core/error.h"
 #include "core/file_io.h"
+#include "core/output_folder.h"
 #include "io/model_io.h"
 #include "pipeline/tiles.h"
 
@@ -39,16 +40,15 @@ int run_tile(const ParsedArgs& args) {
   ReadReport report;
   const PointSet points = load_points(in, args, "tile", report);
   const TilePlan plan = plan_tiles(points, in, count, primitives);
-  write_folder_atomically(outdir, "qf-tile", [&](const std::string& staging, std::vector<std::string>& names) {
-    for (std::size_t i = 0; i < plan.tiles.size(); ++i) {
-      write_ply(staging + "/" + plan.tile_names[i], plan.tiles[i]);
-      names.push_back(plan.tile_names[i]);
-    }
-    write_file_atomically(staging + "/batch.json", [&](std::ostream& out) { out << plan.batch.dump(2) << "\n"; });
-    names.push_back("batch.json");
-    write_file_atomically(staging + "/tiles.json", [&](std::ostream& out) { out << plan.plan.dump(2) << "\n"; });
-    names.push_back("tiles.json");
-  });
+  // The folder replaced whole (core/output_folder.h); what else it held is carried over, as before.
+  OutputFolder out(outdir);
+  out.replace(
+      [&](const std::string& staging) {
+        for (std::size_t i = 0; i < plan.tiles.size(); ++i) write_ply(staging + "/" + plan.tile_names[i], plan.tiles[i]);
+        write_file_atomically(staging + "/batch.json", [&](std::ostream& o) { o << plan.batch.dump(2) << "\n"; });
+        write_file_atomically(staging + "/tiles.json", [&](std::ostream& o) { o << plan.plan.dump(2) << "\n"; });
+      },
+      [](const std::string&) { return true; });
   if (!args.flag("quiet")) {
     std::fprintf(stderr, "qf-bake tile: %s (%zu points) -> %s: %zu tiles of", in.c_str(), points.size(), outdir.c_str(), plan.tiles.size());
     for (const PointSet& t : plan.tiles) std::fprintf(stderr, " %zu", t.size());
@@ -84,7 +84,8 @@ int run_join(const ParsedArgs& args) {
     }
   }
   const JoinedSet set = join_tiles(plan, plan_path, baked);
-  write_asset(outdir, set.files, set.manifest, nullptr, "qf-join", "");
+  OutputFolder out(outdir);
+  write_asset(out, set.files, set.manifest, nullptr);
   if (!args.flag("quiet")) {
     std::fprintf(stderr, "qf-bake join: %zu tiles -> %s:", set.manifest["tiles"].get<std::size_t>(), outdir.c_str());
     for (const nlohmann::json& l : set.manifest["levels"])

@@ -67,17 +67,20 @@ void write_file_atomically(const std::string& path, const std::function<void(std
   try {
     {
       std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-      if (!out) throw UsageError("cannot create output file '" + tmp + "': " + std::strerror(errno));
+      if (!out) throw_output_error("cannot create output file '" + tmp + "'", errno);
       write(out);
       out.flush();
-      if (!out) throw UsageError("cannot write output file '" + tmp + "': " + std::strerror(errno));
+      if (!out) throw_output_error("cannot write output file '" + tmp + "'", errno ? errno : EIO);
     }
-    // fsync before rename so a crash cannot leave a renamed but empty file behind.
-    const int fd = ::open(tmp.c_str(), O_RDONLY);
-    if (fd >= 0) {
-      ::fsync(fd);
-      ::close(fd);
+    // fsync before rename so a crash cannot leave a renamed but empty file behind; on NFS a full
+    // disk or quota may show first here.
+    const int fd = ::open(tmp.c_str(), O_RDONLY | O_CLOEXEC);
+    if (fd < 0 || ::fsync(fd) != 0) {
+      const int err = errno;
+      if (fd >= 0) ::close(fd);
+      throw_output_error("cannot write output file '" + tmp + "'", err);
     }
+    ::close(fd);
     std::filesystem::rename(tmp, path);
   } catch (...) {
     std::error_code ec;
@@ -131,28 +134,6 @@ void remove_stale_temporaries(const std::string& dir) {
       std::filesystem::remove(it->path(), ec);
     }
   }
-}
-
-void write_folder_atomically(const std::string& outdir, const std::string& tag,
-                             const std::function<void(const std::string& staging, std::vector<std::string>& files)>& fill) {
-  std::filesystem::create_directories(outdir);
-  remove_stale_temporaries(outdir);
-  const std::string staging = outdir + "/." + tag + "-" + std::to_string(::getpid());
-  std::filesystem::create_directories(staging);
-  const int lock = ::open((staging + "/.lock").c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (lock >= 0) ::flock(lock, LOCK_EX);
-  try {
-    std::vector<std::string> files;
-    fill(staging, files);
-    for (const std::string& f : files) std::filesystem::rename(staging + "/" + f, outdir + "/" + f);
-    std::filesystem::remove_all(staging);
-  } catch (...) {
-    std::error_code ec;
-    std::filesystem::remove_all(staging, ec);
-    if (lock >= 0) ::close(lock);
-    throw;
-  }
-  if (lock >= 0) ::close(lock);
 }
 
 std::string file_extension(const std::string& path) {

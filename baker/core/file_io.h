@@ -58,17 +58,10 @@ void write_file_atomically(const std::string& path, const std::function<void(std
 // write_file_atomically with these bytes as the whole content.
 void write_bytes_atomically(const std::string& path, const std::vector<std::uint8_t>& bytes);
 
-// Writes a set of files into `outdir` so that none is ever seen half-written: `fill` writes them
-// into a private folder inside outdir (".<tag>-<pid>", created here) and appends each name to
-// `files`; they are then renamed into outdir in that order (put the manifest last). If `fill`
-// throws, the private folder is removed and the exception propagates; outdir keeps what it had.
-void write_folder_atomically(const std::string& outdir, const std::string& tag,
-                             const std::function<void(const std::string& staging, std::vector<std::string>& files)>& fill);
-
-// Removes what killed writers left in `dir`: staging folders ".<tag>-<pid>" whose writer no longer
-// holds their lock (write_folder_atomically locks its folder while it works; the lock dies with the
-// process), and temporary files "<name>.tmp-<pid>" whose process is gone from this machine.
-// write_folder_atomically calls it, so a rerun after a kill starts clean.
+// Removes what killed writers left in `dir`: temporary files "<name>.tmp-<pid>" whose process is
+// gone from this machine, and staging folders ".<tag>-<pid>" (written inside output folders before
+// they were replaced whole, core/output_folder.h) whose ".lock" is free. The cache calls it before
+// each save, OutputFolder on the folder it replaces, so a rerun after a kill starts clean.
 void remove_stale_temporaries(const std::string& dir);
 
 // Lower-case extension without the dot ("ply" for "a/b.PLY"), or "" if none.

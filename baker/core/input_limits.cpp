@@ -64,6 +64,27 @@ std::optional<ImageHeader> webp_header(const std::uint8_t* b, std::size_t size) 
   return std::nullopt;
 }
 
+// BMP: "BM", then the DIB header's size at 14; an OS/2 core header (12 bytes) has 16-bit sides at
+// 18 and 20, the others 32-bit signed sides (a negative height is a top-down image).
+std::optional<ImageHeader> bmp_header(const std::uint8_t* b, std::size_t size) {
+  if (size < 26) return std::nullopt;
+  if (le(b + 14, 4) == 12) return ImageHeader{le(b + 18, 2), le(b + 20, 2), 1};
+  const auto side = [](std::uint64_t v) { return v >= 0x80000000u ? 0x100000000u - v : v; };  // |int32|
+  return ImageHeader{side(le(b + 18, 4)), side(le(b + 22, 4)), 1};
+}
+
+// TGA has no magic number: its 18-byte header is taken as one when every field that has a small
+// set of legal values has one of them (colour-map type 0 or 1, image type 1-3 or 9-11, pixel depth
+// 8, 15, 16, 24 or 32; no colour map's length without a colour map). Sides are 16-bit, at 12 and 14.
+std::optional<ImageHeader> tga_header(const std::uint8_t* b, std::size_t size) {
+  if (size < 18 || b[1] > 1) return std::nullopt;
+  const std::uint8_t type = b[2], depth = b[16];
+  if (!((type >= 1 && type <= 3) || (type >= 9 && type <= 11))) return std::nullopt;
+  if (depth != 8 && depth != 15 && depth != 16 && depth != 24 && depth != 32) return std::nullopt;
+  if (b[1] == 0 && le(b + 5, 2) != 0) return std::nullopt;
+  return ImageHeader{le(b + 12, 2), le(b + 14, 2), 1};
+}
+
 }  // namespace
 
 std::size_t json_nesting_depth(const char* text, std::size_t size) {
@@ -112,7 +133,8 @@ std::optional<ImageHeader> image_header(const std::uint8_t* b, std::size_t size)
     return ImageHeader{le(b + 20, 4), std::max<std::uint64_t>(le(b + 24, 4), 1),
                        static_cast<std::uint32_t>(std::max<std::uint64_t>(le(b + 40, 4), 1))};
   if (size >= 12 && std::memcmp(b, "RIFF", 4) == 0 && std::memcmp(b + 8, "WEBP", 4) == 0) return webp_header(b, size);
-  return std::nullopt;
+  if (size >= 2 && b[0] == 'B' && b[1] == 'M') return bmp_header(b, size);
+  return tga_header(b, size);
 }
 
 std::uint64_t decoded_image_bytes(const ImageHeader& h) {

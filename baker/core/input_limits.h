@@ -24,8 +24,9 @@ std::size_t json_nesting_depth(const char* text, std::size_t size);
 void check_gltf_json_depth(const std::uint8_t* bytes, std::size_t size, const std::string& path, const std::string& prefix);
 
 // An image's size as its header declares it: PNG (IHDR), JPEG (the first SOF segment), KTX2
-// (pixelWidth, pixelHeight, levelCount) and WebP (VP8, VP8L, VP8X). nullopt for other formats
-// or a header that does not read (the decoder then says why).
+// (pixelWidth, pixelHeight, levelCount), WebP (VP8, VP8L, VP8X), BMP and TGA (a TGA header is
+// recognised by its fields' legal values: it has no magic number). nullopt for other formats or
+// a header that does not read (the decoder then says why).
 struct ImageHeader {
   std::uint64_t width = 0, height = 0;
   std::uint32_t levels = 1;  // KTX2's mip levels; 1 for the others

@@ -25,4 +25,12 @@ struct PrimitiveData {
 PrimitiveData read_primitive(const tinygltf::Model& m, const tinygltf::Primitive& p, int uv_set, const std::string& path,
                              const std::string& where);
 
+// What decoding the primitive's KHR_draco_mesh_compression stream would allocate, in bytes, from
+// the face and point counts its connectivity header declares (Draco bitstream 2.2, what current
+// encoders write): the decoder sizes its corner table and attribute buffers by them before it
+// reads the data they describe, so a stream of a few bytes can claim 2^31 faces. 0 for a
+// primitive without the extension, or a stream whose counts cannot be read here (another
+// bitstream version, metadata first, a bad view): the decoder judges those.
+double draco_decoding_bytes(const tinygltf::Model& m, const tinygltf::Primitive& p);
+
 }  // namespace qf::io

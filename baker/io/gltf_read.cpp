@@ -480,14 +480,15 @@ struct SceneReader {
       return accessor >= 0 && static_cast<std::size_t>(accessor) < m.accessors.size()
                  ? static_cast<double>(m.accessors[static_cast<std::size_t>(accessor)].count) : 0.0;
     };
-    double total = 0;
+    double total = 0, draco = 0;  // Draco: the largest stream's decoding, one primitive at a time
     for (const Instance& in : list)
       for (const tinygltf::Primitive& p : m.meshes[static_cast<std::size_t>(in.mesh)].primitives) {
         const auto pos = p.attributes.find("POSITION");
         const double vertices = pos == p.attributes.end() ? 0.0 : count(pos->second);
         total += vertices * kVertexBytes + (p.indices >= 0 ? count(p.indices) : vertices) * kIndexBytes;
+        draco = std::max(draco, io::draco_decoding_bytes(m, p));
       }
-    return total;
+    return total + draco;
   }
 
   void add_mesh(int index, const Mat4& world) {

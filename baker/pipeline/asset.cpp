@@ -762,39 +762,26 @@ bool listed_files_present(const std::string& folder, const nlohmann::json& manif
   return listed && all;
 }
 
-void write_asset(const std::string& outdir, const std::vector<OutputFile>& files, nlohmann::json manifest,
-                 const nlohmann::json& report, const std::string& tag, const std::string& page) {
-  const std::vector<std::string> before = listed_files(read_asset_manifest(outdir));
+void write_asset(OutputFolder& out, const std::vector<OutputFile>& files, nlohmann::json manifest, const nlohmann::json& report,
+                 const std::string& page) {
+  // What the folder's last bake wrote: replaced, never carried over (a rebake with other levels
+  // leaves no stale level, one without a page no old page). Anything else there is carried.
+  const std::vector<std::string> before = listed_files(read_asset_manifest(out.path()));
   nlohmann::json listed = nlohmann::json::array();
   for (const OutputFile& f : files) listed.push_back({{"name", f.name}, {"bytes", f.bytes.size()}});
   manifest["files"] = listed;
-  write_folder_atomically(outdir, tag, [&](const std::string& staging, std::vector<std::string>& names) {
-    for (const OutputFile& f : files) {
-      write_bytes_atomically(staging + "/" + f.name, f.bytes);
-      names.push_back(f.name);
-    }
-    if (!report.is_null()) {
-      write_file_atomically(staging + "/report.json", [&](std::ostream& out) { out << report.dump(2) << "\n"; });
-      names.push_back("report.json");
-    }
-    if (!page.empty()) {
-      write_file_atomically(staging + "/report.html", [&](std::ostream& out) { out << page; });
-      names.push_back("report.html");
-    }
-    write_file_atomically(staging + "/manifest.json", [&](std::ostream& out) { out << manifest.dump(2) << "\n"; });
-    names.push_back("manifest.json");
-  });
-  // Only after the new manifest is in place: a kill before this leaves extra files, never missing ones.
-  for (const std::string& old : before) {
-    bool kept = false;
-    for (const OutputFile& f : files) kept = kept || f.name == old;
-    std::error_code ec;
-    if (!kept && old.find('/') == std::string::npos && old != "manifest.json" && old != "report.json")
-      std::filesystem::remove(outdir + "/" + old, ec);
-  }
-  // A bake without a page leaves none of an earlier bake's (it would show other files).
-  std::error_code ec;
-  if (!report.is_null() && page.empty()) std::filesystem::remove(outdir + "/report.html", ec);
+  out.replace(
+      [&](const std::string& staging) {
+        for (const OutputFile& f : files) write_bytes_atomically(staging + "/" + f.name, f.bytes);
+        if (!report.is_null())
+          write_file_atomically(staging + "/report.json", [&](std::ostream& o) { o << report.dump(2) << "\n"; });
+        if (!page.empty()) write_file_atomically(staging + "/report.html", [&](std::ostream& o) { o << page; });
+        write_file_atomically(staging + "/manifest.json", [&](std::ostream& o) { o << manifest.dump(2) << "\n"; });
+      },
+      [&](const std::string& name) {
+        if (name == "manifest.json" || name == "report.json" || name == "report.html") return false;
+        return std::find(before.begin(), before.end(), name) == before.end();
+      });
 }
 
 }  // namespace qf

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "clustering/clustering.h"
+#include "core/output_folder.h"
 #include "io/model_io.h"
 #include "measure/chain.h"
 #include "measure/measure.h"
@@ -140,13 +141,12 @@ nlohmann::json read_asset_manifest(const std::string& folder);
 std::vector<std::string> listed_files(const nlohmann::json& manifest);
 bool listed_files_present(const std::string& folder, const nlohmann::json& manifest);
 
-// Writes `files`, then `report` (when not null), `page` (report.html, when not empty) and `manifest`
-// into `outdir` so that none is ever seen half-written (core/file_io write_folder_atomically;
-// manifest.json last). The manifest gets a "files" list (name and size of every file above but the
-// reports); files that the folder's previous manifest listed and the new one does not are removed
-// afterwards, so a rebake with other levels leaves no stale level behind, and so is a previous
-// report.html when a bake writes none.
-void write_asset(const std::string& outdir, const std::vector<OutputFile>& files, nlohmann::json manifest,
-                 const nlohmann::json& report, const std::string& tag = "qf-bake", const std::string& page = "");
+// Writes `files`, `report` (report.json, when not null), `page` (report.html, when not empty) and
+// `manifest` (manifest.json, given a "files" list: name and size of every file above but the
+// reports) as the new content of `out`, replacing the folder whole (core/output_folder.h): at every
+// instant it is the old bake or the new one. Of the old folder, what its manifest listed and its
+// reports are dropped; anything else (files a user put there) is carried into the new one.
+void write_asset(OutputFolder& out, const std::vector<OutputFile>& files, nlohmann::json manifest, const nlohmann::json& report,
+                 const std::string& page = "");
 
 }  // namespace qf

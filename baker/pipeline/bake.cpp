@@ -159,7 +159,15 @@ AmgHierarchy cached_hierarchy(const PointSet& points, const AnalysisOptions& ana
   a = SurfaceAnalysis{};
   if (analysed) analysed("analysis");
   AmgHierarchy h = build_hierarchy(std::move(stiffness), amg);
-  if (!cache_dir.empty()) save_hierarchy(cache_dir, key, h, normals);
+  if (!cache_dir.empty()) {
+    // A cache that cannot take the entry (full, read-only, not a folder) costs the next bake its
+    // reuse, not this bake: said in the state, and the caller warns.
+    try {
+      save_hierarchy(cache_dir, key, h, normals);
+    } catch (const std::exception& e) {
+      state += ", not saved (" + std::string(e.what()) + ")";
+    }
+  }
   if (estimated_normals) *estimated_normals = std::move(normals);
   return h;
 }
@@ -334,6 +342,8 @@ AmgHierarchy decomposed(const PointSet& points, const BakeOptions& o, const std:
     watch.lap(stage);
     progress::step("AMG coarsening");
   });
+  if (r.cache.find(", not saved (") != std::string::npos)
+    r.warnings.push_back("the AMG cache " + o.cache_dir + " could not be written, baked without it: " + r.cache);
   r.hierarchy_levels = h.level_count();
   r.components = h.components;
   if (h.level_count() < 2)

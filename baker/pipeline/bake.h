@@ -22,7 +22,8 @@ namespace qf {
 
 // The hierarchy of a point set, from the cache in `cache_dir` when the points and settings match
 // (an empty dir disables the cache), else computed and stored there. `state` says what happened:
-// "hit", "miss (<why>)" or "off". For a set without normals, `estimated_normals` (if given)
+// "hit", "miss (<why>)" or "off"; a miss the cache could not store (full, read-only) adds
+// ", not saved (<why>)" and the bake goes on without the cache. For a set without normals, `estimated_normals` (if given)
 // receives the analysis' oriented normals, from the cache too. `analysed`, when given, is called
 // with "analysis" between the analysis and the AMG coarsening of a miss (the bake times them apart).
 AmgHierarchy cached_hierarchy(const PointSet& points, const AnalysisOptions& analysis, const AmgOptions& amg,

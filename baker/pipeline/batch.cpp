@@ -112,6 +112,22 @@ Json evaluate_levels(const BatchAsset& a, const std::string& folder, const Json&
   return out;
 }
 
+// True for a name that OUTDIR/NAME would share with the batch's report or its page
+// ("batch-report.json", "batch-report-2-of-4.html"): the asset's folder would take the report's place.
+bool names_a_batch_file(const std::string& name) {
+  const std::string head = "batch-report";
+  if (name.compare(0, head.size(), head) != 0) return false;
+  std::string rest = name.substr(head.size());
+  for (const char* ext : {".json", ".html"})
+    if (rest.size() >= 5 && rest.compare(rest.size() - 5, 5, ext) == 0) {
+      rest.resize(rest.size() - 5);
+      unsigned i = 0, n = 0;
+      char extra = 0;
+      return rest.empty() || std::sscanf(rest.c_str(), "-%u-of-%u%c", &i, &n, &extra) == 2;
+    }
+  return false;
+}
+
 // Step 1 of run_batch: every selected asset's key, and whether it is up to date (cheap, in this
 // process: a hash of the input, one small JSON). Returns the entries left to bake.
 std::deque<std::size_t> check_assets(const BatchManifest& m, const std::vector<std::size_t>& selected, const BatchOptions& o,
@@ -121,16 +137,29 @@ std::deque<std::size_t> check_assets(const BatchManifest& m, const std::vector<s
     const BatchAsset& a = m.assets[selected[i]];
     const auto t = Clock::now();
     state.entries.push_back({{"index", a.index}, {"name", a.name}, {"input", a.input}});
+    // Whatever is wrong with one asset (unreadable, a folder, an input the bake cannot read, a name
+    // the batch's own files take) fails that asset, in the report; the batch goes on.
     try {
+      if (names_a_batch_file(a.name))
+        throw InputError("batch.name", m.path, "assets[" + std::to_string(a.index) + "]",
+                         "'" + a.name + "' is the name of the batch's own report; give the asset another \"name\"");
       state.keys[i] = asset_key(a, o.version);
-    } catch (const InputError& e) {
-      state.entries[i]["exit_code"] = static_cast<int>(ExitCode::kBadInput);
-      state.entries[i]["error"] = {{"code", e.code()}, {"message", e.what()}};
+    } catch (const std::exception&) {
+      const ErrorOutcome e = current_error_outcome();
+      state.entries[i]["exit_code"] = static_cast<int>(e.exit);
+      state.entries[i]["error"] = {{"code", e.code}, {"message", e.message}};
       state.settle(i, AssetStatus::kFailed, progress);
       continue;
     }
     state.entries[i]["key"] = state.keys[i];
     if (!o.force && asset_up_to_date(o.output + "/" + a.name, state.keys[i])) {
+      // A bake killed after its swap leaves a complete folder, and beside it its lock file and the
+      // old content it was removing: taking the lock a moment removes them (a folder another run
+      // is writing now is left to it).
+      try {
+        const OutputFolder tidy(o.output + "/" + a.name);
+      } catch (const std::exception&) {
+      }
       state.entries[i]["seconds"] = round_to(since(t), 6);
       state.settle(i, AssetStatus::kUpToDate, progress);
     } else if (o.dry_run) {
@@ -149,9 +178,10 @@ namespace batch {
 int bake_in_child(const BatchAsset& a, const std::string& key, const BatchOptions& o, Json& result) {
   try {
     const std::string folder = o.output + "/" + a.name;
+    OutputFolder out(folder);  // before the bake: another batch baking this asset now is refused at once
     AssetBake b = bake_asset(a.path, a.options, a.input);
     b.manifest["batch_key"] = key;
-    write_asset(folder, b.files, b.manifest, b.report, "qf-bake", b.page);
+    write_asset(out, b.files, b.manifest, b.report, b.page);
     result = {{"points", b.result.points},
               {"cache", b.result.cache},
               {"levels", b.manifest["levels"]},

@@ -5,9 +5,10 @@
 // Each asset bakes in a forked child process: a crash or an out-of-memory kill fails that asset
 // only, its peak memory is measured exactly (wait4), and the parent never runs OpenMP (a forked
 // child of a process that did would hang in libgomp). Children die with the parent
-// (PR_SET_PDEATHSIG), and every output is staged and renamed (pipeline/asset write_asset), so a
-// killed batch leaves each asset folder either as it was or complete; the next run rebakes what
-// is missing or stale.
+// (PR_SET_PDEATHSIG), and each asset folder is built beside the old one and swapped in whole, under
+// a lock (core/output_folder.h, pipeline/asset write_asset), so a killed batch leaves each asset
+// folder either as it was or complete, and two batches never write one folder at once; the next
+// run rebakes what is missing or stale.
 #pragma once
 
 #include <nlohmann/json.hpp>

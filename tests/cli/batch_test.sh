@@ -110,7 +110,8 @@ done_before=$(compgen -G "$work/killed/*/manifest.json" | wc -l)
 [[ $rc -eq 0 ]] && ok || bad "rerun after a kill: exit $rc"
 [[ $(field "$work/killed/batch-report.json" 'r["totals"]["up to date"]') -ge 1 ]] && ok || bad "the rerun keeps what the killed run finished"
 listing "$work/killed" | cmp -s - "$work/full.sums" && ok || bad "killed + rerun differs from an uninterrupted run: $(listing "$work/killed" | diff - "$work/full.sums" | head -5)"
-[[ -z $(find "$work/killed" -name '.qf-*' -o -name '*.tmp-*') ]] && ok || bad "no staging left after the rerun: $(find "$work/killed" -name '.qf-*' -o -name '*.tmp-*')"
+leftovers() { find "$work/killed" -name '.qf-*' -o -name '*.tmp-*' -o -name '.*.qf-*'; }
+[[ -z $(leftovers) ]] && ok || bad "no staging left after the rerun: $(leftovers)"
 export QF_CACHE=$work/cache
 
 # --- 7. --eval: fidelity per level from qf-render eval (beside qf-bake) ---

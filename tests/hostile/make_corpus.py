@@ -96,6 +96,17 @@ def jpeg(width, height):
     return b"\xff\xd8" + b"\xff\xc0" + struct.pack(">H", len(sof) + 2) + sof + b"\xff\xd9"
 
 
+def bmp(width, height):
+    """A BMP header (BITMAPINFOHEADER, 32 bits) claiming width x height, then a few pixels."""
+    info = struct.pack("<IiiHHIIiiII", 40, width, height, 1, 32, 0, 0, 2835, 2835, 0, 0)
+    return b"BM" + struct.pack("<IHHI", 14 + len(info) + 16, 0, 0, 14 + len(info)) + info + b"\0" * 16
+
+
+def tga(width, height):
+    """A TGA header (true colour, 32 bits) claiming width x height, then a few pixels."""
+    return struct.pack("<BBBHHBHHHHBB", 0, 0, 2, 0, 0, 0, 0, 0, width, height, 32, 8) + b"\0" * 16
+
+
 def webp(width, height):
     """A lossless WebP (VP8L) header claiming width x height (at most 16384 a side)."""
     bits = (width - 1) | (height - 1) << 14 | 1 << 28
@@ -110,6 +121,33 @@ def ktx2(width, height):
     index = struct.pack("<IIIIQQ", 0, 0, 0, 0, 0, 0)  # dfd, kvd offsets/lengths; sgd offset/length
     level = struct.pack("<QQQ", 104, 16, 16)
     return ident + head + index + level + b"\0" * 16
+
+
+def varint(n):
+    """A Draco varUI32 (LEB128)."""
+    out = b""
+    while True:
+        out += bytes([(n & 0x7F) | (0x80 if n > 0x7F else 0)])
+        n >>= 7
+        if not n:
+            return out
+
+
+def draco_glb(method, faces):
+    """A .glb whose one primitive is a KHR_draco_mesh_compression stream (bitstream 2.2) whose
+    connectivity header claims `faces` faces and as many points, and holds nothing more."""
+    head = b"DRACO" + bytes([2, 2, 1, method]) + b"\0\0"
+    counts = varint(faces) + varint(faces) if method == 0 else b"\0" + varint(faces) + varint(faces) + b"\0" + varint(faces) + b"\0"
+    stream = head + counts + b"\0" * 16
+    draco = {"bufferView": 0, "attributes": {"POSITION": 0}}
+    return glb({"asset": {"version": "2.0"}, "extensionsUsed": ["KHR_draco_mesh_compression"],
+                "extensionsRequired": ["KHR_draco_mesh_compression"],
+                "buffers": [{"byteLength": len(stream)}], "bufferViews": [{"buffer": 0, "byteLength": len(stream)}],
+                "accessors": [{"componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+                              {"componentType": 5125, "count": 3, "type": "SCALAR"}],
+                "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1,
+                                            "extensions": {"KHR_draco_mesh_compression": draco}}]}],
+                "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}], "scene": 0}, stream)
 
 
 def image_glb(kind, payload):
@@ -204,6 +242,9 @@ def write(out, seed):
     prims["meshes"][0]["primitives"] = prims["meshes"][0]["primitives"] * 5000
     prims["accessors"][0]["count"] = 2 ** 31
     c.case("primitives_5000_huge", "a.gltf", prims)
+    # Draco streams whose headers claim 2^31 - 1 faces: budgeted from the header, before decoding.
+    c.case("draco_sequential_2_31", "a.glb", draco_glb(0, 2 ** 31 - 1))
+    c.case("draco_edgebreaker_2_31", "a.glb", draco_glb(1, 2 ** 31 - 1))
     c.case("glb_chunk_length", "a.glb", struct.pack("<4sIIII", b"glTF", 2, 2 ** 32 - 1, 2 ** 32 - 8, 0x4E4F534A) + b"{}")
     c.case("glb_truncated", "a.glb", glb(triangle_gltf())[:40])
     # --- Images whose headers claim more than the memory allows ---
@@ -214,6 +255,10 @@ def write(out, seed):
     c.case("webp_16383", "a.glb", image_glb("webp", webp(16384, 16384)), programs="bake,render")
     c.case("ktx2_16384", "a.glb", image_glb("ktx2", ktx2(16384, 16384)), programs="bake,render")
     obj_faces = "usemtl m\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1\n"
+    c.case("obj_bmp_16384_x8", "a.obj", "mtllib a.mtl\n" + obj_faces,
+           files={"a.mtl": ("newmtl m\n" + "map_Kd big.bmp\n" * 8).encode(), "big.bmp": bmp(16384, 16384)})
+    c.case("obj_tga_65535", "a.obj", "mtllib a.mtl\n" + obj_faces, files={"a.mtl": b"newmtl m\nmap_Kd big.tga\n", "big.tga": tga(65535, 65535)})
+    c.case("gltf_bmp_16384_x8", "a.gltf", triangle_gltf(images=[{"uri": "big.bmp"}] * 8), files={"big.bmp": bmp(16384, 16384)})
     c.case("obj_png_16384_x8", "a.obj", "mtllib a.mtl\n" + obj_faces,
            files={"a.mtl": ("newmtl m\n" + "map_Kd big.png\n" * 8).encode(), "big.png": png(16384, 16384, rng)})
     # --- References outside the asset's folder (each names a file that exists) ---
@@ -223,15 +268,20 @@ def write(out, seed):
                       "uri_file_scheme": "file://" + outside + "/secret.bin", "uri_etc_passwd": "/etc/passwd",
                       "uri_home": "~/../../" + outside + "/secret.bin", "uri_variable": "$HOME/../.." + outside + "/secret.bin",
                       "uri_dev_zero": "/dev/zero", "uri_proc": "/proc/self/environ"}.items():
-        c.case(name, "a.gltf", triangle_gltf(uri=uri), outside=True)
-    c.case("uri_symlink", "a.gltf", triangle_gltf(uri="link.bin"), outside=True, links={"link.bin": outside + "/secret.bin"})
+        # qf-render's loader confines references as the baker does (runtime_gl/loader.cpp): the
+        # ways out tinygltf would follow (the others it never opens: its own rule or no such file).
+        render = name in ("uri_dotdot", "uri_pct_dotdot", "uri_absolute", "uri_etc_passwd")
+        c.case(name, "a.gltf", triangle_gltf(uri=uri), outside=True, programs="bake,render" if render else "bake")
+    c.case("uri_symlink", "a.gltf", triangle_gltf(uri="link.bin"), outside=True, links={"link.bin": outside + "/secret.bin"},
+           programs="bake,render")
     c.case("uri_symlink_relative", "a.gltf", triangle_gltf(uri="link.bin"), outside=True, links={"link.bin": rel + "/secret.bin"})
-    c.case("uri_symlink_folder", "a.gltf", triangle_gltf(uri="up/secret.bin"), outside=True, links={"up": outside})
+    c.case("uri_symlink_folder", "a.gltf", triangle_gltf(uri="up/secret.bin"), outside=True, links={"up": outside}, programs="bake,render")
     c.case("uri_symlink_dotdot", "a.gltf", triangle_gltf(uri="sub/up/" + rel + "/secret.bin"), outside=True, folders=["sub"],
            links={"sub/up": ".."})
     c.case("uri_symlink_dangling", "a.gltf", triangle_gltf(uri="link.bin"), outside=True, links={"link.bin": outside + "/absent.bin"})
-    c.case("image_dotdot", "a.gltf", triangle_gltf(images=[{"uri": rel + "/secret.png"}]), outside=True)
-    c.case("image_symlink", "a.gltf", triangle_gltf(images=[{"uri": "t.png"}]), outside=True, links={"t.png": outside + "/secret.png"})
+    c.case("image_dotdot", "a.gltf", triangle_gltf(images=[{"uri": rel + "/secret.png"}]), outside=True, programs="bake,render")
+    c.case("image_symlink", "a.gltf", triangle_gltf(images=[{"uri": "t.png"}]), outside=True, links={"t.png": outside + "/secret.png"},
+           programs="bake,render")
     c.case("obj_mtllib_dotdot", "a.obj", "mtllib " + rel + "/secret.mtl\n" + obj_faces, outside=True)
     c.case("obj_mtllib_absolute", "a.obj", "mtllib " + outside + "/secret.mtl\n" + obj_faces, outside=True)
     c.case("obj_mtllib_backslash", "a.obj", "mtllib " + rel.replace("/", "\\") + "\\secret.mtl\n" + obj_faces, outside=True)

@@ -155,6 +155,25 @@ TEST(Hostile, ImagesAreBudgetedFromTheirHeadersBeforeDecoding) {
   EXPECT_EQ(decoded_image_bytes(h), 300u * 300u * 4u);
 }
 
+// BMP and TGA headers give their sides too (a TGA has no magic number: its fields' legal values).
+TEST(Hostile, BmpAndTgaHeadersGiveTheirSides) {
+  std::uint8_t bmp[26] = {'B', 'M'};
+  bmp[14] = 40;                                      // BITMAPINFOHEADER
+  bmp[18] = 0x00, bmp[19] = 0x40;                    // width 16384
+  bmp[22] = 0x00, bmp[23] = 0xC0, bmp[24] = bmp[25] = 0xFF;  // height -16384: top-down
+  const std::optional<ImageHeader> b = image_header(bmp, sizeof bmp);
+  ASSERT_TRUE(b.has_value());
+  EXPECT_EQ(b->width, 16384u);
+  EXPECT_EQ(b->height, 16384u);
+  std::uint8_t tga[18] = {0, 0, 2};                  // no colour map, true colour
+  tga[12] = tga[13] = 0xFF, tga[14] = tga[15] = 0xFF, tga[16] = 32;  // 65535 x 65535, 32 bits
+  const std::optional<ImageHeader> t = image_header(tga, sizeof tga);
+  ASSERT_TRUE(t.has_value());
+  EXPECT_EQ(decoded_image_bytes(*t), 65535ull * 65535ull * 4ull);
+  tga[16] = 7;  // no such pixel depth: not a TGA header
+  EXPECT_FALSE(image_header(tga, sizeof tga).has_value());
+}
+
 // The message of a reference leading outside must not tell whether its target exists.
 TEST(Hostile, ReferencesOutsideTheAssetsFolderAreRefused) {
   test::TempDir dir;
