@@ -25,6 +25,11 @@
 # holds: issue 48's check (scripts/holds_table.py): every file's claimed max_screen_pixels drawn by
 # qf-render eval (8 views, 8x truth) beside the input as drawn, on a seeded lattice and bare tree,
 # assimp's textured cube and engine, bunny00 and elephant; the chains; bake seconds and bytes.
+# far: issue 49's far levels (scripts/far_table.py): seeded assets no test uses (a broadleaf oak of
+# leaf cards, a bush, a lattice tower, a bare tree) and assimp's 2CylinderEngine when installed,
+# and CGAL's bunny00: each default level at its own size and half of it, level / asset as drawn,
+# PSNR, soft IoU and coverage against the truth (8 views, 8x), and which of the targets it meets
+# (~6 min).
 # big: one big asset (issue 20): a generated torus and bunny00's mesh sampled by depth peeling, at
 # 1M and 10M points each, baked with the defaults on 2 threads: seconds per stage, wall and CPU
 # (user + sys) time and peak RSS of the whole command (GNU time -v), bytes per point, and the
@@ -43,12 +48,12 @@
 # bytes: the league at equal bytes (issue 32, scripts/bytes_league.py): bunny00, fandisk, elephant and the
 # generated tree baked with PNG, WebP and KTX2 textures; each impostor level against the best mesh LOD of
 # at most its bytes, at the largest chain band within its max_screen_pixels (~2 min).
-# usage: scripts/bench.sh [io|las|analysis|amg|render|bake|sample|cluster|batch|fidelity|chain|holds|scans|textures|bytes|big|growth]...   (default: all but big and growth)
+# usage: scripts/bench.sh [io|las|analysis|amg|render|bake|sample|cluster|batch|fidelity|chain|holds|far|scans|textures|bytes|big|growth]...   (default: all but big and growth)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/build.sh >/dev/null
 what=("$@")
-[[ ${#what[@]} -eq 0 ]] && what=(io las analysis amg render bake sample cluster batch fidelity chain holds scans textures bytes)
+[[ ${#what[@]} -eq 0 ]] && what=(io las analysis amg render bake sample cluster batch fidelity chain holds far scans textures bytes)
 for w in "${what[@]}"; do
   case $w in
     io) build/bin/qf-bench-io ;;
@@ -274,6 +279,18 @@ for w in "${what[@]}"; do
       done
       python3 scripts/chain_table.py build/bin "$models" "$tmp" bunny00.off fandisk.off "${assets[@]}"
       rm -rf "$tmp" ;;
+    far)
+      models=$(scripts/fetch-models.sh bunny00.off | tail -1)
+      tmp=$(mktemp -d)
+      build/bin/qf-bake generate oak --seed 5 -o "$tmp/oak5.glb" -q
+      build/bin/qf-bake generate bush --seed 6 -o "$tmp/bush6.glb" -q
+      build/bin/qf-bake generate lattice --seed 8 -o "$tmp/lattice8.glb" -q
+      build/bin/qf-bake generate bare-tree --seed 9 -o "$tmp/bare9.glb" -q
+      assets=("$tmp/oak5.glb" "$tmp/bush6.glb" "$tmp/lattice8.glb" "$tmp/bare9.glb")
+      f=/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb
+      if [[ -f $f ]]; then assets+=("$f"); else echo "(assimp-testmodels not installed: $(basename "$f") skipped)"; fi
+      python3 scripts/far_table.py build/bin "$tmp" "${assets[@]}" "$models/bunny00.off"
+      rm -rf "$tmp" ;;
     holds)
       # Issue 48: every file's claimed size checked by qf-render eval, and the chains, on assets no test
       # uses: seeded thin structures (a lattice tower, a bare tree), assimp's textured cube and engine,
@@ -288,7 +305,7 @@ for w in "${what[@]}"; do
       done
       python3 scripts/holds_table.py build/bin "$tmp" "${assets[@]}" "$models/bunny00.off" "$models/elephant.off"
       rm -rf "$tmp" ;;
-    *) echo "unknown benchmark '$w' (io, las, analysis, amg, render, bake, sample, cluster, batch, fidelity, chain, holds, scans, textures, big)" >&2; exit 2 ;;
+    *) echo "unknown benchmark '$w' (io, las, analysis, amg, render, bake, sample, cluster, batch, fidelity, chain, holds, far, scans, textures, big)" >&2; exit 2 ;;
   esac
   echo
 done
