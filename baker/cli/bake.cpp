@@ -30,7 +30,9 @@ CommandSpec bake_spec() {
                    "as alpha, normal maps when the input has normals) in one atlas, and the QF_impostor_level\n"
                    "extension (schemas/QF_impostor_level). manifest.json lists the levels; report.json the\n"
                    "settings, times and counts; report.html shows it all in a browser (see --no-report-html).\n"
-                   "Nothing is left half-written if the bake fails.",
+                   "Nothing is left half-written if the bake fails. A glTF input may come compressed from\n"
+                   "glTF-Transform or gltfpack (meshopt, quantized, Draco, KTX2 or WebP textures): it is decoded;\n"
+                   "one requiring any other extension is refused (exit 1).",
                    {output_option("OUTDIR", "output folder (created if needed); required"),
                     {"primitives", 'n', "N,N,...", "1000,300,100,30", "bake the levels nearest these numbers of primitives"},
                     {"levels", 0, "K,K,...", "", "instead: these level numbers (0 = points, negative = from the coarsest)"},
