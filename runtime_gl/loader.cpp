@@ -165,7 +165,7 @@ tinygltf::Model parse_gltf(const std::string& path, const std::vector<std::uint8
     if (!read_regular_file(&file, &err, path, nullptr)) fail(path, "parse", err.empty() ? "not a readable file" : err.substr(0, err.size() - 1));
   }
   const std::vector<std::uint8_t>& raw = glb ? *glb : file;
-  const std::vector<std::uint8_t> prepared = gltf_input::prepared_for_tinygltf(raw);
+  const std::vector<std::uint8_t> prepared = gltf_input::prepared_for_tinygltf(raw, {path, "render.gltf", 0});
   const std::vector<std::uint8_t>& bytes = prepared.empty() ? raw : prepared;
   tinygltf::Model m;
   tinygltf::TinyGLTF loader;
@@ -275,7 +275,15 @@ ClusterScene cluster_scene(const tinygltf::Model& m, const std::string& path) {
         if (nrm.size() != pos.size()) fail(path, "mesh", "cluster LOD triangles need one NORMAL per vertex");
         place(placed[mi], pos, &nrm);
         const auto base = static_cast<std::uint32_t>(s.mesh.positions.size());
-        for (std::size_t i = 0; i < pos.size(); ++i) s.mesh.indices.push_back(base + static_cast<std::uint32_t>(i));
+        // The baker writes the triangles unindexed; a Draco-compressed variant comes back indexed.
+        if (prim.indices >= 0) {
+          for (std::uint32_t i : read.indices(prim.indices)) {
+            if (i >= pos.size()) fail(path, "mesh", "index " + std::to_string(i) + " out of range (" + std::to_string(pos.size()) + " vertices)");
+            s.mesh.indices.push_back(base + i);
+          }
+        } else {
+          for (std::size_t i = 0; i < pos.size(); ++i) s.mesh.indices.push_back(base + static_cast<std::uint32_t>(i));
+        }
         s.mesh.positions.insert(s.mesh.positions.end(), pos.begin(), pos.end());
         s.mesh.normals.insert(s.mesh.normals.end(), nrm.begin(), nrm.end());
         s.mesh.colors.insert(s.mesh.colors.end(), col.begin(), col.end());

@@ -64,6 +64,39 @@ bool drop_draco_indices(nlohmann::json& j) {
   return changed;
 }
 
+// tinygltf holds an extension's integers as int (2^40 became 0): the numbers of the meshopt and
+// Draco objects are checked here, exactly, to be integers tinygltf keeps as they are.
+void check_numbers(const nlohmann::json& object, const std::string& where, const DecodeContext& c, const char* code) {
+  for (const auto& [key, v] : object.items()) {
+    if (key == kKeptIndices) continue;
+    if (v.is_object()) check_numbers(v, where + "." + key, c, code);
+    if (v.is_number() && !(v.is_number_unsigned() && v.get<std::uint64_t>() <= 0x7FFFFFFF))
+      fail(c, code, where, key + " " + v.dump() + " is not an integer from 0 to 2147483647");
+  }
+}
+
+void check_extension_numbers(const nlohmann::json& j, const DecodeContext& c) {
+  if (j.contains("bufferViews") && j["bufferViews"].is_array())
+    for (std::size_t i = 0; i < j["bufferViews"].size(); ++i) {
+      const nlohmann::json& v = j["bufferViews"][i];
+      if (v.is_object() && v.contains("extensions") && v["extensions"].is_object() && v["extensions"].contains(kMeshopt) &&
+          v["extensions"][kMeshopt].is_object())
+        check_numbers(v["extensions"][kMeshopt], "bufferViews[" + std::to_string(i) + "].extensions." + kMeshopt, c, "meshopt");
+    }
+  if (!j.contains("meshes") || !j["meshes"].is_array()) return;
+  for (std::size_t i = 0; i < j["meshes"].size(); ++i) {
+    const nlohmann::json& mesh = j["meshes"][i];
+    if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array()) continue;
+    for (std::size_t k = 0; k < mesh["primitives"].size(); ++k) {
+      const nlohmann::json& p = mesh["primitives"][k];
+      if (p.is_object() && p.contains("extensions") && p["extensions"].is_object() && p["extensions"].contains(kDraco) &&
+          p["extensions"][kDraco].is_object())
+        check_numbers(p["extensions"][kDraco], "meshes[" + std::to_string(i) + "].primitives[" + std::to_string(k) + "].extensions." + kDraco, c,
+                      "draco");
+    }
+  }
+}
+
 // Makes every meshopt fallback buffer one byte of a data URI; returns whether anything changed.
 bool shrink_fallback_buffers(nlohmann::json& j) {
   bool changed = false;
@@ -86,12 +119,13 @@ const std::vector<std::string>& decoded_extensions() {
   return names;
 }
 
-std::vector<std::uint8_t> prepared_for_tinygltf(ByteView bytes) {
+std::vector<std::uint8_t> prepared_for_tinygltf(ByteView bytes, const DecodeContext& c) {
   const std::string_view view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
   if (view.find(kDraco) == std::string_view::npos && view.find(kMeshopt) == std::string_view::npos) return {};
   std::size_t json_start = 0, json_length = 0;
   nlohmann::json j = file_json(bytes, json_start, json_length);
   if (j.is_null()) return {};  // tinygltf says why
+  check_extension_numbers(j, c);
   const bool draco = drop_draco_indices(j), meshopt = shrink_fallback_buffers(j);
   if (!draco && !meshopt) return {};
   std::string json = j.dump();
@@ -178,6 +212,12 @@ std::vector<MeshoptJob> meshopt_jobs(const tinygltf::Model& m, const DecodeConte
     } catch (const std::exception& ex) {
       fail(c, "meshopt", where, ex.what());
     }
+    // A codec's output per input byte is bounded (meshopt's vertex codec: a 2-bit header per 16
+    // bytes at best, 64:1; its index codecs: at least a byte per triangle or index), so a stream
+    // claiming more than 1024 times its bytes is refused before anything is sized by the claim.
+    if (meshopt_decoded_bytes(job.desc) / 1024 > job.length + 64)
+      fail(c, "meshopt", where, "a stream of " + std::to_string(job.length) + " bytes cannot hold count x byteStride = " +
+                                     std::to_string(meshopt_decoded_bytes(job.desc)) + " bytes");
     if (m.bufferViews[i].byteLength > meshopt_decoded_bytes(job.desc))
       fail(c, "meshopt", where, "the bufferView's byteLength " + std::to_string(m.bufferViews[i].byteLength) +
                                      " is more than count x byteStride " + std::to_string(meshopt_decoded_bytes(job.desc)));

@@ -23,21 +23,23 @@ namespace qf::gltf_input {
 // The extensions the readers decode, as a file's extensionsRequired names them.
 const std::vector<std::string>& decoded_extensions();
 
-// The bytes of a .gltf or .glb rewritten where tinygltf 2.7 (Debian's, built without Draco) would
-// refuse them, or empty when there is nothing to rewrite: a Draco primitive's `indices` (an accessor
-// without a bufferView, by design) is dropped, its triangles come from the stream (the accessor's
-// index is kept in the extension object, to check the stream's claimed count); a meshopt fallback
-// buffer (EXT_meshopt_compression "fallback": no data, or data nobody needs) becomes one byte, so
-// that tinygltf neither fails on it ("Invalid byteLength") nor reads the BIN chunk into it.
-// Call it after the JSON's depth is checked (core/input_limits.h), before tinygltf parses.
-std::vector<std::uint8_t> prepared_for_tinygltf(ByteView bytes);
-
 // What errors name: InputError(prefix + ".meshopt" / ".draco" / ".memory", path, where, what).
 struct DecodeContext {
   std::string path;
   std::string prefix;            // "gltf" (baker) or "render.gltf" (runtime)
   std::size_t memory_limit = 0;  // as core/input_limits.h memory_limit takes it (0: memory available)
 };
+
+// The bytes of a .gltf or .glb rewritten where tinygltf 2.7 (Debian's, built without Draco) would
+// refuse them, or empty when there is nothing to rewrite: a Draco primitive's `indices` (an accessor
+// without a bufferView, by design) is dropped, its triangles come from the stream (the accessor's
+// index is kept in the extension object, to check the stream's claimed count); a meshopt fallback
+// buffer (EXT_meshopt_compression "fallback": no data, or data nobody needs) becomes one byte, so
+// that tinygltf neither fails on it ("Invalid byteLength") nor reads the BIN chunk into it.
+// The compressed objects' numbers are checked first (tinygltf keeps an extension's integers as int:
+// a count of 2^40 became 0): InputError when one is not an integer from 0 to 2^31 - 1. Call it
+// after the JSON's depth is checked (core/input_limits.h), before tinygltf parses.
+std::vector<std::uint8_t> prepared_for_tinygltf(ByteView bytes, const DecodeContext& c);
 
 // Decodes, in `m` as tinygltf parsed it from prepared_for_tinygltf's bytes: every meshopt-compressed
 // bufferView into a buffer of its own (count x byteStride bytes), then every Draco primitive into

@@ -156,7 +156,7 @@ tinygltf::Model parse(ByteView bytes, const std::string& path, const ReadOptions
     io::check_gltf_json_types(j, path);
     check_references(j, path, root, folder);
     // What tinygltf would refuse of a Draco or meshopt file (gltf/compressed_gltf.h).
-    rewritten = gltf_input::prepared_for_tinygltf(bytes);
+    rewritten = gltf_input::prepared_for_tinygltf(bytes, {path, "gltf", options.memory_limit});
     if (!rewritten.empty()) bytes = ByteView(rewritten.data(), rewritten.size());
   }
   tinygltf::Model m;

@@ -140,9 +140,11 @@ def compressed_glb(kind, payload, count=3, stride=12, mode="ATTRIBUTES", corners
     bin_ = TRIANGLE + b"\0\0" + payload
     if kind == "meshopt":
         g["buffers"] = [{"byteLength": len(bin_)}, {"byteLength": count * stride, "extensions": {"EXT_meshopt_compression": {"fallback": True}}}]
-        g["bufferViews"][0] = {"buffer": 1, "byteOffset": 0, "byteLength": count * stride, "byteStride": stride,
+        g["bufferViews"][0] = {"buffer": 1, "byteOffset": 0, "byteLength": count * stride,
                                "extensions": {"EXT_meshopt_compression": {"buffer": 0, "byteOffset": len(TRIANGLE) + 2, "byteLength": len(payload),
                                                                           "byteStride": stride, "count": count, "mode": mode}}}
+        if mode == "ATTRIBUTES" and stride % 4 == 0:
+            g["bufferViews"][0]["byteStride"] = stride
         g["accessors"][0]["count"] = count
     else:
         g["buffers"] = [{"byteLength": len(bin_)}]
@@ -259,6 +261,7 @@ def write(out, seed):
     c.case("meshopt_truncated", "a.glb", compressed_glb("meshopt", b"\xa0" + bytes(rng.randrange(256) for _ in range(5))), programs="bake,render")
     c.case("meshopt_noise", "a.glb", compressed_glb("meshopt", b"\xa0" + bytes(rng.randrange(256) for _ in range(64))), programs="bake,render")
     c.case("meshopt_count_2_40", "a.glb", compressed_glb("meshopt", b"\xa0" + b"\0" * 32, count=2 ** 40, stride=16), programs="bake,render")
+    c.case("meshopt_count_2_26", "a.glb", compressed_glb("meshopt", b"\xa0" + b"\0" * 32, count=2 ** 26, stride=64), programs="bake,render")
     c.case("meshopt_stride_6", "a.glb", compressed_glb("meshopt", b"\xa0" + b"\0" * 32, stride=6), programs="bake,render")
     c.case("meshopt_triangles_4", "a.glb", compressed_glb("meshopt", b"\xe1" + b"\0" * 32, count=4, stride=2, mode="TRIANGLES"), programs="bake,render")
     # A stream claiming 2^30 triangles with an indices accessor that agrees (the memory check refuses
