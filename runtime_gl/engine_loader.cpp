@@ -81,19 +81,7 @@ EngineMaterial engine_material(const tinygltf::Model& m, int index, int& uv_set)
   wraps_of(pbr.baseColorTexture.index, out.base_wrap_s, out.base_wrap_t);
   wraps_of(mat.normalTexture.index, out.normal_wrap_s, out.normal_wrap_t);
   // KHR_texture_transform of the base colour texture (three.js applies it): uv' = T R S uv.
-  const auto tt = pbr.baseColorTexture.extensions.find("KHR_texture_transform");
-  if (tt != pbr.baseColorTexture.extensions.end() && tt->second.IsObject()) {
-    const tinygltf::Value& e = tt->second;
-    auto num = [](const tinygltf::Value& v, int i, double fallback) {
-      return v.IsArray() && static_cast<std::size_t>(i) < v.ArrayLen() && v.Get(i).IsNumber() ? v.Get(i).GetNumberAsDouble() : fallback;
-    };
-    const double r = e.Get("rotation").IsNumber() ? e.Get("rotation").GetNumberAsDouble() : 0.0;
-    const double sx = num(e.Get("scale"), 0, 1), sy = num(e.Get("scale"), 1, 1);
-    out.uv_transform = {static_cast<float>(std::cos(r) * sx), static_cast<float>(std::sin(r) * sy),
-                        static_cast<float>(num(e.Get("offset"), 0, 0)), static_cast<float>(-std::sin(r) * sx),
-                        static_cast<float>(std::cos(r) * sy), static_cast<float>(num(e.Get("offset"), 1, 0))};
-    if (e.Get("texCoord").IsInt()) uv_set = e.Get("texCoord").GetNumberAsInt();
-  }
+  out.uv_transform = base_uv_transform(m, index, uv_set);
   out.metallic = static_cast<float>(pbr.metallicFactor);
   out.roughness = static_cast<float>(pbr.roughnessFactor);
   out.normal_texture = image_of(mat.normalTexture.index);
@@ -202,6 +190,26 @@ EnginePrimitive engine_primitive(const AccessorReader& read, const tinygltf::Pri
 }
 
 }  // namespace
+
+std::array<float, 6> base_uv_transform(const tinygltf::Model& m, int material, int& uv_set) {
+  std::array<float, 6> out{1, 0, 0, 0, 1, 0};
+  if (material < 0 || material >= static_cast<int>(m.materials.size())) return out;
+  const tinygltf::TextureInfo& info = m.materials[static_cast<std::size_t>(material)].pbrMetallicRoughness.baseColorTexture;
+  const auto tt = info.extensions.find("KHR_texture_transform");
+  if (tt == info.extensions.end() || !tt->second.IsObject()) return out;
+  const tinygltf::Value& e = tt->second;
+  auto num = [](const tinygltf::Value& v, int i, double fallback) {
+    return v.IsArray() && static_cast<std::size_t>(i) < v.ArrayLen() && v.Get(i).IsNumber() ? v.Get(i).GetNumberAsDouble() : fallback;
+  };
+  const double r = e.Get("rotation").IsNumber() ? e.Get("rotation").GetNumberAsDouble() : 0.0;
+  const double sx = num(e.Get("scale"), 0, 1), sy = num(e.Get("scale"), 1, 1);
+  out = {static_cast<float>(std::cos(r) * sx), static_cast<float>(std::sin(r) * sy), static_cast<float>(num(e.Get("offset"), 0, 0)),
+         static_cast<float>(-std::sin(r) * sx), static_cast<float>(std::cos(r) * sy), static_cast<float>(num(e.Get("offset"), 1, 0))};
+  if (e.Get("texCoord").IsInt()) uv_set = e.Get("texCoord").GetNumberAsInt();
+  return out;
+}
+
+void transform_uv_pairs(const std::array<float, 6>& k, std::vector<float>& uvs) { transform_uvs(k, uvs); }
 
 std::vector<Mat4d> mesh_transforms(const tinygltf::Model& m) {
   const Mat4d identity{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};

@@ -149,6 +149,12 @@ using Mat4d = std::array<double, 16>;
 // quantize and meshopt (KHR_mesh_quantization) move the dequantization into the node.
 std::vector<Mat4d> mesh_transforms(const tinygltf::Model& m);
 bool is_identity(const Mat4d& w);
+// The KHR_texture_transform of material `material`'s base colour texture as u' = k0 u + k1 v + k2,
+// v' = k3 u + k4 v + k5 (the identity without one; gltfpack puts its texture-coordinate
+// dequantization there); `uv_set` gets its texCoord when it names one. Applied to uv pairs by
+// transform_uv_pairs.
+std::array<float, 6> base_uv_transform(const tinygltf::Model& m, int material, int& uv_set);
+void transform_uv_pairs(const std::array<float, 6>& k, std::vector<float>& uvs);
 // xyz triples placed by `w`: points by it, directions by its cofactor matrix, normalized.
 void place_points(const Mat4d& w, std::vector<float>& xyz);
 void place_directions(const Mat4d& w, std::vector<float>& xyz);

@@ -408,8 +408,12 @@ std::vector<TriangleGroup> expand_triangles(const tinygltf::Model& m, const std:
       std::vector<float> pos = read.floats(pos_it->second, 3);
       // Where its node places it (a quantized level's dequantization; a baked level has none).
       if (!is_identity(placed[mi])) place_points(placed[mi], pos);
-      const auto uv_it = prim.attributes.find("TEXCOORD_0");
-      const std::vector<float> uv = uv_it == prim.attributes.end() ? std::vector<float>() : read.floats(uv_it->second, 2);
+      // The base colour's texture coordinates, through its KHR_texture_transform (gltfpack's dequantization).
+      int uv_set = 0;
+      const std::array<float, 6> uvt = base_uv_transform(m, prim.material, uv_set);
+      const auto uv_it = prim.attributes.find("TEXCOORD_" + std::to_string(uv_set));
+      std::vector<float> uv = uv_it == prim.attributes.end() ? std::vector<float>() : read.floats(uv_it->second, 2);
+      transform_uv_pairs(uvt, uv);
       std::vector<std::uint32_t> idx;
       if (prim.indices >= 0) {
         idx = read.indices(prim.indices);
