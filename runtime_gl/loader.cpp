@@ -16,8 +16,6 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <limits>
 #include <optional>
 #include <type_traits>
@@ -82,25 +80,6 @@ bool load_image_checked(tinygltf::Image* image, const int index, std::string* er
   return tinygltf::LoadImageData(image, index, err, warn, width, height, bytes, size, nullptr);
 }
 
-// The JSON of a glTF file checked for depth before tinygltf parses it (its parser recurses per
-// level: ~14,500 levels in 30 KB overflowed the stack): a .gltf's whole text, a .glb's JSON chunk.
-void check_file_json_depth(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::vector<std::uint8_t> bytes(20);
-  in.read(reinterpret_cast<char*>(bytes.data()), 20);
-  bytes.resize(static_cast<std::size_t>(in.gcount()));
-  if (bytes.size() == 20 && std::memcmp(bytes.data(), "glTF", 4) == 0) {
-    std::uint32_t length = 0;
-    std::memcpy(&length, bytes.data() + 12, 4);
-    const std::uintmax_t size = std::filesystem::file_size(path);
-    bytes.resize(20 + static_cast<std::size_t>(std::min<std::uintmax_t>(length, size > 20 ? size - 20 : 0)));
-    in.read(reinterpret_cast<char*>(bytes.data() + 20), static_cast<std::streamsize>(bytes.size() - 20));
-  } else {
-    bytes.insert(bytes.end(), std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  }
-  check_gltf_json_depth(bytes.data(), bytes.size(), path, "render.gltf");
-}
-
 // tinygltf opens a .gltf and its external buffers and images through these instead of its
 // defaults: no "~" or "$VAR" expansion (the default runs wordexp on the file's text), and only
 // regular files, opened without blocking (a FIFO named as a buffer hung the reader).
@@ -157,14 +136,15 @@ void check_required(const tinygltf::Model& m, const std::string& path) {
 // meshopt file), and the parsed model through decode_compressed.
 tinygltf::Model parse_gltf(const std::string& path, const std::vector<std::uint8_t>* glb) {
   if (!glb && !std::filesystem::is_regular_file(path)) throw InputError("file.unreadable", path, "", "cannot open: no such file");
-  if (glb) check_gltf_json_depth(glb->data(), glb->size(), path, "render.gltf");
-  else check_file_json_depth(path);
   std::vector<std::uint8_t> file;
   if (!glb) {
     std::string err;
     if (!read_regular_file(&file, &err, path, nullptr)) fail(path, "parse", err.empty() ? "not a readable file" : err.substr(0, err.size() - 1));
   }
   const std::vector<std::uint8_t>& raw = glb ? *glb : file;
+  // The JSON's depth before any parser (tinygltf's recurses per level: ~14,500 levels in 30 KB
+  // overflowed the stack): a .gltf's whole text, a .glb's JSON chunk.
+  check_gltf_json_depth(raw.data(), raw.size(), path, "render.gltf");
   const std::vector<std::uint8_t> prepared = gltf_input::prepared_for_tinygltf(raw, {path, "render.gltf", 0});
   const std::vector<std::uint8_t>& bytes = prepared.empty() ? raw : prepared;
   tinygltf::Model m;
