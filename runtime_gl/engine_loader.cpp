@@ -26,8 +26,6 @@ std::vector<float> attribute_floats(const AccessorReader& read, int index, int c
   return out;
 }
 
-using Mat4d = std::array<double, 16>;  // column-major, as glTF stores node matrices
-
 Mat4d multiply(const Mat4d& a, const Mat4d& b) {
   Mat4d r{};
   for (int c = 0; c < 4; ++c)
@@ -83,19 +81,7 @@ EngineMaterial engine_material(const tinygltf::Model& m, int index, int& uv_set)
   wraps_of(pbr.baseColorTexture.index, out.base_wrap_s, out.base_wrap_t);
   wraps_of(mat.normalTexture.index, out.normal_wrap_s, out.normal_wrap_t);
   // KHR_texture_transform of the base colour texture (three.js applies it): uv' = T R S uv.
-  const auto tt = pbr.baseColorTexture.extensions.find("KHR_texture_transform");
-  if (tt != pbr.baseColorTexture.extensions.end() && tt->second.IsObject()) {
-    const tinygltf::Value& e = tt->second;
-    auto num = [](const tinygltf::Value& v, int i, double fallback) {
-      return v.IsArray() && static_cast<std::size_t>(i) < v.ArrayLen() && v.Get(i).IsNumber() ? v.Get(i).GetNumberAsDouble() : fallback;
-    };
-    const double r = e.Get("rotation").IsNumber() ? e.Get("rotation").GetNumberAsDouble() : 0.0;
-    const double sx = num(e.Get("scale"), 0, 1), sy = num(e.Get("scale"), 1, 1);
-    out.uv_transform = {static_cast<float>(std::cos(r) * sx), static_cast<float>(std::sin(r) * sy),
-                        static_cast<float>(num(e.Get("offset"), 0, 0)), static_cast<float>(-std::sin(r) * sx),
-                        static_cast<float>(std::cos(r) * sy), static_cast<float>(num(e.Get("offset"), 1, 0))};
-    if (e.Get("texCoord").IsInt()) uv_set = e.Get("texCoord").GetNumberAsInt();
-  }
+  out.uv_transform = base_uv_transform(m, index, uv_set);
   out.metallic = static_cast<float>(pbr.metallicFactor);
   out.roughness = static_cast<float>(pbr.roughnessFactor);
   out.normal_texture = image_of(mat.normalTexture.index);
@@ -204,6 +190,80 @@ EnginePrimitive engine_primitive(const AccessorReader& read, const tinygltf::Pri
 }
 
 }  // namespace
+
+std::array<float, 6> base_uv_transform(const tinygltf::Model& m, int material, int& uv_set) {
+  std::array<float, 6> out{1, 0, 0, 0, 1, 0};
+  if (material < 0 || material >= static_cast<int>(m.materials.size())) return out;
+  const tinygltf::TextureInfo& info = m.materials[static_cast<std::size_t>(material)].pbrMetallicRoughness.baseColorTexture;
+  const auto tt = info.extensions.find("KHR_texture_transform");
+  if (tt == info.extensions.end() || !tt->second.IsObject()) return out;
+  const tinygltf::Value& e = tt->second;
+  auto num = [](const tinygltf::Value& v, int i, double fallback) {
+    return v.IsArray() && static_cast<std::size_t>(i) < v.ArrayLen() && v.Get(i).IsNumber() ? v.Get(i).GetNumberAsDouble() : fallback;
+  };
+  const double r = e.Get("rotation").IsNumber() ? e.Get("rotation").GetNumberAsDouble() : 0.0;
+  const double sx = num(e.Get("scale"), 0, 1), sy = num(e.Get("scale"), 1, 1);
+  out = {static_cast<float>(std::cos(r) * sx), static_cast<float>(std::sin(r) * sy), static_cast<float>(num(e.Get("offset"), 0, 0)),
+         static_cast<float>(-std::sin(r) * sx), static_cast<float>(std::cos(r) * sy), static_cast<float>(num(e.Get("offset"), 1, 0))};
+  if (e.Get("texCoord").IsInt()) uv_set = e.Get("texCoord").GetNumberAsInt();
+  return out;
+}
+
+void transform_uv_pairs(const std::array<float, 6>& k, std::vector<float>& uvs) { transform_uvs(k, uvs); }
+
+std::vector<Mat4d> mesh_transforms(const tinygltf::Model& m) {
+  const Mat4d identity{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+  std::vector<Mat4d> out(m.meshes.size(), identity);
+  std::vector<char> placed(m.meshes.size(), 0), seen(m.nodes.size(), 0), child(m.nodes.size(), 0);
+  for (const tinygltf::Node& n : m.nodes)
+    for (int c : n.children)
+      if (c >= 0 && c < static_cast<int>(m.nodes.size())) child[static_cast<std::size_t>(c)] = 1;
+  std::vector<int> roots = scene_roots(m);
+  for (std::size_t i = 0; i < m.nodes.size(); ++i)
+    if (!child[i]) roots.push_back(static_cast<int>(i));
+  // Depth first with a stack of our own; a node is entered once (a cycle or a shared child ends there).
+  std::vector<std::pair<int, Mat4d>> stack;
+  for (auto r = roots.rbegin(); r != roots.rend(); ++r) stack.push_back({*r, identity});
+  while (!stack.empty()) {
+    const auto [node, parent] = stack.back();
+    stack.pop_back();
+    if (node < 0 || node >= static_cast<int>(m.nodes.size()) || seen[static_cast<std::size_t>(node)]) continue;
+    seen[static_cast<std::size_t>(node)] = 1;
+    const tinygltf::Node& n = m.nodes[static_cast<std::size_t>(node)];
+    const Mat4d world = multiply(parent, local_transform(n));
+    if (n.mesh >= 0 && n.mesh < static_cast<int>(m.meshes.size()) && !placed[static_cast<std::size_t>(n.mesh)])
+      placed[static_cast<std::size_t>(n.mesh)] = 1, out[static_cast<std::size_t>(n.mesh)] = world;
+    for (auto c = n.children.rbegin(); c != n.children.rend(); ++c) stack.push_back({*c, world});
+  }
+  return out;
+}
+
+bool is_identity(const Mat4d& w) {
+  for (std::size_t i = 0; i < 16; ++i)
+    if (w[i] != (i % 5 == 0 ? 1.0 : 0.0)) return false;
+  return true;
+}
+
+void place_points(const Mat4d& w, std::vector<float>& xyz) {
+  for (std::size_t v = 0; v + 2 < xyz.size(); v += 3) {
+    const double x = xyz[v], y = xyz[v + 1], z = xyz[v + 2];
+    for (std::size_t r = 0; r < 3; ++r) xyz[v + r] = static_cast<float>(w[r] * x + w[4 + r] * y + w[8 + r] * z + w[12 + r]);
+  }
+}
+
+void place_directions(const Mat4d& w, std::vector<float>& xyz) {
+  auto at = [&](int r, int c) { return w[static_cast<std::size_t>(c * 4 + r)]; };
+  auto cof = [&](int r, int c) {
+    const int r1 = (r + 1) % 3, r2 = (r + 2) % 3, c1 = (c + 1) % 3, c2 = (c + 2) % 3;
+    return at(r1, c1) * at(r2, c2) - at(r1, c2) * at(r2, c1);
+  };
+  for (std::size_t v = 0; v + 2 < xyz.size(); v += 3) {
+    Vec3f t;
+    for (int r = 0; r < 3; ++r) t[r] = static_cast<float>(cof(r, 0) * xyz[v] + cof(r, 1) * xyz[v + 1] + cof(r, 2) * xyz[v + 2]);
+    t = normalized(t);
+    std::copy_n(&t.x, 3, &xyz[v]);
+  }
+}
 
 std::vector<int> scene_roots(const tinygltf::Model& m) {
   const int scene = m.defaultScene >= 0 ? m.defaultScene : (m.scenes.empty() ? -1 : 0);

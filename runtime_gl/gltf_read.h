@@ -6,6 +6,7 @@
 #include <tiny_gltf.h>
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <limits>
 #include <string>
@@ -15,6 +16,7 @@
 #include "core/error.h"
 #include "core/gltf_component.h"
 #include "core/gltf_keys.h"
+#include "gltf/compressed_gltf.h"
 #include "runtime_gl/engine_scene.h"
 #include "runtime_gl/ktx2_image.h"
 #include "runtime_gl/webp_image.h"
@@ -130,26 +132,32 @@ inline Image to_image(const tinygltf::Image& img, const std::string& path) {
   return out;
 }
 
-// The image of a texture's extension `name` ({"source": index}); -1 for none.
-inline int extension_source(const tinygltf::Texture& t, const char* name) {
-  const auto ext = t.extensions.find(name);
-  if (ext == t.extensions.end() || !ext->second.IsObject() || !ext->second.Has("source")) return -1;
-  const tinygltf::Value& s = ext->second.Get("source");
-  const double d = s.IsNumber() ? s.GetNumberAsDouble() : -1;
-  return d >= 0 && d < 1e9 && d == static_cast<double>(static_cast<int>(d)) ? static_cast<int>(d) : -1;
-}
-
 // The image a texture shows, as an engine that reads both extensions picks it: its
-// KHR_texture_basisu or EXT_texture_webp image (a KTX2- or WebP-only texture names its image in the
-// extension alone; with a fallback, the extension's image is the one shown), else its source; -1
-// for none.
-inline int texture_source(const tinygltf::Texture& t) {
-  for (const char* name : {kBasisuExtension, kWebpExtension})
-    if (const int s = extension_source(t, name); s >= 0) return s;
-  return t.source;
-}
+// KHR_texture_basisu or EXT_texture_webp image, else its source; -1 for none (gltf_input's rule,
+// shared with the baker's reader).
+inline int texture_source(const tinygltf::Texture& t) { return gltf_input::texture_image(t); }
 
 }  // namespace gltf
+
+// A column-major 4x4 transform, as glTF stores node matrices.
+using Mat4d = std::array<double, 16>;
+
+// Per mesh, the world transform of the first node that shows it, depth first from the default
+// scene's roots and then from every other root node (MSFT_lod's coarser levels are nodes in no
+// scene); the identity for a mesh no node shows. The item views (impostor levels, point impostors,
+// cluster LODs) place their vertices by it: a bake has no node transforms, but glTF-Transform's
+// quantize and meshopt (KHR_mesh_quantization) move the dequantization into the node.
+std::vector<Mat4d> mesh_transforms(const tinygltf::Model& m);
+bool is_identity(const Mat4d& w);
+// The KHR_texture_transform of material `material`'s base colour texture as u' = k0 u + k1 v + k2,
+// v' = k3 u + k4 v + k5 (the identity without one; gltfpack puts its texture-coordinate
+// dequantization there); `uv_set` gets its texCoord when it names one. Applied to uv pairs by
+// transform_uv_pairs.
+std::array<float, 6> base_uv_transform(const tinygltf::Model& m, int material, int& uv_set);
+void transform_uv_pairs(const std::array<float, 6>& k, std::vector<float>& uvs);
+// xyz triples placed by `w`: points by it, directions by its cofactor matrix, normalized.
+void place_points(const Mat4d& w, std::vector<float>& xyz);
+void place_directions(const Mat4d& w, std::vector<float>& xyz);
 
 // The root nodes of the default scene (scene 0 when none is named; none when there are no scenes).
 std::vector<int> scene_roots(const tinygltf::Model& m);

@@ -16,8 +16,6 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <limits>
 #include <optional>
 #include <type_traits>
@@ -26,6 +24,7 @@
 #include "core/error.h"
 #include "core/gltf_keys.h"
 #include "core/input_limits.h"
+#include "gltf/compressed_gltf.h"
 #include "io/asset_files.h"
 
 namespace qf::render {
@@ -82,25 +81,6 @@ bool load_image_checked(tinygltf::Image* image, const int index, std::string* er
   }
   // PNG and JPEG: decoded here by stb_image.
   return tinygltf::LoadImageData(image, index, err, warn, width, height, bytes, size, nullptr);
-}
-
-// The JSON of a glTF file checked for depth before tinygltf parses it (its parser recurses per
-// level: ~14,500 levels in 30 KB overflowed the stack): a .gltf's whole text, a .glb's JSON chunk.
-void check_file_json_depth(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::vector<std::uint8_t> bytes(20);
-  in.read(reinterpret_cast<char*>(bytes.data()), 20);
-  bytes.resize(static_cast<std::size_t>(in.gcount()));
-  if (bytes.size() == 20 && std::memcmp(bytes.data(), "glTF", 4) == 0) {
-    std::uint32_t length = 0;
-    std::memcpy(&length, bytes.data() + 12, 4);
-    const std::uintmax_t size = std::filesystem::file_size(path);
-    bytes.resize(20 + static_cast<std::size_t>(std::min<std::uintmax_t>(length, size > 20 ? size - 20 : 0)));
-    in.read(reinterpret_cast<char*>(bytes.data() + 20), static_cast<std::streamsize>(bytes.size() - 20));
-  } else {
-    bytes.insert(bytes.end(), std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  }
-  check_gltf_json_depth(bytes.data(), bytes.size(), path, "render.gltf");
 }
 
 // tinygltf opens a .gltf and its external buffers and images through these instead of its
@@ -169,39 +149,57 @@ bool read_regular_file(std::vector<unsigned char>* out, std::string* err, const 
 
 bool write_no_file(std::string*, const std::string&, const std::vector<unsigned char>&, void*) { return false; }
 
+// The extensions a file may require: what the runtime draws (KHR_texture_transform: the engine
+// view applies it) and what it decodes (gltf/compressed_gltf.h). Any other required one is refused
+// by name: an engine that does not know an extension it requires must not draw the file.
+void check_required(const tinygltf::Model& m, const std::string& path) {
+  std::vector<std::string> known = gltf_input::decoded_extensions();
+  known.push_back("KHR_texture_transform");
+  for (const std::string& e : m.extensionsRequired)
+    if (std::find(known.begin(), known.end(), e) == known.end()) {
+      std::string list;
+      for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+      throw InputError("render.gltf.unsupported_extension", path, "extensionsRequired",
+                       "requires the extension " + e + ", which qf-render does not read (it reads: " + list + ")");
+    }
+}
+
 // Parses a glTF file, or (`glb`, a .glb file's bytes) the same from memory; errors name `path`.
+// The bytes go through gltf_input::prepared_for_tinygltf first (what tinygltf refuses of a Draco or
+// meshopt file), and the parsed model through decode_compressed.
 tinygltf::Model parse_gltf(const std::string& path, const std::vector<std::uint8_t>* glb) {
   if (!glb && !std::filesystem::is_regular_file(path)) throw InputError("file.unreadable", path, "", "cannot open: no such file");
-  if (glb) check_gltf_json_depth(glb->data(), glb->size(), path, "render.gltf");
-  else check_file_json_depth(path);
+  // A file's references stay in its folder (bytes in memory, the baker's own, read none). tinygltf
+  // joins each to the base folder given: the file's canonical folder, so every path it opens is
+  // absolute and goes through the callbacks.
+  FsContext fs;
+  if (!glb) {
+    fs.root = io::asset_root(path, "");
+    fs.main = (fs.root / std::filesystem::path(path).filename()).string();
+  }
+  std::vector<std::uint8_t> contents;
+  if (!glb) {
+    std::string err;
+    if (!read_regular_file(&contents, &err, fs.main, &fs)) fail(path, "parse", err.empty() ? "not a readable file" : err.substr(0, err.size() - 1));
+  }
+  const std::vector<std::uint8_t>& raw = glb ? *glb : contents;
+  // The JSON's depth before any parser (tinygltf's recurses per level: ~14,500 levels in 30 KB
+  // overflowed the stack): a .gltf's whole text, a .glb's JSON chunk.
+  check_gltf_json_depth(raw.data(), raw.size(), path, "render.gltf");
+  const std::vector<std::uint8_t> prepared = gltf_input::prepared_for_tinygltf(raw, {path, "render.gltf", 0});
+  const std::vector<std::uint8_t>& bytes = prepared.empty() ? raw : prepared;
   tinygltf::Model m;
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(&load_image_checked, &m);
-  // A file's references stay in its folder (bytes in memory, the baker's own, read none). tinygltf
-  // joins each to the file's folder: given the file's canonical path, every path it opens is absolute.
-  FsContext fs;
-  std::string file = path;
-  if (!glb) {
-    fs.root = io::asset_root(path, "");
-    file = fs.main = (fs.root / std::filesystem::path(path).filename()).string();
-  }
   loader.SetFsCallbacks(tinygltf::FsCallbacks{&regular_file_exists, &path_as_written, &read_regular_file, &write_no_file, &fs});
   std::string err, warn;
-  const bool binary = glb || (path.size() >= 4 && path.compare(path.size() - 4, 4, ".glb") == 0);
-  const bool ok = glb ? loader.LoadBinaryFromMemory(&m, &err, &warn, glb->data(), static_cast<unsigned int>(glb->size()))
-                  : binary ? loader.LoadBinaryFromFile(&m, &err, &warn, file)
-                           : loader.LoadASCIIFromFile(&m, &err, &warn, file);
+  const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+  const std::string base = fs.root.string();
+  const bool ok = binary ? loader.LoadBinaryFromMemory(&m, &err, &warn, bytes.data(), static_cast<unsigned int>(bytes.size()), base)
+                         : loader.LoadASCIIFromString(&m, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
+                                                      static_cast<unsigned int>(bytes.size()), base);
   if (!ok) {
     while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
-    std::string head;
-    if (glb) {
-      head.assign(glb->begin(), glb->end());
-    } else {
-      std::ifstream raw(path, std::ios::binary);
-      head.assign(std::istreambuf_iterator<char>(raw), {});
-    }
-    if (head.find("KHR_draco_mesh_compression") != std::string::npos)
-      fail(path, "draco", "requires KHR_draco_mesh_compression, which qf-render does not decode; render the uncompressed .glb");
     fail(path, "parse", err.empty() ? "not a readable glTF file" : err);
   }
   // tinygltf takes an image it could not read as a warning and goes on without it: one refused
@@ -210,22 +208,34 @@ tinygltf::Model parse_gltf(const std::string& path, const std::vector<std::uint8
     while (!warn.empty() && (warn.back() == '\n' || warn.back() == ' ')) warn.pop_back();
     fail(path, "outside_file", warn);
   }
+  check_required(m, path);
+  gltf_input::decode_compressed(m, {path, "render.gltf", 0});
   return m;
 }
 
 tinygltf::Model read_gltf(const std::string& path) { return parse_gltf(path, nullptr); }
 
 // COLOR_0 as the baker writes it (normalized 16-bit linear RGBA) -> sRGB bytes; the base colour
-// when absent.
+// when absent. Other types glTF allows for it (normalized 8-bit, as glTF-Transform's meshopt and
+// quantize rewrite it; float; RGB) are read as linear floats.
 std::vector<Rgb8> read_colors(const AccessorReader& read, const tinygltf::Primitive& prim, std::size_t n) {
   const auto col = prim.attributes.find("COLOR_0");
   if (col == prim.attributes.end()) return std::vector<Rgb8>(n, kBaseColor);
   const tinygltf::Accessor& a = read.accessor(col->second);
-  if (a.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT || a.type != TINYGLTF_TYPE_VEC4 || a.count != n)
-    fail(read.path, "colors", "COLOR_0 must be normalized unsigned short RGBA, one per vertex");
+  const bool rgba16 = a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT && a.type == TINYGLTF_TYPE_VEC4;
+  const bool normalized = a.componentType == TINYGLTF_COMPONENT_TYPE_FLOAT || a.normalized;
+  if ((a.type != TINYGLTF_TYPE_VEC4 && a.type != TINYGLTF_TYPE_VEC3) || !normalized || a.count != n)
+    fail(read.path, "colors", "COLOR_0 must be normalized RGB or RGBA (or float), one per vertex");
+  std::vector<Rgb8> out;
+  if (!rgba16) {
+    const int k = a.type == TINYGLTF_TYPE_VEC4 ? 4 : 3;
+    const std::vector<float> f = read.floats(col->second, k);
+    for (std::size_t i = 0; i + 2 < f.size(); i += static_cast<std::size_t>(k))
+      out.push_back({linear_to_srgb8(f[i]), linear_to_srgb8(f[i + 1]), linear_to_srgb8(f[i + 2])});
+    return out;
+  }
   std::size_t stride = 0;
   const unsigned char* b = read.base(a, 8, stride);
-  std::vector<Rgb8> out;
   for (std::size_t i = 0; i < a.count; ++i) {
     std::uint16_t c[4];
     std::memcpy(c, b + i * stride, 8);
@@ -243,17 +253,33 @@ std::vector<Vec3f> read_vec3(const AccessorReader& read, const tinygltf::Primiti
   return out;
 }
 
+// Vec3f arrays placed by a mesh's node transform (gltf_read.h mesh_transforms).
+void place(const Mat4d& w, std::vector<Vec3f>& points, std::vector<Vec3f>* directions) {
+  if (is_identity(w)) return;
+  const auto apply = [](std::vector<Vec3f>& v, auto&& fn) {
+    std::vector<float> xyz;
+    xyz.reserve(v.size() * 3);
+    for (const Vec3f& q : v) xyz.insert(xyz.end(), {q.x, q.y, q.z});
+    fn(xyz);
+    for (std::size_t i = 0; i < v.size(); ++i) v[i] = {xyz[3 * i], xyz[3 * i + 1], xyz[3 * i + 2]};
+  };
+  apply(points, [&](std::vector<float>& xyz) { place_points(w, xyz); });
+  if (directions) apply(*directions, [&](std::vector<float>& xyz) { place_directions(w, xyz); });
+}
+
 PointImpostorScene point_scene(const tinygltf::Model& m, const std::string& path) {
   PointImpostorScene s;
   s.pixel = static_cast<float>(m.extensions.at(kPointExtension).Get("pixelSize").GetNumberAsDouble());
   if (!(s.pixel > 0)) fail(path, "points", std::string(kPointExtension) + ".pixelSize must be positive");
   AccessorReader read{m, path};
-  for (const tinygltf::Mesh& mesh : m.meshes)
-    for (const tinygltf::Primitive& prim : mesh.primitives) {
+  const std::vector<Mat4d> placed = mesh_transforms(m);
+  for (std::size_t mi = 0; mi < m.meshes.size(); ++mi)
+    for (const tinygltf::Primitive& prim : m.meshes[mi].primitives) {
       if (prim.mode != TINYGLTF_MODE_POINTS || !s.positions.empty()) continue;
       s.positions = read_vec3(read, prim, "POSITION");
       s.normals = read_vec3(read, prim, "NORMAL");
       s.colors = read_colors(read, prim, s.positions.size());
+      place(placed[mi], s.positions, &s.normals);
     }
   if (s.positions.empty()) fail(path, "points", "has " + std::string(kPointExtension) + " but no POINTS primitive with points");
   if (!s.normals.empty() && s.normals.size() != s.positions.size()) fail(path, "points", "NORMAL and POSITION counts differ");
@@ -266,19 +292,30 @@ ClusterScene cluster_scene(const tinygltf::Model& m, const std::string& path) {
   ClusterScene s;
   s.cell = static_cast<float>(m.nodes[0].extras.Get(kCellWidthExtra).GetNumberAsDouble());
   AccessorReader read{m, path};
-  for (const tinygltf::Mesh& mesh : m.meshes)
-    for (const tinygltf::Primitive& prim : mesh.primitives) {
-      const std::vector<Vec3f> pos = read_vec3(read, prim, "POSITION");
+  const std::vector<Mat4d> placed = mesh_transforms(m);
+  for (std::size_t mi = 0; mi < m.meshes.size(); ++mi)
+    for (const tinygltf::Primitive& prim : m.meshes[mi].primitives) {
+      std::vector<Vec3f> pos = read_vec3(read, prim, "POSITION");
       const std::vector<Rgb8> col = read_colors(read, prim, pos.size());
       if (prim.mode == TINYGLTF_MODE_TRIANGLES) {
         std::vector<Vec3f> nrm = read_vec3(read, prim, "NORMAL");
         if (nrm.size() != pos.size()) fail(path, "mesh", "cluster LOD triangles need one NORMAL per vertex");
+        place(placed[mi], pos, &nrm);
         const auto base = static_cast<std::uint32_t>(s.mesh.positions.size());
-        for (std::size_t i = 0; i < pos.size(); ++i) s.mesh.indices.push_back(base + static_cast<std::uint32_t>(i));
+        // The baker writes the triangles unindexed; a Draco-compressed variant comes back indexed.
+        if (prim.indices >= 0) {
+          for (std::uint32_t i : read.indices(prim.indices)) {
+            if (i >= pos.size()) fail(path, "mesh", "index " + std::to_string(i) + " out of range (" + std::to_string(pos.size()) + " vertices)");
+            s.mesh.indices.push_back(base + i);
+          }
+        } else {
+          for (std::size_t i = 0; i < pos.size(); ++i) s.mesh.indices.push_back(base + static_cast<std::uint32_t>(i));
+        }
         s.mesh.positions.insert(s.mesh.positions.end(), pos.begin(), pos.end());
         s.mesh.normals.insert(s.mesh.normals.end(), nrm.begin(), nrm.end());
         s.mesh.colors.insert(s.mesh.colors.end(), col.begin(), col.end());
       } else if (prim.mode == TINYGLTF_MODE_LINE) {
+        place(placed[mi], pos, nullptr);
         const auto th = prim.attributes.find(kThicknessAttribute);
         if (th == prim.attributes.end()) fail(path, "lines", "cluster LOD lines need _THICKNESS");
         const std::vector<float> t = read.floats(th->second, 1);
@@ -287,6 +324,7 @@ ClusterScene cluster_scene(const tinygltf::Model& m, const std::string& path) {
         s.line_colors.insert(s.line_colors.end(), col.begin(), col.end());
         for (std::size_t i = 0; i < t.size(); i += 2) s.thickness.push_back(t[i]);
       } else if (prim.mode == TINYGLTF_MODE_POINTS) {
+        place(placed[mi], pos, nullptr);
         s.points.insert(s.points.end(), pos.begin(), pos.end());
         s.point_colors.insert(s.point_colors.end(), col.begin(), col.end());
       }
@@ -386,6 +424,7 @@ struct TriangleGroup {
 // flat vertex arrays in `s`; the groups list the triangles per primitive, in file order.
 std::vector<TriangleGroup> expand_triangles(const tinygltf::Model& m, const std::string& path, int only_mesh, ImpostorScene& s) {
   AccessorReader read{m, path};
+  const std::vector<Mat4d> placed = mesh_transforms(m);
   std::vector<TriangleGroup> groups;
   for (std::size_t mi = 0; mi < m.meshes.size(); ++mi) {
     if (only_mesh >= 0 && mi != static_cast<std::size_t>(only_mesh)) continue;
@@ -393,9 +432,15 @@ std::vector<TriangleGroup> expand_triangles(const tinygltf::Model& m, const std:
       if (prim.mode != TINYGLTF_MODE_TRIANGLES) continue;
       const auto pos_it = prim.attributes.find("POSITION");
       if (pos_it == prim.attributes.end()) fail(path, "mesh", "a triangle primitive has no POSITION");
-      const std::vector<float> pos = read.floats(pos_it->second, 3);
-      const auto uv_it = prim.attributes.find("TEXCOORD_0");
-      const std::vector<float> uv = uv_it == prim.attributes.end() ? std::vector<float>() : read.floats(uv_it->second, 2);
+      std::vector<float> pos = read.floats(pos_it->second, 3);
+      // Where its node places it (a quantized level's dequantization; a baked level has none).
+      if (!is_identity(placed[mi])) place_points(placed[mi], pos);
+      // The base colour's texture coordinates, through its KHR_texture_transform (gltfpack's dequantization).
+      int uv_set = 0;
+      const std::array<float, 6> uvt = base_uv_transform(m, prim.material, uv_set);
+      const auto uv_it = prim.attributes.find("TEXCOORD_" + std::to_string(uv_set));
+      std::vector<float> uv = uv_it == prim.attributes.end() ? std::vector<float>() : read.floats(uv_it->second, 2);
+      transform_uv_pairs(uvt, uv);
       std::vector<std::uint32_t> idx;
       if (prim.indices >= 0) {
         idx = read.indices(prim.indices);

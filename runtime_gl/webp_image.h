@@ -1,7 +1,7 @@
 // WebP images (EXT_texture_webp) for the renderer: decoded to RGBA8 as an engine decodes them, so
 // that every figure the project measures (qf-render eval, the bake's own measuring of screen sizes,
 // the chain) draws the WebP files. A WebP image carries no mip levels: the renderer makes them by
-// box filtering, as for a PNG. libwebp's decoder lives in webp_image.cpp alone.
+// box filtering, as for a PNG. The decoding is the shared one (gltf/image_decode.h).
 #pragma once
 
 #include <cstddef>

@@ -18,7 +18,7 @@ jobs=$(nproc 2>/dev/null || echo 2)
 # The executables the kept tests run (qf-bake for the CLI scripts, qf-render for batch --eval,
 # qf_write_test_levels for the glTF validator); qf-diff, qf_test_points and the benchmarks are not built.
 targets=(qf-bake qf-render qf_test_io qf_test_core qf_test_sample qf_test_clustering qf_test_fans_cgal
-         qf_write_test_levels qf_test_render_cpu)
+         qf_write_test_levels qf_test_render_cpu qf_test_compressed)
 # Tests of the GL sampler backend (by name: they share qf_test_sample with CPU-only tests).
 gl_tests='^SampleModels\.|^Sample\.(CountsMatchProjectedAreaOnAnalyticMeshes|PointsLieOnTheSurface|ClosedMeshesHaveEvenLayerCounts|GlMatchesTheCpuReference|PerAxisTrianglesGiveTheSamePointsWithFewerLayers|GlIsDeterministic)$'
 # Scale tests whose code paths the smaller tests kept here already run, left out for the CI's time

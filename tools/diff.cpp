@@ -18,6 +18,7 @@
 #include "core/gltf_keys.h"
 #include "core/input_limits.h"
 #include "gl/egl.h"
+#include "gltf/compressed_gltf.h"
 #include "runtime_gl/camera.h"
 #include "measure/any_scene.h"
 #include "tools/image_ops.h"
@@ -57,42 +58,21 @@ bool leave_image_undecoded(tinygltf::Image*, const int, std::string*, std::strin
   return true;
 }
 
-// The JSON chunk of a binary glTF container (12-byte header, then chunks of length, type, data),
-// parsed; null when there is none. Only for files tinygltf cannot load (below).
-Json container_json(ByteView b) {
-  auto u32 = [&](std::size_t at) {
-    return std::uint32_t(b[at]) | std::uint32_t(b[at + 1]) << 8 | std::uint32_t(b[at + 2]) << 16 | std::uint32_t(b[at + 3]) << 24;
-  };
-  if (b.size() < 20 || u32(16) != 0x4E4F534Au || 20ull + u32(12) > b.size()) return Json();
-  return Json::parse(b.data() + 20, b.data() + 20 + u32(12), nullptr, false);
-}
-
-bool needs_draco(const Json& j) {
-  return j.is_object() && j.contains("extensionsRequired") &&
-         j["extensionsRequired"].dump().find("KHR_draco_mesh_compression") != std::string::npos;
-}
-
-// A .glb's glTF JSON, read by tinygltf as the runtime reads the file (images left undecoded: the
-// structure is all the diff needs) and written back by it with its buffers inline: a file the
-// runtime rejects is unreadable here too, not compared. The one exception is a Draco-compressed
-// file (qf-bake cluster --draco): Debian's tinygltf is built without Draco and rejects its
-// accessors, so its JSON is taken from the container as it is, and compared key by key.
-Json glb_json(ByteView b, const std::string& path) {
+// Throws InputError ("diff.glb") unless tinygltf reads the .glb as the runtime reads it (the bytes
+// it would refuse of a Draco or meshopt file rewritten first, gltf/compressed_gltf.h; images left
+// undecoded): a file the runtime rejects is unreadable here too, not compared.
+void check_glb(ByteView b, const std::string& path) {
   if (b.size() < 4 || std::memcmp(b.data(), "glTF", 4) != 0)
     throw InputError("diff.glb", path, "byte 0", "not a binary glTF file (no 'glTF' magic)");
   check_gltf_json_depth(b.data(), b.size(), path, "diff");  // before tinygltf's recursive parser
+  const std::vector<std::uint8_t> prepared = gltf_input::prepared_for_tinygltf(b, {path, "diff", 0});
+  if (!prepared.empty()) b = ByteView(prepared);
   tinygltf::TinyGLTF gltf;
   gltf.SetImageLoader(leave_image_undecoded, nullptr);
   tinygltf::Model model;
   std::string err, warn;
-  if (!gltf.LoadBinaryFromMemory(&model, &err, &warn, b.data(), static_cast<unsigned int>(b.size()))) {
-    Json raw = container_json(b);
-    if (needs_draco(raw)) return raw;
+  if (!gltf.LoadBinaryFromMemory(&model, &err, &warn, b.data(), static_cast<unsigned int>(b.size())))
     throw InputError("diff.glb", path, "", "not a readable binary glTF file: " + err);
-  }
-  std::ostringstream json;
-  gltf.WriteGltfSceneToStream(&model, json, /*prettyPrint=*/false, /*writeBinary=*/false);
-  return Json::parse(json.str());
 }
 
 // --- structure ---------------------------------------------------------------------------------
@@ -500,16 +480,8 @@ OJson diff_pair(const std::string& name, const std::string& pa, const std::strin
     r["within_thresholds"] = false;  // nothing to measure it by: any change counts
     return r;
   }
-  const Json ja = glb_json(fa.bytes(), pa), jb = glb_json(fb.bytes(), pb);
-  if (needs_draco(ja) || needs_draco(jb)) {
-    // runtime_gl does not decode Draco: such files are compared by their JSON, and any change counts.
-    OJson changes = OJson::array();
-    json_changes(ja, jb, "", changes, 50);
-    r["changed_keys"] = changes;
-    r["note"] = "Draco-compressed: compared by bytes and glTF JSON only";
-    r["within_thresholds"] = false;
-    return r;
-  }
+  // Readable as the runtime reads them (Draco and meshopt files included, decoded by the loader).
+  check_glb(fa.bytes(), pa), check_glb(fb.bytes(), pb);
   r["within_thresholds"] = drawn_glb_diff(r, name, pa, pb, o);
   return r;
 }

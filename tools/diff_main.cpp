@@ -23,6 +23,7 @@ qf::cli::CommandSpec diff_spec() {
       "moved and their errors changed, texel statistics (and the share of texels changed when the\n"
       "atlases have the same sizes); then an image diff: both drawn by runtime_gl from --views canonical\n"
       "views framing both (PSNR, share of changed pixels; EXR and PNG difference images with --images).\n"
+      "Compressed .glb files (meshopt, quantized, Draco, KTX2, WebP) are decoded and compared as drawn.\n"
       "Folders pair their files by relative path; report.json, report.html and batch-report*.json\n"
       "(times, pages) and hidden files are left out; added or removed files are beyond any threshold.\n"
       "Exit status: 0 identical or within the thresholds, 1 beyond them, 2 bad usage or unreadable input,\n"

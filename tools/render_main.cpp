@@ -119,7 +119,9 @@ CommandSpec render_spec() {
       "elevation above the XZ plane; the default distance frames the sphere. --view i/N picks view i of\n"
       "N spread evenly over the sphere instead. --turntable N writes a contact sheet of N views around\n"
       "the object at the given elevation. A mesh with materials (OBJ + MTL) is drawn with them by the\n"
-      "engine method unless --method says otherwise.",
+      "engine method unless --method says otherwise. glTF files as glTF-Transform and gltfpack write them\n"
+      "are decoded (EXT_meshopt_compression, KHR_mesh_quantization, KHR_draco_mesh_compression,\n"
+      "KHR_texture_basisu, EXT_texture_webp); a file requiring any other extension is refused (exit 1).",
       {{"output", 'o', "OUT.png", "", "the PNG to write (required)"},
        {"azimuth", 0, "DEG", "30", "camera azimuth"},
        {"elevation", 0, "DEG", "20", "camera elevation"},

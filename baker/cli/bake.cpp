@@ -33,7 +33,9 @@ CommandSpec bake_spec() {
                    "settings, times and counts; report.html shows it all in a browser (see --no-report-html).\n"
                    "OUTDIR is replaced whole (built beside it, then swapped in): a failed or killed bake\n"
                    "leaves the old bake or the new one, never a mix; files of your own in it are kept. A\n"
-                   "second bake into OUTDIR while one runs is refused (exit 5).",
+                   "second bake into OUTDIR while one runs is refused (exit 5). A glTF input may come\n"
+                   "compressed from glTF-Transform or gltfpack (meshopt, quantized, Draco, KTX2 or WebP\n"
+                   "textures): it is decoded; one requiring any other extension is refused (exit 1).",
                    {output_option("OUTDIR", "output folder (created if needed); required"),
                     {"primitives", 'n', "N,N,...", "1000,300,100,30", "bake the levels nearest these numbers of primitives"},
                     {"levels", 0, "K,K,...", "", "instead: these level numbers (0 = points, negative = from the coarsest)"},

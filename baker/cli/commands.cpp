@@ -135,7 +135,9 @@ static std::string shape_list() {
 const std::vector<Command>& commands() {
   static const std::vector<Command> table{
       {{"info", "FILE [options]", "describe a point set or mesh: format, counts, attributes, bounds, memory",
-        "FILE is any supported input: .ply (points or mesh), .qs, .xyz, .pwn, .las, .laz, .off, .obj, .gltf, .glb.",
+        "FILE is any supported input: .ply (points or mesh), .qs, .xyz, .pwn, .las, .laz, .off, .obj, .gltf, .glb\n"
+        "(glTF compressed by glTF-Transform or gltfpack too: EXT_meshopt_compression, KHR_mesh_quantization,\n"
+        "KHR_draco_mesh_compression, KHR_texture_basisu and EXT_texture_webp images).",
         {{"json", 0, "", "", "print a JSON object instead of text (schema: schemas/info.schema.json)"},
          drop_nonfinite_option()},
         1, 1},

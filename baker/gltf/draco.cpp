@@ -1,4 +1,4 @@
-// Draco compression (see draco.h).
+// Draco compression (see draco.h; decoding is draco_decode.cpp).
 #include "gltf/draco.h"
 
 #include <draco/compression/decode.h>
@@ -62,54 +62,6 @@ DracoOutput draco_compress(const DracoInput& in) {
   if (const auto* a = d.GetNamedAttribute(draco::GeometryAttribute::NORMAL)) out.normal_id = static_cast<int>(a->unique_id());
   if (const auto* a = d.GetNamedAttribute(draco::GeometryAttribute::COLOR)) out.color_id = static_cast<int>(a->unique_id());
   return out;
-}
-
-namespace {
-
-// The mesh in `bytes`; throws std::runtime_error when it does not decode.
-std::unique_ptr<draco::Mesh> decode(const std::uint8_t* bytes, std::size_t size) {
-  draco::DecoderBuffer buf;
-  buf.Init(reinterpret_cast<const char*>(bytes), size);
-  draco::Decoder decoder;
-  auto decoded = decoder.DecodeMeshFromBuffer(&buf);
-  if (!decoded.ok()) throw std::runtime_error("the Draco stream does not decode (" + decoded.status().error_msg_string() + ")");
-  return std::move(decoded).value();
-}
-
-// The decoded mesh's corners and the attributes asked for, as floats.
-DracoMesh convert(const draco::Mesh& d, const std::vector<std::pair<int, int>>& wanted) {
-  DracoMesh out;
-  out.points = d.num_points();
-  for (draco::FaceIndex f(0); f < d.num_faces(); ++f)
-    for (int k = 0; k < 3; ++k) out.corners.push_back(d.face(f)[k].value());
-  // ConvertValue scales normalized integer attributes (colours, quantized texture coordinates) to
-  // floats as glTF's normalized accessors would.
-  for (const auto& [id, components] : wanted) {
-    const draco::PointAttribute* a = d.GetAttributeByUniqueId(static_cast<std::uint32_t>(id));
-    if (!a) throw std::runtime_error("the Draco stream has no attribute with id " + std::to_string(id));
-    std::vector<float>& values = out.attributes[id];
-    values.assign(out.points * static_cast<std::size_t>(components), 0.0f);
-    for (draco::PointIndex i(0); i < d.num_points(); ++i)
-      if (!a->ConvertValue<float>(a->mapped_index(i), static_cast<std::int8_t>(components),
-                                  &values[i.value() * static_cast<std::size_t>(components)]))
-        throw std::runtime_error("the Draco attribute " + std::to_string(id) + " does not convert to " +
-                                 std::to_string(components) + " floats");
-  }
-  return out;
-}
-
-}  // namespace
-
-DracoMesh draco_decode_mesh(const std::uint8_t* bytes, std::size_t size, const std::vector<std::pair<int, int>>& wanted) {
-  return convert(*decode(bytes, size), wanted);
-}
-
-void draco_decode(const std::vector<std::uint8_t>& bytes, std::vector<float>& positions, std::vector<std::uint32_t>& corners) {
-  const std::unique_ptr<draco::Mesh> d = decode(bytes.data(), bytes.size());
-  const int id = d->GetNamedAttribute(draco::GeometryAttribute::POSITION)->unique_id();
-  DracoMesh m = convert(*d, {{id, 3}});
-  positions = std::move(m.attributes[id]);
-  corners = std::move(m.corners);
 }
 
 }  // namespace qf

@@ -1,5 +1,6 @@
-// Draco compression of a triangle list for KHR_draco_mesh_compression (gltf-notes.md 2.4): the only
-// file that includes Draco's headers.
+// Draco for KHR_draco_mesh_compression: compression of a triangle list (draco.cpp, gltf-notes.md 2.4)
+// and decoding of the glTF readers' input (draco_decode.cpp). Those two files, built into the shared
+// library qf_draco, are the only ones that include Draco's headers.
 #pragma once
 
 #include <array>
@@ -32,16 +33,39 @@ struct DracoOutput {
 // std::runtime_error when Draco fails.
 DracoOutput draco_compress(const DracoInput& in);
 
-// A decoded Draco mesh (KHR_draco_mesh_compression input): its point count, triangle corners, and
-// the attributes asked for by unique id with the component count glTF's accessor gives them,
-// converted to floats (normalized integers scaled to 0..1 or -1..1). Throws std::runtime_error
-// when the stream does not decode or lacks an attribute.
-struct DracoMesh {
+// ---- Decoding (draco_decode.cpp): KHR_draco_mesh_compression input ----
+
+// What a Draco stream's header claims, read without Draco (which allocates for the counts before
+// it reads the data they describe: a 60-byte stream claiming 2^30 faces asked for 12 GB): its
+// faces and, for the sequential method, its points (edgebreaker streams: at most 3 a face).
+// Throws std::runtime_error when the header does not read or is not a triangle mesh's.
+struct DracoCounts {
+  std::uint64_t faces = 0, points = 0;
+};
+DracoCounts draco_peek_counts(const std::uint8_t* bytes, std::size_t size);
+
+// One attribute asked of a decoded mesh: Draco's unique id, the component count glTF's accessor
+// gives it and the accessor's componentType (glTF's code: 5120 .. 5126).
+struct DracoRequest {
+  int id = -1, components = 0, component_type = 5126;
+};
+// Its values, one per point, tightly packed little-endian in `component_type`: the type asked for,
+// except that an attribute Draco holds as floats (its quantized positions, normals, uvs) comes
+// back as floats (5126), not requantized. Integer attributes asked as floats are converted as
+// glTF's normalized accessors are (0..1 / -1..1) when Draco marks them normalized.
+struct DracoValues {
+  int component_type = 5126;
+  std::vector<std::uint8_t> bytes;
+};
+// A decoded mesh: its point count, triangle corners (3 a face, each < points) and the attributes asked for.
+struct DracoTypedMesh {
   std::size_t points = 0;
   std::vector<std::uint32_t> corners;
-  std::map<int, std::vector<float>> attributes;
+  std::map<int, DracoValues> attributes;
 };
-DracoMesh draco_decode_mesh(const std::uint8_t* bytes, std::size_t size, const std::vector<std::pair<int, int>>& wanted);
+// Throws std::runtime_error when the stream does not decode, lacks an attribute asked for, or an
+// attribute's values do not convert.
+DracoTypedMesh draco_decode_typed(const std::uint8_t* bytes, std::size_t size, const std::vector<DracoRequest>& wanted);
 
 // The positions (3 per point) and triangle corners a Draco reader gets from `bytes`; throws
 // std::runtime_error when they do not decode. For checks and tools.

@@ -1,4 +1,4 @@
-// glTF JSON checks and rewriting (gltf_json.h).
+// glTF JSON checks (gltf_json.h).
 #include "io/gltf_json.h"
 
 #include <cstring>
@@ -75,36 +75,6 @@ void check_types(const nlohmann::json& j, const std::string& where, const std::s
 }  // namespace
 
 void check_gltf_json_types(const nlohmann::json& j, const std::string& path) { check_types(j, "", path); }
-
-// tinygltf built without Draco (Debian's) refuses a compressed primitive's `indices` accessor, which
-// has no bufferView by design. Such primitives get their triangles from the Draco stream, so the
-// key is dropped from the JSON (of a .gltf, or of a .glb's JSON chunk) before tinygltf sees it.
-std::vector<std::uint8_t> without_draco_indices(ByteView bytes, nlohmann::json j) {
-  const bool binary = bytes.size() >= 20 && std::memcmp(bytes.data(), "glTF", 4) == 0;
-  std::uint32_t json_length = 0;
-  if (binary) std::memcpy(&json_length, bytes.data() + 12, 4);
-  const std::size_t json_start = binary ? 20 : 0;
-  if (!j.contains("meshes") || !j["meshes"].is_array()) return {};
-  for (nlohmann::json& mesh : j["meshes"])
-    if (mesh.is_object() && mesh.contains("primitives") && mesh["primitives"].is_array())
-      for (nlohmann::json& p : mesh["primitives"])
-        if (p.is_object() && p.contains("extensions") && p["extensions"].is_object() &&
-            p["extensions"].contains("KHR_draco_mesh_compression"))
-          p.erase("indices");
-  std::string json = j.dump();
-  if (!binary) return std::vector<std::uint8_t>(json.begin(), json.end());
-  json.resize((json.size() + 3) / 4 * 4, ' ');
-  const std::size_t rest = json_start + json_length;
-  std::vector<std::uint8_t> out(bytes.data(), bytes.data() + 12);
-  const auto put32 = [&out](std::uint32_t v) { out.insert(out.end(), reinterpret_cast<std::uint8_t*>(&v), reinterpret_cast<std::uint8_t*>(&v) + 4); };
-  put32(static_cast<std::uint32_t>(json.size()));
-  put32(0x4E4F534A);  // "JSON"
-  out.insert(out.end(), json.begin(), json.end());
-  out.insert(out.end(), bytes.data() + rest, bytes.data() + bytes.size());
-  const auto total = static_cast<std::uint32_t>(out.size());
-  std::memcpy(out.data() + 8, &total, 4);
-  return out;
-}
 
 nlohmann::json gltf_json(ByteView bytes) {
   const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;

@@ -1,5 +1,5 @@
-// The JSON side of glTF input (gltf_read.cpp): the type checks of the keys the reader uses, and the
-// Draco primitives' `indices` taken out before tinygltf sees them. Only nlohmann::json here.
+// The JSON side of glTF input (gltf_read.cpp): the type checks of the keys the reader uses. Only
+// nlohmann::json here.
 #pragma once
 
 #include <cstdint>
@@ -20,10 +20,5 @@ nlohmann::json gltf_json(ByteView bytes);
 // gives them wherever they appear: InputError "gltf.json_type" naming the first wrong one by its
 // JSON path ("materials[0].alphaCutoff: expected a number, found a string").
 void check_gltf_json_types(const nlohmann::json& j, const std::string& path);
-
-// tinygltf built without Draco (Debian's) refuses a compressed primitive's `indices` accessor, which
-// has no bufferView by design. Such primitives get their triangles from the Draco stream, so the
-// key is dropped: the file's bytes with `j` (its JSON) rewritten, or empty when there is nothing to do.
-std::vector<std::uint8_t> without_draco_indices(ByteView bytes, nlohmann::json j);
 
 }  // namespace qf::io

@@ -10,7 +10,6 @@
 
 #include "core/error.h"
 #include "core/gltf_component.h"
-#include "gltf/draco.h"
 
 namespace qf::io {
 namespace {
@@ -138,58 +137,8 @@ int attribute(const tinygltf::Primitive& p, const std::string& name) {
   return it == p.attributes.end() ? -1 : it->second;
 }
 
-PrimitiveData draco_primitive(const tinygltf::Model& m, const tinygltf::Primitive& p, const tinygltf::Value& ext,
-                              int uv_set, const std::string& path, const std::string& where) {
-  const std::string w = where + ".extensions.KHR_draco_mesh_compression";
-  if (!ext.Has("bufferView") || !ext.Get("bufferView").IsInt()) fail(path, "draco", w, "has no bufferView");
-  const int view = ext.Get("bufferView").GetNumberAsInt();
-  if (view < 0 || static_cast<std::size_t>(view) >= m.bufferViews.size()) fail(path, "draco", w, "names a bufferView that does not exist");
-  const tinygltf::BufferView& v = m.bufferViews[static_cast<std::size_t>(view)];
-  if (v.buffer < 0 || static_cast<std::size_t>(v.buffer) >= m.buffers.size()) fail(path, "draco", w, "names a buffer that does not exist");
-  const std::vector<unsigned char>& buffer = m.buffers[static_cast<std::size_t>(v.buffer)].data;
-  if (v.byteOffset > buffer.size() || v.byteLength > buffer.size() - v.byteOffset)
-    fail(path, "draco", w, "its bufferView reaches past its buffer");
-  const tinygltf::Value& ids = ext.Get("attributes");
-  auto id_of = [&](const std::string& name) { return ids.Has(name) && ids.Get(name).IsInt() ? ids.Get(name).GetNumberAsInt() : -1; };
-  const int pos = id_of("POSITION"), nrm = id_of("NORMAL"), col = id_of("COLOR_0"), uv = id_of("TEXCOORD_" + std::to_string(uv_set));
-  if (pos < 0) fail(path, "draco", w, "has no POSITION attribute");
-  int col_components = 4;
-  if (col >= 0 && attribute(p, "COLOR_0") >= 0 && static_cast<std::size_t>(attribute(p, "COLOR_0")) < m.accessors.size())
-    col_components = tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(m.accessors[static_cast<std::size_t>(attribute(p, "COLOR_0"))].type));
-  std::vector<std::pair<int, int>> wanted{{pos, 3}};
-  if (nrm >= 0) wanted.push_back({nrm, 3});
-  if (col >= 0) wanted.push_back({col, col_components == 3 ? 3 : 4});
-  if (uv >= 0) wanted.push_back({uv, 2});
-  DracoMesh d;
-  try {
-    d = draco_decode_mesh(buffer.data() + v.byteOffset, v.byteLength, wanted);
-  } catch (const std::exception& e) {
-    fail(path, "draco", w, e.what());
-  }
-  PrimitiveData out;
-  out.positions = std::move(d.attributes[pos]);
-  if (nrm >= 0) out.normals = std::move(d.attributes[nrm]);
-  if (col >= 0) {
-    std::vector<float>& c = d.attributes[col];
-    if (col_components == 3) {
-      out.colors.reserve(d.points * 4);
-      for (std::size_t i = 0; i < d.points; ++i) out.colors.insert(out.colors.end(), {c[3 * i], c[3 * i + 1], c[3 * i + 2], 1.0f});
-    } else {
-      out.colors = std::move(c);
-    }
-  }
-  if (uv >= 0) out.uvs = std::move(d.attributes[uv]);
-  for (std::uint32_t c : d.corners)
-    if (c >= d.points) fail(path, "draco", w, "a decoded corner is out of range");
-  if (p.mode == TINYGLTF_MODE_TRIANGLES || p.mode == -1) out.corners = std::move(d.corners);
-  else triangle_corners(p.mode, d.corners, out.corners);
-  return out;
-}
-
 PrimitiveData read_primitive_impl(const tinygltf::Model& m, const Accessors& read, const tinygltf::Primitive& p, int uv_set,
                              const std::string& path, const std::string& where) {
-  const auto draco = p.extensions.find("KHR_draco_mesh_compression");
-  if (draco != p.extensions.end()) return draco_primitive(m, p, draco->second, uv_set, path, where);
   PrimitiveData out;
   const int pos = attribute(p, "POSITION");
   if (pos < 0) fail(path, "no_position", where + ".attributes", "has no POSITION attribute");

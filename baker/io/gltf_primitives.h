@@ -1,6 +1,7 @@
 // One glTF primitive's vertex attributes and triangles (for gltf_read.cpp): accessors of any
 // component type read as floats after checking that they lie within their buffer views and
-// buffers, strips and fans as triangle lists, KHR_draco_mesh_compression decoded.
+// buffers, strips and fans as triangle lists (Draco and meshopt data are decoded before, by
+// gltf/compressed_gltf.h).
 #pragma once
 
 #include <cstdint>

@@ -14,7 +14,6 @@
 #include <filesystem>
 #include <map>
 #include <optional>
-#include <string_view>
 #include <set>
 #include <string>
 #include <vector>
@@ -22,6 +21,8 @@
 #include "core/color.h"
 #include "core/error.h"
 #include "core/input_limits.h"
+#include "gltf/compressed_gltf.h"
+#include "gltf/image_decode.h"
 #include "gltf/png.h"
 #include "io/asset_files.h"
 #include "io/gltf_json.h"
@@ -34,11 +35,21 @@ namespace {
 using Mat4 = std::array<double, 16>;  // column-major, as glTF stores it
 constexpr Mat4 kIdentity{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
 
-// The extensions a file may require: what this reader honours. Anything else required is refused.
+// The extensions a file may require: what this reader honours (the compressed ones decoded by
+// gltf/compressed_gltf.h and gltf/image_decode.h). Anything else required is refused.
 const std::set<std::string>& supported_extensions() {
-  static const std::set<std::string> s{"KHR_texture_transform", "KHR_draco_mesh_compression", "KHR_mesh_quantization",
-                                        "KHR_materials_emissive_strength", "KHR_materials_unlit"};
+  static const std::set<std::string> s = [] {
+    std::set<std::string> names{"KHR_texture_transform", "KHR_materials_emissive_strength", "KHR_materials_unlit"};
+    for (const std::string& e : gltf_input::decoded_extensions()) names.insert(e);
+    return names;
+  }();
   return s;
+}
+
+std::string supported_list() {
+  std::string out;
+  for (const std::string& e : supported_extensions()) out += (out.empty() ? "" : ", ") + e;
+  return out;
 }
 
 [[noreturn]] void fail(const std::string& path, const std::string& code, const std::string& where, const std::string& what) {
@@ -144,8 +155,8 @@ tinygltf::Model parse(ByteView bytes, const std::string& path, const ReadOptions
   if (j.is_object()) {
     io::check_gltf_json_types(j, path);
     check_references(j, path, root, folder);
-    const std::string_view view(reinterpret_cast<const char*>(bytes.data()), bytes.size());
-    if (view.find("KHR_draco_mesh_compression") != std::string_view::npos) rewritten = io::without_draco_indices(bytes, j);
+    // What tinygltf would refuse of a Draco or meshopt file (gltf/compressed_gltf.h).
+    rewritten = gltf_input::prepared_for_tinygltf(bytes, {path, "gltf", options.memory_limit});
     if (!rewritten.empty()) bytes = ByteView(rewritten.data(), rewritten.size());
   }
   tinygltf::Model m;
@@ -167,8 +178,9 @@ tinygltf::Model parse(ByteView bytes, const std::string& path, const ReadOptions
   for (const std::string& e : m.extensionsRequired)
     if (!supported_extensions().count(e))
       fail(path, "unsupported_extension", "extensionsRequired",
-           "requires the extension " + e + ", which quasiflat does not support (supported: KHR_texture_transform, "
-           "KHR_draco_mesh_compression, KHR_mesh_quantization)");
+           "requires the extension " + e + ", which qf-bake does not read (it reads: " + supported_list() + ")");
+  // Meshopt views and Draco primitives into plain accessors, their sizes checked first.
+  gltf_input::decode_compressed(m, {path, "gltf", options.memory_limit});
   return m;
 }
 
@@ -178,36 +190,45 @@ std::string image_where(const tinygltf::Image& image, std::size_t index) {
   return "images[" + std::to_string(index) + "]" + (image.uri.empty() || image.uri.rfind("data:", 0) == 0 ? "" : " (" + image.uri + ")");
 }
 
-// RGBA8 bytes of every image once decoded, from their headers; an image whose header is not
-// PNG's or JPEG's is refused here (KTX2 and WebP by the extension that carries them).
+// RGBA8 bytes of every image once decoded, from their headers (PNG, JPEG, KTX2 with its mip
+// levels, WebP); an image whose header does not read as one of them is refused here.
 double decoded_images_bytes(const tinygltf::Model& m, const std::string& path) {
   double total = 0;
   for (std::size_t i = 0; i < m.images.size(); ++i) {
     const tinygltf::Image& g = m.images[i];
     if (g.component != 0 || g.image.empty()) continue;  // not loaded: MaterialTable says so if used
     const std::optional<ImageHeader> h = image_header(g.image.data(), g.image.size());
-    const std::string_view head(reinterpret_cast<const char*>(g.image.data()), std::min<std::size_t>(g.image.size(), 16));
-    if (h && head.find("KTX") != std::string_view::npos)
-      fail(path, "image_format", image_where(g, i), "is a KTX2 image (KHR_texture_basisu), which the baker does not read as input");
-    if (h && head.rfind("RIFF", 0) == 0)
-      fail(path, "image_format", image_where(g, i), "is a WebP image (EXT_texture_webp), which the baker does not read as input");
-    if (!h) fail(path, "image_format", image_where(g, i), "is neither a PNG nor a JPEG image (or its header does not read)");
+    if (!h) fail(path, "image_format", image_where(g, i), "is not a PNG, JPEG, KTX2 or WebP image (or its header does not read)");
     // Twice: the decoded image and the mesh's copy of it.
     total += 2.0 * static_cast<double>(decoded_image_bytes(*h));
   }
   return total;
 }
 
+// The image's texels: KTX2 (level 0: the mesh keeps one level) and WebP through the shared
+// decoders, which check the header's size against the memory limit first; PNG, JPEG and the rest
+// through OpenImageIO.
+TextureImage decode_any_image(const tinygltf::Image& g, const std::string& path, std::size_t memory_limit) {
+  const ImageDecodeContext c{path, "gltf", memory_limit};
+  DecodedImage d;
+  if (is_ktx2(g.image.data(), g.image.size())) d = decode_ktx2(g.image.data(), g.image.size(), c, false);
+  else if (is_webp(g.image.data(), g.image.size())) d = decode_webp(g.image.data(), g.image.size(), c);
+  else return decode_image(g.image.data(), g.image.size(), g.uri);
+  return TextureImage{d.width, d.height, std::move(d.rgba)};
+}
+
 // Decodes the images keep_image kept (RGBA8).
-void decode_images(tinygltf::Model& m, const std::string& path) {
+void decode_images(tinygltf::Model& m, const std::string& path, std::size_t memory_limit) {
   for (std::size_t i = 0; i < m.images.size(); ++i) {
     tinygltf::Image& g = m.images[i];
     if (g.component != 0) continue;
     try {
-      TextureImage t = decode_image(g.image.data(), g.image.size(), g.uri);
+      TextureImage t = decode_any_image(g, path, memory_limit);
       g.width = t.width, g.height = t.height, g.component = 4, g.bits = 8;
       g.pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
       g.image = std::move(t.rgba);
+    } catch (const InputError& e) {
+      throw InputError(e.code(), path, image_where(g, i), e.detail());
     } catch (const std::exception& e) {
       fail(path, "parse", "", image_where(g, i) + ": " + e.what());
     }
@@ -316,7 +337,9 @@ class MaterialTable {
     if (static_cast<std::size_t>(texture) >= m_.textures.size())
       fail(path_, "texture", where, "texture " + std::to_string(texture) + " does not exist");
     const tinygltf::Texture& tex = m_.textures[static_cast<std::size_t>(texture)];
-    if (tex.source < 0 || static_cast<std::size_t>(tex.source) >= m_.images.size())
+    // A KTX2 or WebP texture names its image in its extension (KHR_texture_basisu, EXT_texture_webp).
+    const int source = gltf_input::texture_image(tex);
+    if (source < 0 || static_cast<std::size_t>(source) >= m_.images.size())
       fail(path_, "image", "textures[" + std::to_string(texture) + "].source", "names no image of the file");
     const auto known = transforms_.find(material);
     if (known != transforms_.end() && !(known->second == uv)) {
@@ -328,7 +351,7 @@ class MaterialTable {
       out.wrap_s = wrap_of(m_.samplers[static_cast<std::size_t>(tex.sampler)].wrapS);
       out.wrap_t = wrap_of(m_.samplers[static_cast<std::size_t>(tex.sampler)].wrapT);
     }
-    out.image = image(tex.source);
+    out.image = image(source);
     return out;
   }
 
@@ -643,7 +666,7 @@ TriangleMesh decode_gltf(ByteView bytes, const std::string& path, const ReadOpti
                     options.memory_limit, path, "gltf.memory", "",
                     "reading its " + std::to_string(instances.size()) + " mesh instances and " + std::to_string(m.images.size()) +
                         " images");
-  decode_images(m, path);
+  decode_images(m, path, options.memory_limit);
   for (const SceneReader::Instance& in : instances) scene.add_mesh(in.mesh, in.world);
   // 3. Flat normals where a primitive has none, and one surface description for the whole mesh.
   scene.make_flat_normals();

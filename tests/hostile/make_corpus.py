@@ -169,6 +169,49 @@ def image_glb(kind, payload):
     return glb(g, bin_)
 
 
+def compressed_glb(kind, payload, count=3, stride=12, mode="ATTRIBUTES", corners=3):
+    """A one-triangle glb whose POSITION is compressed: `kind` "meshopt" (its bufferView an
+    EXT_meshopt_compression stream of `count` x `stride` bytes in `mode`, over a fallback buffer) or
+    "draco" (a KHR_draco_mesh_compression primitive whose indices accessor declares `corners`);
+    `payload` is the compressed bytes."""
+    g = triangle_gltf()
+    bin_ = TRIANGLE + b"\0\0" + payload
+    if kind == "meshopt":
+        g["buffers"] = [{"byteLength": len(bin_)}, {"byteLength": count * stride, "extensions": {"EXT_meshopt_compression": {"fallback": True}}}]
+        g["bufferViews"][0] = {"buffer": 1, "byteOffset": 0, "byteLength": count * stride,
+                               "extensions": {"EXT_meshopt_compression": {"buffer": 0, "byteOffset": len(TRIANGLE) + 2, "byteLength": len(payload),
+                                                                          "byteStride": stride, "count": count, "mode": mode}}}
+        if mode == "ATTRIBUTES" and stride % 4 == 0:
+            g["bufferViews"][0]["byteStride"] = stride
+        g["accessors"][0]["count"] = count
+    else:
+        g["buffers"] = [{"byteLength": len(bin_)}]
+        g["bufferViews"].append({"buffer": 0, "byteOffset": len(TRIANGLE) + 2, "byteLength": len(payload)})
+        del g["accessors"][0]["bufferView"]
+        g["accessors"][1]["count"] = corners
+        g["meshes"][0]["primitives"][0]["extensions"] = {"KHR_draco_mesh_compression": {"bufferView": 2, "attributes": {"POSITION": 0}}}
+    g["extensionsUsed"] = g["extensionsRequired"] = ["EXT_meshopt_compression" if kind == "meshopt" else "KHR_draco_mesh_compression"]
+    return glb(g, bin_)
+
+
+def varint(n):
+    out = b""
+    while True:
+        out += bytes([(n & 0x7F) | (0x80 if n > 0x7F else 0)])
+        n >>= 7
+        if not n:
+            return out
+
+
+def draco_header(method, faces, points=3):
+    """A Draco 2.2 mesh stream's header claiming `faces` triangles (sequential: and `points` points),
+    then nothing that decodes."""
+    head = b"DRACO" + bytes([2, 2, 1, method]) + struct.pack("<H", 0)
+    if method == 0:
+        return head + varint(faces) + varint(points) + b"\0" * 8
+    return head + b"\0" + varint(3) + varint(faces) + b"\0" + varint(faces) + varint(0) + b"\0" * 8
+
+
 class Corpus:
     def __init__(self, out):
         self.out = out
@@ -254,6 +297,19 @@ def write(out, seed):
     c.case("png_embedded_16384", "a.glb", image_glb("png", png(16384, 16384, rng)), programs="bake,render")
     c.case("webp_16383", "a.glb", image_glb("webp", webp(16384, 16384)), programs="bake,render")
     c.case("ktx2_16384", "a.glb", image_glb("ktx2", ktx2(16384, 16384)), programs="bake,render")
+    # --- Compressed geometry (EXT_meshopt_compression, KHR_draco_mesh_compression): cut short,
+    # corrupt, or claiming counts past the memory, checked before the decoders allocate ---
+    c.case("meshopt_truncated", "a.glb", compressed_glb("meshopt", b"\xa0" + bytes(rng.randrange(256) for _ in range(5))), programs="bake,render")
+    c.case("meshopt_noise", "a.glb", compressed_glb("meshopt", b"\xa0" + bytes(rng.randrange(256) for _ in range(64))), programs="bake,render")
+    c.case("meshopt_count_2_40", "a.glb", compressed_glb("meshopt", b"\xa0" + b"\0" * 32, count=2 ** 40, stride=16), programs="bake,render")
+    c.case("meshopt_count_2_26", "a.glb", compressed_glb("meshopt", b"\xa0" + b"\0" * 32, count=2 ** 26, stride=64), programs="bake,render")
+    c.case("meshopt_stride_6", "a.glb", compressed_glb("meshopt", b"\xa0" + b"\0" * 32, stride=6), programs="bake,render")
+    c.case("meshopt_triangles_4", "a.glb", compressed_glb("meshopt", b"\xe1" + b"\0" * 32, count=4, stride=2, mode="TRIANGLES"), programs="bake,render")
+    # A stream claiming 2^30 triangles with an indices accessor that agrees (the memory check refuses
+    # it), and one the accessor contradicts (refused by the count).
+    c.case("draco_faces_2_30", "a.glb", compressed_glb("draco", draco_header(1, 2 ** 30 - 1), corners=3 * (2 ** 30 - 1)), programs="bake,render")
+    c.case("draco_sequential_2_30", "a.glb", compressed_glb("draco", draco_header(0, 2 ** 30 - 1, 2 ** 31)), programs="bake,render")
+    c.case("draco_noise", "a.glb", compressed_glb("draco", b"DRACO" + bytes(rng.randrange(256) for _ in range(64))), programs="bake,render")
     obj_faces = "usemtl m\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1\n"
     c.case("obj_bmp_16384_x8", "a.obj", "mtllib a.mtl\n" + obj_faces,
            files={"a.mtl": ("newmtl m\n" + "map_Kd big.bmp\n" * 8).encode(), "big.bmp": bmp(16384, 16384)})
