@@ -57,13 +57,19 @@ extensions() {
     manifest) echo json ;; glb) echo glb ;; cache) echo qfamg ;; gltf) echo "gltf glb" ;;
   esac
 }
-dictionary() {
+dictionary() {  # tests/fuzz/dict/NAME.dict, several concatenated (libFuzzer takes one -dict)
   case "$1" in
-    ply) echo ply ;; off) echo off ;; obj) echo obj ;; xyz) echo xyz ;; las) echo las ;; manifest) echo json ;; glb) echo glb ;; gltf) echo gltf ;; *) echo "" ;;
+    ply) echo ply ;; off) echo off ;; obj) echo obj ;; xyz) echo xyz ;; las) echo las ;;
+    # The JSON targets also get json_structure.dict: runs of brackets and node-graph fragments
+    # that reach the JSON depth limit and the node checks (issue 50).
+    manifest) echo "json json_structure" ;; glb) echo "glb json_structure" ;; gltf) echo "gltf json_structure" ;; *) echo "" ;;
   esac
 }
 max_len() {  # large enough for the seeds; small inputs keep the runs fast
-  case "$1" in glb) echo 16384 ;; gltf) echo 32768 ;; cache) echo 8192 ;; *) echo 4096 ;; esac
+  # glTF/glb: 256 KiB, room for the hostile structures of issue 50 (JSON nested ~14,500 deep is
+  # 30 KB, a chain of ~8,100 nodes about 160 KB); libFuzzer's -len_control still starts each run
+  # near its seeds' sizes and grows the limit only when longer inputs pay off.
+  case "$1" in glb | gltf) echo 262144 ;; cache) echo 8192 ;; *) echo 4096 ;; esac
 }
 prepare_seeds() {
   local t="$1" dir="$build/seeds/$1"
@@ -79,11 +85,15 @@ prepare_seeds() {
 }
 
 run_one() {
-  local t="$1" log="$build/logs/$1.log" dict
-  dict="$(dictionary "$t")"
+  local t="$1" log="$build/logs/$1.log" names d
+  names="$(dictionary "$t")"
   local args=(-max_total_time="$seconds" -rss_limit_mb=2048 -malloc_limit_mb=2048 -timeout="$per_input"
               -max_len="$(max_len "$t")" -print_final_stats=1 -artifact_prefix="$build/artifacts/$t/")
-  [[ -n "$dict" ]] && args+=(-dict="$root/tests/fuzz/dict/$dict.dict")
+  if [[ -n "$names" ]]; then
+    mkdir -p "$build/dict"
+    for d in $names; do cat "$root/tests/fuzz/dict/$d.dict"; done >"$build/dict/$t.dict"
+    args+=(-dict="$build/dict/$t.dict")
+  fi
   QF_FUZZ_SCRATCH="$scratch/$t" ASAN_OPTIONS="detect_leaks=1:allocator_may_return_null=0:abort_on_error=0" \
   UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1" \
     "$build/fuzz_$t" "${args[@]}" "$build/corpus/$t" "$build/seeds/$t" >"$log" 2>&1
