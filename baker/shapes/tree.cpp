@@ -120,11 +120,28 @@ void add_plant_materials(TriangleMesh& mesh, SplitMix64& random) {
   mesh.materials = {bark, leaf};
 }
 
+// A unit direction uniform on the sphere (the draws in this order: its height, then its azimuth).
+struct Direction {
+  double x, y, z;
+};
+Direction random_direction(SplitMix64& random) {
+  const double z = 2 * random.uniform() - 1, phi = 2 * kPi * random.uniform();
+  return {std::sqrt(1 - z * z) * std::cos(phi), z, std::sqrt(1 - z * z) * std::sin(phi)};
+}
+
+// A point uniform in a ball of `radius` about the origin (a direction, then the distance), its
+// height scaled by `squash` and raised by `lift`: where a plant's leaves gather about a tip.
+Vec3f random_in_ball(SplitMix64& random, double radius, double squash, double lift) {
+  const Direction d = random_direction(random);
+  const double r = radius * std::cbrt(random.uniform());
+  return vec(d.x * r, d.y * r * squash + lift, d.z * r);
+}
+
 // A leaf at at + offset facing a random direction, its stalk towards `at`, min_size..min_size +
 // size_span long (the draws in this order: the normal, then the size).
 void add_random_leaf(TriangleMesh& mesh, SplitMix64& random, Vec3f at, Vec3f offset, double min_size, double size_span) {
-  const double nz = 2 * random.uniform() - 1, nphi = 2 * kPi * random.uniform();
-  const Vec3f n = vec(std::sqrt(1 - nz * nz) * std::cos(nphi), nz, std::sqrt(1 - nz * nz) * std::sin(nphi));
+  const Direction d = random_direction(random);
+  const Vec3f n = vec(d.x, d.y, d.z);
   Vec3f along = offset - n * dot(offset, n);  // outward from `at`, in the leaf's plane
   if (dot(along, along) < 1e-8f) frame(n, along, along);
   const float size = static_cast<float>(min_size + size_span * random.uniform());
@@ -204,10 +221,9 @@ TriangleMesh generate_card_tree(const CardTreeOptions& options) {
   //    its tip: a crown of ~2.4 units across, as game trees build theirs from a few hundred cards.
   for (std::size_t c = 0; c < options.cards; ++c) {
     const Vec3f tip = tips[static_cast<std::size_t>(random.next() % tips.size())];
-    const double z = 2 * random.uniform() - 1, phi = 2 * kPi * random.uniform(), r = 0.8 * std::cbrt(random.uniform());
-    const Vec3f offset = vec(std::sqrt(1 - z * z) * std::cos(phi) * r, z * r * 0.7 + 0.1, std::sqrt(1 - z * z) * std::sin(phi) * r);
-    const double nz = 2 * random.uniform() - 1, nphi = 2 * kPi * random.uniform();
-    const Vec3f n = vec(std::sqrt(1 - nz * nz) * std::cos(nphi), nz, std::sqrt(1 - nz * nz) * std::sin(nphi));
+    const Vec3f offset = random_in_ball(random, 0.8, 0.7, 0.1);
+    const Direction d = random_direction(random);
+    const Vec3f n = vec(d.x, d.y, d.z);
     Vec3f along, other;
     frame(n, along, other);
     const float size = static_cast<float>(0.6 + 0.3 * random.uniform());
@@ -259,9 +275,7 @@ TriangleMesh generate_tree(const TreeOptions& options) {
   //    facing a random direction, its stalk towards the tip.
   for (std::size_t l = 0; l < options.leaves; ++l) {
     const Vec3f tip = tips[static_cast<std::size_t>(random.next() % tips.size())];
-    const double z = 2 * random.uniform() - 1, phi = 2 * kPi * random.uniform(), r = 0.7 * std::cbrt(random.uniform());
-    const Vec3f offset = vec(std::sqrt(1 - z * z) * std::cos(phi) * r, z * r * 0.8 + 0.15, std::sqrt(1 - z * z) * std::sin(phi) * r);
-    add_random_leaf(mesh, random, tip, offset, 0.16, 0.08);
+    add_random_leaf(mesh, random, tip, random_in_ball(random, 0.7, 0.8, 0.15), 0.16, 0.08);
   }
   return mesh;
 }
@@ -290,9 +304,7 @@ TriangleMesh generate_bush(const BushOptions& options) {
   for (std::size_t l = 0; l < options.leaves; ++l) {
     const Stem& s = all[static_cast<std::size_t>(random.next() % all.size())];
     const Vec3f at = s.from + s.dir * static_cast<float>(s.length * (0.4 + 0.6 * random.uniform()));
-    const double z = 2 * random.uniform() - 1, phi = 2 * kPi * random.uniform(), r = 0.22 * std::cbrt(random.uniform());
-    const Vec3f offset = vec(std::sqrt(1 - z * z) * std::cos(phi) * r, z * r, std::sqrt(1 - z * z) * std::sin(phi) * r);
-    add_random_leaf(mesh, random, at, offset, 0.07, 0.05);
+    add_random_leaf(mesh, random, at, random_in_ball(random, 0.22, 1, 0), 0.07, 0.05);
   }
   return mesh;
 }
