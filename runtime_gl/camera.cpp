@@ -40,6 +40,15 @@ Vec3f sphere_direction(int i, int n) {
   return {static_cast<float>(r * std::sin(phi)), static_cast<float>(y), static_cast<float>(r * std::cos(phi))};
 }
 
+Vec3f octahedral_direction(int column, int row, int frames) {
+  const float u = -1.0f + 2.0f * static_cast<float>(column) / static_cast<float>(frames - 1);
+  const float v = -1.0f + 2.0f * static_cast<float>(row) / static_cast<float>(frames - 1);
+  float x = u, z = v;
+  const float y = 1.0f - std::fabs(u) - std::fabs(v);
+  if (y < 0) x = (1.0f - std::fabs(v)) * (u < 0 ? -1.0f : 1.0f), z = (1.0f - std::fabs(u)) * (v < 0 ? -1.0f : 1.0f);
+  return normalized(Vec3f{x, y, z}, {0, 1, 0});
+}
+
 double Camera::focal_pixels() const { return height / (2 * std::tan(double(radians(fovy_degrees)) * 0.5)); }
 
 Camera orbit_camera(const Sphere& s, Vec3f direction, float distance, int width, int height, float fovy_degrees) {

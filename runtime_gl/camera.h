@@ -34,6 +34,12 @@ struct Camera {
 Vec3f orbit_direction(float azimuth_degrees, float elevation_degrees);
 // Direction i of n spread evenly over the sphere (a Fibonacci lattice; deterministic).
 Vec3f sphere_direction(int i, int n);
+// The direction of frame (column, row) of an octahedral impostor's `frames` x `frames` grid (the
+// view-dependent peer of issue 49: scripts/octahedral_peer.py reads the same layout): grid point
+// (u, v) = -1 + 2 (column, row) / (frames - 1) on the octahedral map of the whole sphere, Y up:
+// (u, 1 - |u| - |v|, v) on the upper half; below the equator (|u| + |v| > 1) the corners fold
+// over, x = (1 - |v|) sign(u), z = (1 - |u|) sign(v). Unit length; frames >= 2.
+Vec3f octahedral_direction(int column, int row, int frames);
 
 // Looks at the sphere from `direction` (unit, target to eye). distance <= 0 frames the sphere: it
 // just fits the smaller of the two fields of view. Near/far hug the sphere.

@@ -15,8 +15,9 @@
 # vertex-clustering LOD, PSNR / IoU / holes / bytes at 256 and 64 pixels and each level's own size.
 # Assets (generated bushes and lattices of seeds 3 and 4, the generated tree, and assimp's
 # 2CylinderEngine and spider when installed): impostor levels vs the asset as drawn, simplify and
-# simplifySloppy at twice the quads in triangles and the crossed billboard at equal bytes (engine
-# method), PSNR / IoU / soft IoU / holes / bytes at each level's own size and half of it (~25 min).
+# simplifySloppy at twice the quads in triangles, the crossed billboard at equal bytes (engine
+# method) and the octahedral impostor at equal bytes (scripts/octahedral_peer.py), PSNR / IoU /
+# soft IoU / holes / bytes at each level's own size and half of it (~35 min).
 # scans: the scan league (scripts/scan_table.py): CGAL's building, b9_training, kitten and oni
 # baked by default; impostor levels against the reconstruction's mesh LODs at equal bytes.
 # chain: the recommended chain (scripts/chain_table.py) on bunny00, fandisk, the generated tree and
@@ -27,9 +28,10 @@
 # assimp's textured cube and engine, bunny00 and elephant; the chains; bake seconds and bytes.
 # far: issue 49's far levels (scripts/far_table.py): seeded assets no test uses (a broadleaf oak of
 # leaf cards, a bush, a lattice tower, a bare tree) and assimp's 2CylinderEngine when installed,
-# and CGAL's bunny00: each default level at its own size and half of it, level / asset as drawn,
+# and CGAL's bunny00: each default level at its own size and half of it, beside the asset as drawn,
+# the crossed billboard and the octahedral impostor of the level's bytes (scripts/octahedral_peer.py),
 # PSNR, soft IoU and coverage against the truth (8 views, 8x), and which of the targets it meets
-# (~6 min).
+# (~25 min).
 # big: one big asset (issue 20): a generated torus and bunny00's mesh sampled by depth peeling, at
 # 1M and 10M points each, baked with the defaults on 2 threads: seconds per stage, wall and CPU
 # (user + sys) time and peak RSS of the whole command (GNU time -v), bytes per point, and the

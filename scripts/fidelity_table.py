@@ -10,8 +10,10 @@ Two groups of models, told apart by how they are named:
   (256, 64 and "own"); then the summary against the better simplify, and holes and darkening;
 - the assets (named by an absolute path: foliage, lattices, textured game assets): per level, the
   impostor against the asset itself as drawn, simplify and simplifySloppy at twice the quads in
-  triangles and the crossed billboard at equal bytes (all by the engine method), at --asset-sizes
-  ("own" and "half"); then per asset the figures issue 31's targets are set on.
+  triangles and the crossed billboard at equal bytes (all by the engine method), and the octahedral
+  impostor at equal bytes (scripts/octahedral_peer.py: its own shader, frames lit as the truth is,
+  so an upper bound of what a view-dependent representation gives), at --asset-sizes ("own" and
+  "half"); then per asset the figures issue 31's targets are set on.
 The size "own" is the level's own max_screen_pixels (16..512): the largest size it is meant for,
 where a LOD chain switching by the manifest shows it; "half" is half of that (at least 16 px).
 Cells read PSNR dB, IoU, [soft IoU,] holes %. A peer the baker cannot make (an older --baker) is
@@ -82,6 +84,18 @@ def asset_peers(a, src, out, quads, level_bytes):
     return peers
 
 
+def octahedral(a, src, out, level_bytes, px):
+    """The octahedral impostor of the level's bytes at px: its mean scores and bytes, or None."""
+    r = subprocess.run(["/usr/bin/python3", os.path.join(os.path.dirname(os.path.abspath(__file__)), "octahedral_peer.py"), a.bins, src,
+                        os.path.join(out, "octahedral"), "--bytes", str(level_bytes), "--size", str(px), "--views", str(a.views)],
+                       capture_output=True, text=True)
+    if r.returncode != 0:
+        NOTES.append(f"octahedral peer of {src} at {px} px: {r.stderr.strip()[-300:]}")
+        return None
+    made = json.loads(r.stdout)
+    return dict(made["metrics"], bytes=made["bytes"])
+
+
 def league_model(a, name):
     """Bake one model and score each level and its peers at each size: rows."""
     src = os.path.join(a.models, name)  # an absolute name stands for itself
@@ -108,6 +122,8 @@ def league_model(a, name):
                 if made:
                     m = evaluate(a, src, made[0], px, True)[0]
                     row[peer] = dict(m, triangles=made[1], bytes=os.path.getsize(made[0]))
+            if is_mesh and not bundled:
+                row["octahedral"] = octahedral(a, src, out, level["bytes"], px)
             rows.append(row)
     if not bundled:  # issue 31's mechanical target: the finest level at 128 px
         finest = next(l for l in manifest["levels"] if l["primitives"] == most)
@@ -172,7 +188,7 @@ def print_cgal_summary(rows, sizes, budgets):
             print(f"| {model} | {size} | {max(big) if big else float('nan'):.1f} | {darker:.1f} |")
 
 
-ASSET_PEERS = ("as drawn", "simplify", "sloppy", "billboard")
+ASSET_PEERS = ("as drawn", "simplify", "sloppy", "billboard", "octahedral")
 
 
 def peer_cell(m):
@@ -204,8 +220,8 @@ def print_asset_targets(rows):
     and sloppy by 3 dB and 0.1 IoU and of the billboard); a mechanical asset's finest level at 128 px."""
     print("\n### assets against issue 31's targets (own size; d = impostor - peer: PSNR dB / IoU)\n")
     print("| model | finest own px | worst IoU | worst IoU - as drawn | worst PSNR - as drawn | ~30 quads | "
-          "d simplify | d sloppy | d billboard | finest @128 px |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
+          "d simplify | d sloppy | d billboard | d octahedral | finest @128 px |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     for model in dict.fromkeys(r["model"] for r in rows):
         own = [r for r in rows if r["model"] == model and r["size"] == "own"]
         finest = next(r for r in own if r["finest"])
@@ -215,7 +231,7 @@ def print_asset_targets(rows):
         dp = min((r["engine"]["psnr"] - r["as drawn"]["psnr"] for r in drawn), default=float("nan"))
         c = nearest_level(own, model, "own", 30)
         print(f"| {model} | {finest['pixels']} | {min(r['engine']['iou'] for r in own):.3f} | {di:+.3f} | {dp:+.2f} | "
-              f"{c['quads']} | {ahead(c, 'simplify')} | {ahead(c, 'sloppy')} | {ahead(c, 'billboard')} | "
+              f"{c['quads']} | {ahead(c, 'simplify')} | {ahead(c, 'sloppy')} | {ahead(c, 'billboard')} | {ahead(c, 'octahedral')} | "
               f"{cell(at128['engine']) if at128 else '-'} |")
 
 

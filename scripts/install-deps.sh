@@ -29,6 +29,7 @@ packages=(
   chromium                                        # three.js and Babylon.js renders (scripts/three-render, babylon-render): engine-truth tests, fidelity league
   blender python3-numpy                           # Blender 3.4 (background mode) and its glTF importer's numpy, which Debian's package
                                                   # does not depend on (without it every import fails): the engine_blender test
+  python3-pil                                     # with python3-numpy: scripts/octahedral_peer.py (the far and fidelity benchmarks' peer)
   slurm-wlm munge python3-yaml                    # the slurm test: a one-node cluster runs scripts/slurm/; docs/farm.md's Kubernetes YAML
 )
 

@@ -118,7 +118,8 @@ CommandSpec render_spec() {
       "The camera orbits the centre of FILE's bounding sphere (or --frame's): azimuth about +Y from +Z,\n"
       "elevation above the XZ plane; the default distance frames the sphere. --view i/N picks view i of\n"
       "N spread evenly over the sphere instead. --turntable N writes a contact sheet of N views around\n"
-      "the object at the given elevation. A mesh with materials (OBJ + MTL) is drawn with them by the\n"
+      "the object at the given elevation; --octahedral F writes the F x F frames of an octahedral impostor\n"
+      "(runtime_gl/camera.h octahedral_direction; use a small --fov for near-orthographic frames). A mesh with materials (OBJ + MTL) is drawn with them by the\n"
       "engine method unless --method says otherwise. glTF files as glTF-Transform and gltfpack write them\n"
       "are decoded (EXT_meshopt_compression, KHR_mesh_quantization, KHR_draco_mesh_compression,\n"
       "KHR_texture_basisu, EXT_texture_webp); a file requiring any other extension is refused (exit 1).",
@@ -128,6 +129,7 @@ CommandSpec render_spec() {
        {"distance", 0, "D", "framing the bounding sphere", "camera distance from the centre, world units"},
        {"view", 0, "I/N", "", "view I (0-based) of N spread over the sphere (replaces azimuth/elevation)"},
        {"turntable", 0, "N", "", "N views around the object in one contact sheet"},
+       {"octahedral", 0, "F", "", "F x F views from the octahedral grid's directions in one contact sheet, F to a row"},
        {"frame", 0, "FILE", "", "frame the camera on this file's bounding sphere (e.g. the reference)"},
        {"mesh", 0, "MESH", "", "point impostors: the mesh they fade to nearer than s Z0 (pixel side x focal length in pixels)"}},
       1, 1, "qf-render"};
@@ -194,7 +196,13 @@ int run_render(const ParsedArgs& a) {
   const int turntable = static_cast<int>(a.get_int("turntable", 0, 0, 1000));
   const float elevation = static_cast<float>(a.get_double("elevation", 20, -90, 90));
   const float azimuth = static_cast<float>(a.get_double("azimuth", 30, -1e6, 1e6));
-  if (turntable > 0) {
+  const int octahedral = static_cast<int>(a.get_int("octahedral", 0, 0, 64));
+  if (octahedral == 1) throw UsageError("--octahedral: a grid of at least 2 x 2 frames");
+  if (octahedral > 0 && (turntable > 0 || a.has("view"))) throw UsageError("--octahedral replaces --turntable and --view");
+  if (octahedral > 0) {
+    for (int row = 0; row < octahedral; ++row)
+      for (int column = 0; column < octahedral; ++column) directions.push_back(octahedral_direction(column, row, octahedral));
+  } else if (turntable > 0) {
     for (int i = 0; i < turntable; ++i) directions.push_back(orbit_direction(azimuth + 360.0f * i / turntable, elevation));
   } else if (a.has("view")) {
     const auto [i, n] = parse_view(a.get("view"));
@@ -210,8 +218,8 @@ int run_render(const ParsedArgs& a) {
     stats = renderer.draw(orbit_camera(sphere, d, distance, w, h, fov), settings);
     frames.push_back(renderer.read_pixels());
   }
-  const Image out = frames.size() == 1 ? frames[0]
-                                       : contact_sheet(frames, static_cast<int>(std::ceil(std::sqrt(static_cast<double>(frames.size())))), settings.background);
+  const int columns = octahedral > 0 ? octahedral : static_cast<int>(std::ceil(std::sqrt(static_cast<double>(frames.size()))));
+  const Image out = frames.size() == 1 ? frames[0] : contact_sheet(frames, columns, settings.background);
   save_png(a.get("output"), out);
   std::cerr << "qf-render: " << a.positional[0] << " (" << scene.describe() << ") -> " << a.get("output") << " (" << out.width << "x"
             << out.height << ", " << method_name(settings.method);

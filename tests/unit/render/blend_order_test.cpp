@@ -146,5 +146,41 @@ TEST(Camera, FramedSphereFitsAndViewsAreSpreadOverTheSphere) {
   EXPECT_NEAR(z, -length(c.eye - c.target), 1e-3);
 }
 
+TEST(Camera, OctahedralFramesCoverTheSphereAsTheMapFolds) {
+  // A 5 x 5 grid: the centre looks down from +Y, the edges' middles along the horizontal axes, and
+  // the four corners fold onto -Y (scripts/octahedral_peer.py reads the same layout).
+  auto near = [](Vec3f a, Vec3f b) { return length(a - b) < 1e-5; };
+  EXPECT_TRUE(near(octahedral_direction(2, 2, 5), {0, 1, 0}));
+  EXPECT_TRUE(near(octahedral_direction(0, 2, 5), {-1, 0, 0}));
+  EXPECT_TRUE(near(octahedral_direction(4, 2, 5), {1, 0, 0}));
+  EXPECT_TRUE(near(octahedral_direction(2, 0, 5), {0, 0, -1}));
+  EXPECT_TRUE(near(octahedral_direction(2, 4, 5), {0, 0, 1}));
+  for (int c : {0, 4})
+    for (int r : {0, 4}) EXPECT_TRUE(near(octahedral_direction(c, r, 5), {0, -1, 0}));
+  // Below the equator: frame (0, 1) of 5 is (u, v) = (-1, -0.5), folded to (x, z) = (-0.5, 0), y = -0.5.
+  const Vec3f below = octahedral_direction(0, 1, 5);
+  EXPECT_LT(below.y, 0);
+  EXPECT_LT(below.x, 0);
+  // 8 x 8: unit directions, none farther than 40 degrees from its grid neighbour, all distinct but
+  // where the map's border folds onto itself (frame (0, r) is frame (0, 7 - r), (c, 0) is (7 - c, 0),
+  // and the four corners are -Y).
+  for (int r = 0; r < 8; ++r)
+    for (int c = 0; c < 8; ++c) {
+      const Vec3f d = octahedral_direction(c, r, 8);
+      EXPECT_NEAR(length(d), 1.0, 1e-5);
+      if (c + 1 < 8) {
+        EXPECT_GT(dot(d, octahedral_direction(c + 1, r, 8)), std::cos(40.0 * 3.14159265358979 / 180));
+      }
+      for (int r2 = 0; r2 < 8; ++r2)
+        for (int c2 = 0; c2 < 8; ++c2) {
+          const bool corners = (c == 0 || c == 7) && (r == 0 || r == 7) && (c2 == 0 || c2 == 7) && (r2 == 0 || r2 == 7);
+          const bool folded = ((c == 0 || c == 7) && c2 == c && r2 == 7 - r) || ((r == 0 || r == 7) && r2 == r && c2 == 7 - c);
+          if ((r2 != r || c2 != c) && !corners && !folded) {
+            EXPECT_LT(dot(d, octahedral_direction(c2, r2, 8)), 0.9999f);
+          }
+        }
+    }
+}
+
 }  // namespace
 }  // namespace qf::render
