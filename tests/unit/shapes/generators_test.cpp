@@ -152,7 +152,7 @@ TEST(GeneratedShapes, PylonBeamsAreAbout1Over200OfItsHeight) {
     // Each beam is 8 corners (add_beam): corners 0 and 1 span its width.
     ASSERT_EQ(m.positions.size() % 8, 0u);
     const std::size_t beams = m.positions.size() / 8;
-    EXPECT_GT(beams, 300u);
+    EXPECT_GT(beams, 250u);
     float widest = 0, thinnest = 1e9f;
     std::size_t steel_beams = 0;
     for (std::size_t k = 0; k < beams; ++k) {
@@ -177,7 +177,7 @@ bool hits(Vec3f o, Vec3f d, Vec3f a, Vec3f b, Vec3f c) {
   const Vec3f q = cross(s, e1);
   const float v = dot(d, q) / det;
   if (v < 0 || u + v > 1) return false;
-  return dot(e2, q) / det > 1e-6f;
+  return dot(e2, q) / det > 1e-4f;  // not the triangle the ray starts on
 }
 
 TEST(GeneratedShapes, MachineInnerPartsAreHiddenButForItsOpenings) {
@@ -197,13 +197,16 @@ TEST(GeneratedShapes, MachineInnerPartsAreHiddenButForItsOpenings) {
   EXPECT_EQ(names.size(), machine.parts.size());
   EXPECT_GE(inner_parts, 4u);
   // 2. Every inner triangle's centroid lies in the cavity; from each, 26 rays (to the cube's
-  //    faces, edges and corners) look for a way out past the housing's walls.
+  //    faces, edges and corners) look for a way out past every part (the housing's walls, and
+  //    the parts themselves: a gear's far side is hidden by the gear).
   std::vector<Vec3f> directions;
   for (int x = -1; x <= 1; ++x)
     for (int y = -1; y <= 1; ++y)
       for (int z = -1; z <= 1; ++z)
         if (x || y || z) directions.push_back(normalized(Vec3f{static_cast<float>(x) + 0.01f, static_cast<float>(y) + 0.02f, static_cast<float>(z) + 0.03f}));
-  const TriangleMesh& walls = housing->mesh;
+  std::vector<std::array<Vec3f, 3>> occluders;
+  for (const MachinePart& p : machine.parts)
+    for (const Triangle& t : p.mesh.triangles) occluders.push_back({p.mesh.positions[t[0]], p.mesh.positions[t[1]], p.mesh.positions[t[2]]});
   std::size_t inner = 0, seen = 0;
   for (const MachinePart& p : machine.parts) {
     if (!p.inner) continue;
@@ -214,16 +217,14 @@ TEST(GeneratedShapes, MachineInnerPartsAreHiddenButForItsOpenings) {
                   c.z <= cavity.max.z) << p.name;
       ++inner;
       const bool out = std::any_of(directions.begin(), directions.end(), [&](Vec3f d) {
-        return std::none_of(walls.triangles.begin(), walls.triangles.end(), [&](const Triangle& w) {
-          return hits(c, d, walls.positions[w[0]], walls.positions[w[1]], walls.positions[w[2]]);
-        });
+        return std::none_of(occluders.begin(), occluders.end(), [&](const std::array<Vec3f, 3>& w) { return hits(c, d, w[0], w[1], w[2]); });
       });
       seen += out;
     }
   }
   EXPECT_GT(inner, 1000u);  // most of the assembly's triangles
   EXPECT_GT(seen, 0u);      // the window shows some
-  EXPECT_LT(static_cast<double>(seen) / inner, 0.5) << seen << " of " << inner;
+  EXPECT_LT(static_cast<double>(seen) / inner, 0.3) << seen << " of " << inner;  // 0.19 (seed 2)
   // 3. The file: a root "machine" whose children are the parts' nodes, each a mesh of its own.
   tinygltf::Model g;
   tinygltf::TinyGLTF loader;
