@@ -27,11 +27,12 @@
 # qf-render eval (8 views, 8x truth) beside the input as drawn, on a seeded lattice and bare tree,
 # assimp's textured cube and engine, bunny00 and elephant; the chains; bake seconds and bytes.
 # far: issue 49's far levels (scripts/far_table.py): seeded assets no test uses (a broadleaf oak of
-# leaf cards, a bush, a lattice tower, a bare tree) and assimp's 2CylinderEngine when installed,
-# and CGAL's bunny00: each default level at its own size and half of it, beside the asset as drawn,
-# the crossed billboard and the octahedral impostor of the level's bytes (scripts/octahedral_peer.py),
+# leaf cards, a bush, a lattice tower, a bare tree, a conifer of needle cards, a grass clump, a
+# power pylon, a gearbox with inner parts) and assimp's 2CylinderEngine when installed, and CGAL's
+# bunny00: each default level at its own size and half of it, beside the asset as drawn, the
+# crossed billboard and the octahedral impostor of the level's bytes (scripts/octahedral_peer.py),
 # PSNR, soft IoU and coverage against the truth (8 views, 8x), and which of the targets it meets
-# (~25 min).
+# (~50 min).
 # big: one big asset (issue 20): a generated torus and bunny00's mesh sampled by depth peeling, at
 # 1M and 10M points each, baked with the defaults on 2 threads: seconds per stage, wall and CPU
 # (user + sys) time and peak RSS of the whole command (GNU time -v), bytes per point, and the
@@ -288,7 +289,12 @@ for w in "${what[@]}"; do
       build/bin/qf-bake generate bush --seed 6 -o "$tmp/bush6.glb" -q
       build/bin/qf-bake generate lattice --seed 8 -o "$tmp/lattice8.glb" -q
       build/bin/qf-bake generate bare-tree --seed 9 -o "$tmp/bare9.glb" -q
-      assets=("$tmp/oak5.glb" "$tmp/bush6.glb" "$tmp/lattice8.glb" "$tmp/bare9.glb")
+      build/bin/qf-bake generate conifer --seed 11 -o "$tmp/conifer11.glb" -q
+      build/bin/qf-bake generate grass --seed 12 -o "$tmp/grass12.glb" -q
+      build/bin/qf-bake generate pylon --seed 13 -o "$tmp/pylon13.glb" -q
+      build/bin/qf-bake generate machine --seed 14 -o "$tmp/machine14.glb" -q
+      assets=("$tmp/oak5.glb" "$tmp/bush6.glb" "$tmp/lattice8.glb" "$tmp/bare9.glb" "$tmp/conifer11.glb" "$tmp/grass12.glb"
+              "$tmp/pylon13.glb" "$tmp/machine14.glb")
       f=/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb
       if [[ -f $f ]]; then assets+=("$f"); else echo "(assimp-testmodels not installed: $(basename "$f") skipped)"; fi
       python3 scripts/far_table.py build/bin "$tmp" "${assets[@]}" "$models/bunny00.off"

@@ -13,9 +13,12 @@
 #include "gltf/glb.h"
 #include "io/model_io.h"
 #include "primitives/billboard.h"
-#include "shapes/shapes.h"
+#include "shapes/foliage.h"
 #include "shapes/lattice.h"
+#include "shapes/machine.h"
 #include "shapes/plate.h"
+#include "shapes/pylon.h"
+#include "shapes/shapes.h"
 #include "shapes/tree.h"
 
 namespace qf::cli {
@@ -165,7 +168,16 @@ const std::vector<Command>& commands() {
             "  bare-tree    a trunk and limbs branching down to twigs far thinner than a pixel, no leaves\n"
             "               (.glb); --seed sets the branching\n"
             "  lattice      a tower of thin square beams, flat-shaded, one material (.glb); --seed sets\n"
-            "               its storeys, taper, bracing and beam width\n"
+            "               its storeys, taper, bracing and beam width\n"            "  conifer      a trunk and --leaves (default 140) drooping branch cards in tiers round it, a\n"
+            "               cone 5-6 tall; each card a twig with dark needles, cut-away texels black (.glb)\n"
+            "  grass        a clump of --leaves (default 300) bent alpha-masked blades 0.3-0.8 tall, green\n"
+            "               to straw yellow, from one blade atlas (.glb)\n"
+            "  pylon        a power pylon 36-44 tall of square beams 1/200 of its height and thinner:\n"
+            "               tapering legs, X bracing, two or three tiers of cross arms, insulators (.glb)\n"
+            "  machine      a gearbox as a CAD export gives it: one node per part (housing, motor, shafts,\n"
+            "               gears, bearings, bolts, pipe, ...), each its own colour, the inner parts seen\n"
+            "               only through a window and a shaft port (.glb)\n"
+            "  (--seed sets each game asset's random draws: same seed, same bytes)\n"
             "  plate        a 2 x 1 plate whose halves differ in roughness and metallic (a metallic-\n"
             "               roughness texture) and whose right half emits (.glb): material channels\n"
             "Points are spread uniformly by area with a seeded generator (identical output for\n"
@@ -175,7 +187,7 @@ const std::vector<Command>& commands() {
          {"seed", 0, "S", "1", "random seed"},
          {"mesh", 0, "", "", "write a closed triangle mesh instead (octahedron, cube, sphere; OUT must be .ply)"},
          {"subdivisions", 0, "N", "16", "--mesh: each face split into N x N triangles"},
-         {"leaves", 0, "N", "3000", "tree, bush, oak: number of leaf quads or cards (bush default: 1800, oak: 220)"},
+         {"leaves", 0, "N", "3000", "tree, bush, oak, conifer, grass: number of leaf quads, cards or blades (bush default: 1800, oak: 220, conifer: 140, grass: 300)"},
          quiet_option()},
         1, 1},
        run_generate},
@@ -284,6 +296,69 @@ int run_billboard(const ParsedArgs& args) {
   return 0;
 }
 
+namespace {
+
+// The game assets `generate` writes as .glb (the rest are point sets or --mesh .ply meshes).
+bool is_game_asset(const std::string& shape) {
+  for (const char* name : {"tree", "bush", "oak", "bare-tree", "lattice", "plate", "conifer", "grass", "pylon", "machine"})
+    if (shape == name) return true;
+  return false;
+}
+
+// Generates game asset `shape` (is_game_asset) from the command's --seed and --leaves and returns
+// its .glb; `triangles` gets its triangle count.
+std::vector<std::uint8_t> game_asset_glb(const std::string& shape, const ParsedArgs& args, std::uint64_t seed, std::size_t& triangles) {
+  const auto leaves = [&](std::size_t fallback, long long most) {
+    return static_cast<std::size_t>(args.get_int("leaves", static_cast<long long>(fallback), 1, most));
+  };
+  if (shape == "machine") {
+    MachineOptions m;
+    m.seed = seed;
+    const Machine machine = generate_machine(m);
+    triangles = 0;
+    for (const MachinePart& p : machine.parts) triangles += p.mesh.triangles.size();
+    return encode_machine_glb(machine);
+  }
+  TriangleMesh asset;
+  if (shape == "tree") {
+    TreeOptions t;
+    t.seed = seed, t.leaves = leaves(t.leaves, 1000000);
+    asset = generate_tree(t);
+  } else if (shape == "bush") {
+    BushOptions b;
+    b.seed = seed, b.leaves = leaves(b.leaves, 1000000);
+    asset = generate_bush(b);
+  } else if (shape == "oak") {
+    CardTreeOptions c;
+    c.seed = seed, c.cards = leaves(c.cards, 100000);
+    asset = generate_card_tree(c);
+  } else if (shape == "conifer") {
+    ConiferOptions c;
+    c.seed = seed, c.cards = leaves(c.cards, 100000);
+    asset = generate_conifer(c);
+  } else if (shape == "grass") {
+    GrassOptions g;
+    g.seed = seed, g.blades = leaves(g.blades, 100000);
+    asset = generate_grass(g);
+  } else if (shape == "bare-tree") {
+    asset = generate_bare_tree(seed);
+  } else if (shape == "plate") {
+    asset = generate_material_plate();
+  } else if (shape == "pylon") {
+    PylonOptions p;
+    p.seed = seed;
+    asset = generate_pylon(p);
+  } else {
+    LatticeOptions l;
+    l.seed = seed;
+    asset = generate_lattice(l);
+  }
+  triangles = asset.triangles.size();
+  return encode_textured_mesh_glb(asset);
+}
+
+}  // namespace
+
 int run_generate(const ParsedArgs& args) {
   args.require("output");
   ShapeOptions o;
@@ -291,38 +366,13 @@ int run_generate(const ParsedArgs& args) {
   o.seed = static_cast<std::uint64_t>(args.get_int("seed", static_cast<long long>(o.seed), 0, (1ll << 62)));
   const std::string out = args.get("output");
   const std::string& shape = args.positional[0];
-  if (shape == "tree" || shape == "bush" || shape == "oak" || shape == "bare-tree" || shape == "lattice" || shape == "plate") {
+  if (is_game_asset(shape)) {
     if (file_extension(out) != "glb") throw UsageError("generate " + shape + " writes a .glb, not '" + out + "'");
-    TriangleMesh asset;
-    if (shape == "tree") {
-      TreeOptions t;
-      t.seed = o.seed;
-      t.leaves = static_cast<std::size_t>(args.get_int("leaves", static_cast<long long>(t.leaves), 1, 1000000));
-      asset = generate_tree(t);
-    } else if (shape == "bush") {
-      BushOptions b;
-      b.seed = o.seed;
-      b.leaves = static_cast<std::size_t>(args.get_int("leaves", static_cast<long long>(b.leaves), 1, 1000000));
-      asset = generate_bush(b);
-    } else if (shape == "oak") {
-      CardTreeOptions c;
-      c.seed = o.seed;
-      c.cards = static_cast<std::size_t>(args.get_int("leaves", static_cast<long long>(c.cards), 1, 100000));
-      asset = generate_card_tree(c);
-    } else if (shape == "bare-tree") {
-      asset = generate_bare_tree(o.seed);
-    } else if (shape == "plate") {
-      asset = generate_material_plate();
-    } else {
-      LatticeOptions l;
-      l.seed = o.seed;
-      asset = generate_lattice(l);
-    }
-    const std::vector<std::uint8_t> bytes = encode_textured_mesh_glb(asset);
+    std::size_t triangles = 0;
+    const std::vector<std::uint8_t> bytes = game_asset_glb(shape, args, o.seed, triangles);
     write_bytes_atomically(out, bytes);
     if (!args.flag("quiet"))
-      std::cerr << "qf-bake generate: " << shape << " -> " << out << ": " << asset.triangles.size() << " triangles, " << bytes.size()
-                << " bytes\n";
+      std::cerr << "qf-bake generate: " << shape << " -> " << out << ": " << triangles << " triangles, " << bytes.size() << " bytes\n";
     return 0;
   }
   if (args.flag("mesh")) {

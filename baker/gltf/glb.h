@@ -99,10 +99,11 @@ std::size_t glb_image_bytes(const std::vector<std::uint8_t>& glb);
 
 // One .glb drawing every part at once (`parts`: finished .glb files as for combine_lod_glb; the
 // tiles of one scan, qf-bake join): a root node NAME whose children are the parts' root nodes,
-// named NAME_0..n, their materials and textures prefixed the same way. Plain glTF, as
-// combine_lod_glb's: the parts' document extensions are left out. Throws std::invalid_argument for
-// a part it cannot combine.
-std::vector<std::uint8_t> join_glb(const std::vector<const std::vector<std::uint8_t>*>& parts, const std::string& name);
+// named NAME_0..n (or part_names, one per part, where given: an assembly's bodies), their
+// materials and textures prefixed the same way. Plain glTF, as combine_lod_glb's: the parts'
+// document extensions are left out. Throws std::invalid_argument for a part it cannot combine.
+std::vector<std::uint8_t> join_glb(const std::vector<const std::vector<std::uint8_t>*>& parts, const std::string& name,
+                                   const std::vector<std::string>& part_names = {});
 
 // A point impostor (paper section 5): the permuted sample points as one glTF POINTS primitive
 // (POSITION, NORMAL, COLOR_0 when coloured; the order is the permutation, so any prefix is an even

@@ -163,14 +163,17 @@ std::size_t glb_image_bytes(const std::vector<std::uint8_t>& glb) {
   return bytes;
 }
 
-std::vector<std::uint8_t> join_glb(const std::vector<const std::vector<std::uint8_t>*>& parts, const std::string& name) {
+std::vector<std::uint8_t> join_glb(const std::vector<const std::vector<std::uint8_t>*>& parts, const std::string& name,
+                                   const std::vector<std::string>& part_names) {
   if (parts.empty()) throw std::invalid_argument("join_glb: no part");
+  if (!part_names.empty() && part_names.size() != parts.size()) throw std::invalid_argument("join_glb: not one name per part");
   tinygltf::Model m = empty_model();
   tinygltf::Node root;
   root.name = name;
   for (std::size_t i = 0; i < parts.size(); ++i) {
-    const int node = append_part(m, parse_glb(*parts[i]), name + "_" + std::to_string(i) + "_");
-    m.nodes[static_cast<std::size_t>(node)].name = name + "_" + std::to_string(i);
+    const std::string part = part_names.empty() ? name + "_" + std::to_string(i) : part_names[i];
+    const int node = append_part(m, parse_glb(*parts[i]), part + "_");
+    m.nodes[static_cast<std::size_t>(node)].name = part;
     root.children.push_back(node);
   }
   m.nodes.push_back(root);

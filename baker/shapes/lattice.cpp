@@ -4,34 +4,12 @@
 #include <cmath>
 
 #include "core/random.h"
+#include "shapes/parts.h"
 
 namespace qf {
-namespace {
-
-// A beam of square section `width` from a to b: a box of 8 corners and 12 triangles, wound
-// counter-clockwise seen from outside.
-void add_beam(TriangleMesh& mesh, Vec3f a, Vec3f b, float width) {
-  const Vec3f d = normalized(b - a);
-  const Vec3f u = normalized(cross(d, std::fabs(d.y) < 0.9f ? Vec3f{0, 1, 0} : Vec3f{1, 0, 0})) * (0.5f * width);
-  const Vec3f v = normalized(cross(d, u)) * (0.5f * width);
-  const auto base = static_cast<std::uint32_t>(mesh.positions.size());
-  for (const Vec3f& end : {a, b})
-    for (const Vec3f& c : {u + v, v - u, (u + v) * -1.0f, u - v}) mesh.positions.push_back(end + c);
-  // Sides k: corners k, k+1 at a (0..3) and at b (4..7); then the two end caps.
-  for (std::uint32_t k = 0; k < 4; ++k) {
-    const std::uint32_t k1 = (k + 1) % 4;
-    mesh.triangles.push_back({base + k, base + k1, base + 4 + k1});
-    mesh.triangles.push_back({base + k, base + 4 + k1, base + 4 + k});
-  }
-  mesh.triangles.push_back({base + 0, base + 2, base + 1});
-  mesh.triangles.push_back({base + 0, base + 3, base + 2});
-  mesh.triangles.push_back({base + 4, base + 5, base + 6});
-  mesh.triangles.push_back({base + 4, base + 6, base + 7});
-}
-
-}  // namespace
 
 TriangleMesh generate_lattice(const LatticeOptions& options) {
+  using shape_parts::add_beam;
   SplitMix64 random(options.seed);
   TriangleMesh mesh;
   // 1. The tower's proportions from the seed.
