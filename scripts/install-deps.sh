@@ -10,6 +10,7 @@ packages=(
   libtinygltf-dev nlohmann-json3-dev libstb-dev   # glTF writer/loader (+ its JSON and image deps)
   libdraco-dev                                    # Draco mesh/point compression
   libzstd-dev                                     # zstd for Basis Universal (third_party/basis_universal): UASTC KTX2
+                                                  # (meshoptimizer, laz-perf and Basis Universal are built from third_party/)
   libwebp-dev                                     # WebP textures (EXT_texture_webp): encoder (gltf/webp.cpp), decoder (runtime_gl/webp_image.cpp)
   libopenimageio-dev openimageio-tools            # image I/O and image algorithms
   libopenexr-dev                                  # EXR difference images
@@ -22,7 +23,6 @@ packages=(
   fonts-dejavu-core                               # captions of the demo's side-by-side picture
   # tests
   libgtest-dev googletest libbenchmark-dev
-  libmeshoptimizer-dev                            # edge-collapse mesh LODs (qf-bake simplify); the clustering benchmark
   python3-jsonschema                              # validates our JSON outputs against schemas/ in tests
   clang libclang-rt-14-dev                        # libFuzzer + sanitizer runtimes: scripts/fuzz.sh, tests/fuzz
   assimp-testmodels                               # glTF 2.0 and OBJ test models, valid and malformed: the assets test

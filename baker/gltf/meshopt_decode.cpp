@@ -41,7 +41,13 @@ std::vector<std::uint8_t> meshopt_decode(const std::uint8_t* data, std::size_t s
   const auto count = static_cast<std::size_t>(v.count), stride = static_cast<std::size_t>(v.stride);
   std::vector<std::uint8_t> out(count * stride);
   if (count == 0) return out;
-  // 1. The codec: each returns non-zero when the stream is truncated, malformed or of another version.
+  // 1. The extension's vertex codec is version 0 (header byte 0xa0). meshoptimizer 1.x also decodes
+  //    its version 1 (0xa1), which only KHR_meshopt_compression allows: refused here by name, as
+  //    Debian's 0.18 refused it, instead of reading a stream the file's extension does not define.
+  if (v.mode == "ATTRIBUTES" && size > 0 && data[0] != 0xa0)
+    broken("the ATTRIBUTES stream's header byte is " + std::to_string(data[0]) +
+           ", not 160 (0xa0: the vertex codec version 0 that EXT_meshopt_compression defines)");
+  // 2. The codec: each returns non-zero when the stream is truncated or malformed.
   int rc = 0;
   if (v.mode == "ATTRIBUTES") rc = meshopt_decodeVertexBuffer(out.data(), count, stride, data, size);
   else if (v.mode == "TRIANGLES") rc = meshopt_decodeIndexBuffer(out.data(), count, stride, data, size);
@@ -49,7 +55,7 @@ std::vector<std::uint8_t> meshopt_decode(const std::uint8_t* data, std::size_t s
   if (rc != 0)
     broken("the " + v.mode + " stream of " + std::to_string(size) + " bytes does not decode to " + std::to_string(count) + " elements of " +
            std::to_string(stride) + " bytes (meshoptimizer error " + std::to_string(rc) + ": truncated or corrupt)");
-  // 2. The filter, in place (its input is whatever the codec produced: any bytes are defined).
+  // 3. The filter, in place (its input is whatever the codec produced: any bytes are defined).
   if (v.filter == "OCTAHEDRAL") meshopt_decodeFilterOct(out.data(), count, stride);
   else if (v.filter == "QUATERNION") meshopt_decodeFilterQuat(out.data(), count, stride);
   else if (v.filter == "EXPONENTIAL") meshopt_decodeFilterExp(out.data(), count, stride);

@@ -120,6 +120,13 @@ nlohmann::json simplify_level_files(const TriangleMesh& mesh, const std::vector<
       continue;
     }
     SimplifiedMesh s = simplify_mesh(mesh, budgets[i], method);
+    // Edge collapse may take a thin mesh away whole below some budget (permissive collapse: the
+    // generated lattice below 16 triangles): the smaller budgets are not tried, the bake goes on.
+    if (s.mesh.triangles.empty() && method == SimplifyMethod::kCollapse) {
+      stopped = "simplify collapsed the whole mesh at a budget of " + std::to_string(budgets[i]) + " triangles: the smaller budgets are not tried";
+      skipped.push_back({{"target_triangles", budgets[i]}, {"skipped", "simplify collapsed the whole mesh"}});
+      continue;
+    }
     // simplifySloppy may cluster a small budget's mesh away entirely (2CylinderEngine at 52).
     if (s.mesh.triangles.empty())
       throw UsageError("a budget of " + std::to_string(budgets[i]) + " triangles leaves nothing of this mesh (" + simplifier +

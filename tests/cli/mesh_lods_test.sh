@@ -35,8 +35,11 @@ copy_scores tree "$work/tree.glb"
 engine=${QF_ASSIMP_MODELS:-/usr/share/assimp/models}/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb
 if [[ -f "$engine" ]]; then copy_scores engine "$engine"; else echo "note: $engine not installed; its check skipped"; fi
 
-# 2. The lattice's bake: simplify stalls above its smaller budget; no two S files are the same
-#    mesh, each budget is accounted for, the stop is said once; the same bytes at 1 thread.
+# 2. The lattice's bake: no two S files are the same mesh, each budget is accounted for, a stop
+#    (if any) is said once; the same bytes at 1 thread. With meshoptimizer 0.18 simplify stalled
+#    at 224 triangles above its budget of 56; 1.2's permissive collapse reaches both budgets
+#    (144 and 16 triangles), so no stall is required here (2CylinderEngine still stalls: 6,558
+#    triangles for a budget of 1,898, with the default budgets of a bake).
 "$bake" "$work/lattice.glb" -o "$work/bake" --no-measure -q || bad "bake"
 "$bake" "$work/lattice.glb" -o "$work/bake1" --no-measure --threads 1 -q || bad "bake --threads 1"
 python3 - "$work/bake" <<'PY' 2>"$work/err" && ok || bad "lattice LODs: $(tail -3 "$work/err")"
@@ -51,10 +54,9 @@ counts = [l["triangles"] for l in lods["levels"]]
 assert len(set(counts)) == len(counts), f"two S files with the same triangles: {counts}"
 budgets = [l["target_triangles"] for l in lods["levels"]] + [s["target_triangles"] for s in lods.get("skipped", [])]
 assert sorted(budgets) == sorted(set(budgets)) and len(budgets) == 2, f"budgets {budgets}"  # 900 triangles: / 4, / 16
-assert "stalled" in lods.get("stopped", ""), lods
-assert all(s["skipped"] for s in lods["skipped"]), lods["skipped"]
+assert all(s["skipped"] for s in lods.get("skipped", [])), lods["skipped"]
 warnings = json.load(open(os.path.join(d, "report.json")))["warnings"]
-assert sum("stalled" in w for w in warnings) == 1, warnings
+assert sum(w.startswith("mesh LODs: ") for w in warnings) == (1 if "stopped" in lods else 0), warnings
 PY
 for f in "$work/bake/"*.glb "$work/bake/manifest.json"; do
   cmp -s "$f" "$work/bake1/$(basename "$f")" && ok || bad "$(basename "$f") differs at --threads 1"

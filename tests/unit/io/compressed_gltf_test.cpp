@@ -9,6 +9,7 @@
 #include <cstring>
 #include <random>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "gltf/draco.h"
@@ -34,7 +35,10 @@ Grid grid() {
   return g;
 }
 
+// Version 0 of the vertex codec, the one EXT_meshopt_compression defines (meshoptimizer 1.x writes
+// version 1 unless told).
 std::vector<std::uint8_t> encode_vertices(const Grid& g) {
+  meshopt_encodeVertexVersion(0);
   std::vector<std::uint8_t> out(meshopt_encodeVertexBufferBound(64, 16));
   out.resize(meshopt_encodeVertexBuffer(out.data(), out.size(), g.vertices.data(), 64, 16));
   return out;
@@ -73,12 +77,29 @@ TEST(MeshoptDecode, OctahedralFilterGivesUnitNormals) {
   }
   std::vector<std::int8_t> packed(16 * 4);
   meshopt_encodeFilterOct(packed.data(), 16, 4, 8, normals.data());
+  meshopt_encodeVertexVersion(0);
   std::vector<std::uint8_t> stream(meshopt_encodeVertexBufferBound(16, 4));
   stream.resize(meshopt_encodeVertexBuffer(stream.data(), stream.size(), packed.data(), 16, 4));
   const std::vector<std::uint8_t> d = meshopt_decode(stream.data(), stream.size(), {"ATTRIBUTES", "OCTAHEDRAL", 16, 4});
   for (int i = 0; i < 16; ++i) {
     const auto* n = reinterpret_cast<const std::int8_t*>(&d[static_cast<std::size_t>(i) * 4]);
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(n[c] / 127.0f, normals[static_cast<std::size_t>(i * 4 + c)], 0.03f) << i;
+  }
+}
+
+// Version 1 of the vertex codec (KHR_meshopt_compression's, which meshoptimizer 1.x decodes) is no
+// EXT_meshopt_compression stream: refused by its header byte, not read.
+TEST(MeshoptDecode, VertexCodecVersion1IsRefused) {
+  const Grid g = grid();
+  meshopt_encodeVertexVersion(1);
+  std::vector<std::uint8_t> v(meshopt_encodeVertexBufferBound(64, 16));
+  v.resize(meshopt_encodeVertexBuffer(v.data(), v.size(), g.vertices.data(), 64, 16));
+  ASSERT_EQ(meshopt_decodeVertexVersion(v.data(), v.size()), 1);
+  try {
+    meshopt_decode(v.data(), v.size(), {"ATTRIBUTES", "NONE", 64, 16});
+    ADD_FAILURE() << "a version-1 stream was decoded";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("0xa0"), std::string::npos) << e.what();
   }
 }
 

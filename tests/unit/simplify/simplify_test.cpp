@@ -67,6 +67,29 @@ TEST(Simplify, TrianglesTakeTheMaterialOfTheirSide) {
   EXPECT_GT(checked, s.mesh.triangles.size() / 4);
 }
 
+// A texture seam stays a seam: the grid's right half samples another island of the texture (its
+// UVs shifted by 10), so every kept triangle has its three corners' UVs in one island, and each
+// corner the UV its position had on that side.
+TEST(Simplify, TextureSeamsStaySeams) {
+  TriangleMesh in = textured_grid(24, false);
+  for (std::size_t t = 0; t < in.triangles.size(); ++t) {
+    float x = 0;
+    for (std::uint32_t v : in.triangles[t]) x += in.positions[v].x / 3;
+    if (x > 0.5f)
+      for (Vec2f& uv : in.corner_uvs[t]) uv.x += 10;
+  }
+  const SimplifiedMesh s = simplify_mesh(in, in.triangles.size() / 8);
+  ASSERT_LT(s.mesh.triangles.size(), in.triangles.size() / 4);
+  for (std::size_t t = 0; t < s.mesh.triangles.size(); ++t) {
+    const bool right = s.mesh.corner_uvs[t][0].x >= 5;
+    for (std::size_t k = 0; k < 3; ++k) {
+      const Vec3f p = s.mesh.positions[s.mesh.triangles[t][k]];
+      EXPECT_FLOAT_EQ(s.mesh.corner_uvs[t][k].x, p.x + (right ? 10.0f : 0.0f)) << "triangle " << t;
+      EXPECT_FLOAT_EQ(s.mesh.corner_uvs[t][k].y, p.y);
+    }
+  }
+}
+
 TEST(Simplify, UntexturedMeshGetsNoSurfaceAttributes) {
   TriangleMesh in = textured_grid(16, false);
   in.corner_uvs.clear(), in.triangle_materials.clear(), in.materials.clear(), in.textures.clear();
@@ -114,7 +137,7 @@ TEST(Simplify, FlatShadedMeshKeepsItsHardEdges) {
     const Vec3f a = s.mesh.positions[t[0]], b = s.mesh.positions[t[1]], c = s.mesh.positions[t[2]];
     const Vec3f e1{b.x - a.x, b.y - a.y, b.z - a.z}, e2{c.x - a.x, c.y - a.y, c.z - a.z};
     const Vec3f cross{e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z, e1.x * e2.y - e1.y * e2.x};
-    // meshoptimizer 0.18 leaves some triangles of no area along the cube's edges: no side to keep.
+    // A triangle of no area along the cube's edges has no side to keep.
     if (cross.x == 0 && cross.y == 0 && cross.z == 0) continue;
     const Vec3f face = normalized(cross);
     for (std::uint32_t v : t) {
