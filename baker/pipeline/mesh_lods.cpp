@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdio>
 #include <stdexcept>
 
 #include "core/error.h"
@@ -68,18 +69,34 @@ nlohmann::json simplify_level_file(SimplifiedMesh& s, std::size_t budget, double
           {"max_screen_pixels", static_cast<long long>(max_screen_pixels)}};
 }
 
+// Why the LODs stop above their budgets, in this mesh's own figures: where the simplifier stalled,
+// the file that holds that mesh, and the budgets it left untried.
+std::string stall_message(const char* simplifier, std::size_t stalled_at, std::size_t budget, std::size_t input_triangles,
+                          const std::string& file, const std::vector<std::size_t>& untried) {
+  std::string m = std::string(simplifier) + " stalled at " + std::to_string(stalled_at) + " of the input's " +
+                  std::to_string(input_triangles) + " triangles (budget " + std::to_string(budget) +
+                  "): no collapse left keeps the topology (thin parts, separate pieces, creases), so " + file + " is the coarsest mesh LOD";
+  if (untried.empty()) return m;
+  std::string list;
+  for (std::size_t b : untried) list += (list.empty() ? "" : ", ") + std::to_string(b);
+  return m + " and the smaller budget" + (untried.size() > 1 ? "s " : " ") + list + " would give it again (not tried)";
+}
+
 }  // namespace
 
 nlohmann::json simplify_level_files(const TriangleMesh& mesh, const std::vector<std::size_t>& budgets, const std::string& stem,
                                     std::vector<OutputFile>& files, bool smooth, SimplifyMethod method) {
   const double diagonal = mesh.bounds().diagonal();
   const char* simplifier = method == SimplifyMethod::kSloppy ? "simplifySloppy" : "simplify";
-  nlohmann::json levels = nlohmann::json::array(), skipped = nlohmann::json::array(), stopped;
+  nlohmann::json levels = nlohmann::json::array(), skipped = nlohmann::json::array();
+  std::size_t stalled_at = 0, stalled_budget = 0;  // triangles and budget where the simplifier stalled; 0: it did not
+  std::vector<std::size_t> untried;                // the budgets not tried after it
   TriangleMesh previous;  // the last written LOD's mesh, as simplified
   std::string previous_name;
   for (std::size_t i = 0; i < budgets.size(); ++i) {
-    if (!stopped.is_null()) {
+    if (stalled_at > 0) {
       skipped.push_back({{"target_triangles", budgets[i]}, {"skipped", std::string("not tried: ") + simplifier + " stalled above a larger budget (see stopped)"}});
+      untried.push_back(budgets[i]);
       continue;
     }
     SimplifiedMesh s = simplify_mesh(mesh, budgets[i], method);
@@ -92,12 +109,9 @@ nlohmann::json simplify_level_files(const TriangleMesh& mesh, const std::vector<
     //    would give this mesh again. simplifySloppy as the fallback was measured and not taken
     //    (engine method, 8 views, 128 px, against the input): 2CylinderEngine's stalled 33,008
     //    triangles score 25.8 dB, IoU 0.996; sloppy at 6,182 and 1,307 triangles 12.9 dB, 0.976 and
-    //    11.9 dB, 0.915; the lattice's stalled 224 triangles IoU 0.24, sloppy at 54 IoU 0.10.
-    if (s.mesh.triangles.size() > budgets[i])
-      stopped = std::string(simplifier) + " stalled at " + std::to_string(s.mesh.triangles.size()) + " triangles (budget " +
-                std::to_string(budgets[i]) + "): no collapse left keeps the topology (thin parts, separate pieces, creases), so the " +
-                "smaller budgets give the same mesh; simplifySloppy is no fallback: it breaks thin parts and merges pieces " +
-                "(2CylinderEngine at 6182 triangles: 12.9 dB, IoU 0.976 against the input, where the stalled mesh scores 25.8 dB, 0.996)";
+    //    11.9 dB, 0.915; the lattice's stalled 224 triangles IoU 0.24, sloppy at 54 IoU 0.10. That
+    //    is why the message offers no fallback; it names this mesh's own figures only.
+    if (s.mesh.triangles.size() > budgets[i]) stalled_at = s.mesh.triangles.size(), stalled_budget = budgets[i];
     // 2. The same mesh as the last LOD is not written again.
     if (!levels.empty() && same_mesh(s.mesh, previous)) {
       skipped.push_back({{"target_triangles", budgets[i]}, {"skipped", "same mesh as " + previous_name + ".glb"}});
@@ -110,7 +124,8 @@ nlohmann::json simplify_level_files(const TriangleMesh& mesh, const std::vector<
   }
   nlohmann::json out{{"levels", levels}};
   if (!skipped.empty()) out["skipped"] = skipped;
-  if (!stopped.is_null()) out["stopped"] = stopped;
+  // The stalled mesh is the last one written (every later budget is skipped).
+  if (stalled_at > 0) out["stopped"] = stall_message(simplifier, stalled_at, stalled_budget, mesh.triangles.size(), previous_name + ".glb", untried);
   return out;
 }
 
@@ -182,6 +197,48 @@ nlohmann::json reconstructed_lod_outputs(const PointSet& points, const AssetOpti
                             {"points_used", rec.points_used},
                             {"triangles", rec.mesh.triangles.size()}};
   return lods;
+}
+
+namespace {
+
+// "footprint PSNR 19.8 dB, soft IoU 0.218" of a measured entry; empty where either is missing.
+std::string psnr_iou(const nlohmann::json& e) {
+  if (!e.is_object() || !e.contains("psnr") || !e["psnr"].is_number() || !e.contains("soft_iou") || !e["soft_iou"].is_number()) return "";
+  char text[64];
+  std::snprintf(text, sizeof text, "%.1f dB, soft IoU %.3f", e["psnr"].get<double>(), e["soft_iou"].get<double>());
+  return text;
+}
+
+// The entry of `measured` (a list of {pixels, ...}) at `pixels`; null when none.
+const nlohmann::json* at_pixels(const nlohmann::json& measured, long long pixels) {
+  for (const nlohmann::json& e : measured)
+    if (e.value("pixels", 0LL) == pixels) return &e;
+  return nullptr;
+}
+
+}  // namespace
+
+std::string stalled_lods_warning(const nlohmann::json& manifest) {
+  if (!manifest.contains("mesh_lods") || !manifest["mesh_lods"].contains("stopped")) return "";
+  const nlohmann::json& lods = manifest["mesh_lods"];
+  std::string w = "mesh LODs: " + lods["stopped"].get<std::string>();
+  if (!lods.contains("levels") || lods["levels"].empty()) return w;
+  const nlohmann::json& lod = lods["levels"].back();
+  if (!lod.contains("measured") || lod["measured"].empty()) return w;
+  // The bake's own measuring of the stalled LOD (the coarsest): how far it holds, and its figures
+  // beside the input's as drawn at that size (at the largest size measured where it holds at none).
+  const long long holds_to = lod.value("max_screen_pixels", 0LL);
+  const long long pixels = holds_to > 0 ? holds_to : lod["measured"][0].value("pixels", 0LL);
+  const nlohmann::json* own = at_pixels(lod["measured"], pixels);
+  const nlohmann::json* input = manifest.contains("measuring") && manifest["measuring"].contains("asset")
+                                    ? at_pixels(manifest["measuring"]["asset"], pixels) : nullptr;
+  w += "; measured as an engine draws it, " + lod.at("file").get<std::string>() +
+       (holds_to > 0 ? " holds up to " + std::to_string(pixels) + " px" : std::string(" holds at no size measured"));
+  const std::string figures = own ? psnr_iou(*own) : "";
+  if (figures.empty()) return w;
+  w += " (at " + std::to_string(pixels) + " px: footprint PSNR " + figures;
+  if (const std::string asset = input ? psnr_iou(*input) : ""; !asset.empty()) w += "; the input as drawn " + asset;
+  return w + ")";
 }
 
 }  // namespace qf

@@ -25,4 +25,10 @@ nlohmann::json mesh_lod_outputs(const TriangleMesh& mesh, const AssetOptions& o,
 nlohmann::json reconstructed_lod_outputs(const PointSet& points, const AssetOptions& o, const std::string& stem,
                                          std::vector<OutputFile>& files, std::vector<std::string>& warnings);
 
+// The warning of mesh LODs whose simplifier stalled, from the asset's `manifest` (empty when they
+// did not stall): mesh_lods' `stopped` (this mesh's triangles and budget), and where the bake
+// measured the coarsest LOD (the stalled mesh) how far it holds and its figures beside the input's
+// as drawn there. Call it after the measuring.
+std::string stalled_lods_warning(const nlohmann::json& manifest);
+
 }  // namespace qf

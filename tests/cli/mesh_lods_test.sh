@@ -2,7 +2,8 @@
 # Mesh LODs that keep the look (issue 33): a LOD that keeps every triangle of its input is drawn as
 # the input is (its normals, materials and sidedness; none where a glTF has none) and scores at
 # least 60 dB against it; a bake writes no LOD that is the same mesh as the one before, says where
-# the simplifier stalled (manifest and one warning), and writes the same bytes at 1 thread.
+# the simplifier stalled (manifest and one warning, in this mesh's own figures and, measured, its
+# LOD's), and writes the same bytes at 1 thread.
 # 2CylinderEngine (assimp-testmodels, rotated parts with their own normals) is checked where installed.
 # usage: mesh_lods_test.sh QF_BAKE QF_RENDER
 set -u
@@ -55,6 +56,30 @@ assert "stalled" in lods.get("stopped", ""), lods
 assert all(s["skipped"] for s in lods["skipped"]), lods["skipped"]
 warnings = json.load(open(os.path.join(d, "report.json")))["warnings"]
 assert sum("stalled" in w for w in warnings) == 1, warnings
+# The warning gives this mesh's figures (where it stalled, its budget, the input's triangles, the
+# file), no other asset's; unmeasured, nothing measured.
+w = next(w for w in warnings if "stalled" in w)
+stall = lods["levels"][-1]
+budget = max(l["target_triangles"] for l in lods["levels"] + lods.get("skipped", []) if l["target_triangles"] < stall["triangles"])
+for part in (f"stalled at {stall['triangles']} of the input's 900 triangles", f"(budget {budget})", stall["file"]):
+    assert part in w, (part, w)
+assert "2CylinderEngine" not in w and "measured" not in w, w
+PY
+# The same bake measured (with the chain, which measures the mesh LODs): the warning adds the
+# stalled LOD's own measured figures beside the input's, as the manifest has them.
+"$bake" "$work/lattice.glb" -o "$work/measured" -q || bad "measured bake"
+python3 - "$work/measured" <<'PY' 2>"$work/err" && ok || bad "measured stall warning: $(tail -3 "$work/err")"
+import json, os, sys
+d = sys.argv[1]
+m = json.load(open(os.path.join(d, "manifest.json")))
+lod = m["mesh_lods"]["levels"][-1]
+w = next(w for w in json.load(open(os.path.join(d, "report.json")))["warnings"] if "stalled" in w)
+px = lod["max_screen_pixels"] or lod["measured"][0]["pixels"]
+own = next(e for e in lod["measured"] if e["pixels"] == px)
+asset = next(e for e in m["measuring"]["asset"] if e["pixels"] == px)
+assert f"measured as an engine draws it, {lod['file']}" in w, w
+assert f"at {px} px: footprint PSNR {own['psnr']:.1f} dB, soft IoU {own['soft_iou']:.3f}" in w, w
+assert f"the input as drawn {asset['psnr']:.1f} dB, soft IoU {asset['soft_iou']:.3f}" in w, w
 PY
 for f in "$work/bake/"*.glb "$work/bake/manifest.json"; do
   cmp -s "$f" "$work/bake1/$(basename "$f")" && ok || bad "$(basename "$f") differs at --threads 1"
