@@ -375,6 +375,17 @@ std::string bake_page(const AssetBake& a, const std::string& input_path, const B
   return html::page(title, header(a) + warnings_section(a) + files_table(a, files) + chain_section(a, files) + gallery(files, input, o, why), kBakeStyle);
 }
 
+namespace {
+
+// A cell of bytes in a sortable column (class `what`), "-" where there is no figure.
+std::string bytes_cell(const char* what, std::optional<std::uintmax_t> bytes) {
+  if (!bytes) return std::string("<td class=\"") + what + "\">-</td>";
+  const std::string n = std::to_string(*bytes);
+  return std::string("<td class=\"") + what + "\" data-sort=\"" + n + "\" data-value=\"" + n + "\">" + html::bytes_text(double(*bytes)) + "</td>";
+}
+
+}  // namespace
+
 std::string batch_page(const Json& report, const std::string& page_dir) {
   const std::string root = report.value("output", std::string("."));
   const Json& t = report.value("totals", Json::object());
@@ -383,20 +394,26 @@ std::string batch_page(const Json& report, const std::string& page_dir) {
     << html::escape(report.value("manifest", std::string())) << "</code>, output <code>" << html::escape(root) << "</code>, " << report["assets"].size()
     << " asset(s): ";
   for (const char* s : {"baked", "up to date", "failed", "skipped"}) h << "<span id=\"total-" << (s == std::string("up to date") ? "up-to-date" : s) << "\" data-value=\"" << html::attr(t.value(s, Json(0))) << "\">" << t.value(s, Json(0)).dump() << " " << s << "</span>, ";
+  // The folder's weight beside what ships: the chains' files (a report from before these totals has neither).
+  if (t.contains("bytes") && t.contains("chain_bytes"))
+    h << "<span id=\"total-bytes\" data-value=\"" << html::attr(t["bytes"]) << "\">" << html::bytes_text(t["bytes"].get<double>())
+      << " written</span>, of which the recommended chains ship <span id=\"total-chain-bytes\" data-value=\"" << html::attr(t["chain_bytes"])
+      << "\">" << html::bytes_text(t["chain_bytes"].get<double>()) << "</span>, ";
   h << "in " << html::fixed(report.value("seconds", Json()), 2) << " s. Click a column to sort.</p>\n";
   h << "<table id=\"assets\" class=\"sortable\"><thead><tr><th>asset</th><th>image</th><th>status</th><th>seconds</th><th>peak MB</th><th>points</th>"
-       "<th>levels</th><th>primitives</th><th>texels</th><th>bytes</th><th>warnings</th><th class=\"text\">error</th></tr></thead><tbody>\n";
+       "<th>levels</th><th>primitives</th><th>texels</th><th title=\"the files the recommended chain ships\">chain bytes</th>"
+       "<th title=\"every file written, the reports aside\">bytes written</th><th>warnings</th><th class=\"text\">error</th></tr></thead><tbody>\n";
   for (const Json& e : report["assets"]) {
     const std::string name = e.value("name", std::string());
     const std::string status = e.value("status", std::string());
     const fs::path folder = fs::path(root) / name;
     const Json manifest = read_asset_manifest(folder.string());
     // The asset's own figures from its folder (up-to-date assets were not baked in this run).
-    std::size_t levels = 0, primitives = 0, texels = 0, bytes = 0;
-    if (manifest.is_object()) {
+    std::size_t levels = 0, primitives = 0, texels = 0;
+    if (manifest.is_object())
       for (const Json& l : manifest.value("levels", Json::array())) ++levels, primitives += l.value("primitives", std::size_t{0}), texels += l.value("texels", std::size_t{0});
-      for (const Json& f : manifest.value("files", Json::array())) bytes += f.value("bytes", std::size_t{0});
-    }
+    // Both weights: a point impostor or a mesh LOD that no band of the chain takes is written, not shipped.
+    const OutputBytes bytes = output_bytes(manifest);
     const fs::path page = folder / "report.html";
     std::error_code ec;
     const bool has_page = manifest.is_object() && fs::is_regular_file(page, ec);
@@ -411,9 +428,9 @@ std::string batch_page(const Json& report, const std::string& page_dir) {
       << "</td><td>" << (e.contains("points") ? e["points"].dump() : manifest.is_object() ? manifest.value("points", Json()).dump() : "-") << "</td>";
     if (manifest.is_object())
       h << "<td>" << levels << "</td><td data-value=\"" << primitives << "\">" << primitives << "</td><td data-value=\"" << texels << "\">" << texels
-        << "</td><td data-sort=\"" << bytes << "\" data-value=\"" << bytes << "\">" << html::bytes_text(double(bytes)) << "</td>";
+        << "</td>" << bytes_cell("chain-bytes", bytes.chain) << bytes_cell("bytes", bytes.written);
     else
-      h << "<td>-</td><td>-</td><td>-</td><td>-</td>";
+      h << "<td>-</td><td>-</td><td>-</td><td class=\"chain-bytes\">-</td><td class=\"bytes\">-</td>";
     h << "<td>" << (e.contains("warnings") ? std::to_string(e["warnings"].size()) : "-") << "</td><td class=\"fail error\">" << html::escape(message)
       << "</td></tr>\n";
   }

@@ -11,6 +11,8 @@
 #include <ostream>
 #include <functional>
 #include <limits>
+#include <map>
+#include <set>
 
 #include "analysis/neighborhoods.h"
 #include "core/error.h"
@@ -582,6 +584,36 @@ bool listed_files_present(const std::string& folder, const nlohmann::json& manif
     all = all && !ec && size == bytes;
   });
   return listed && all;
+}
+
+namespace {
+
+// output_bytes of the files `listed` (name: bytes).
+OutputBytes output_bytes_of(const nlohmann::json& manifest, const std::map<std::string, std::uintmax_t>& listed) {
+  OutputBytes out;
+  for (const auto& [name, bytes] : listed) out.written += bytes;
+  if (!manifest.is_object() || !manifest.contains("recommended_chain")) return out;
+  std::set<std::string> shipped;
+  for (const nlohmann::json& e : manifest["recommended_chain"].value("chain", nlohmann::json::array()))
+    if (e.value("kind", std::string()) != "asset" && e.contains("file")) shipped.insert(e["file"].get<std::string>());
+  out.chain = 0;
+  for (const std::string& f : shipped)
+    if (listed.count(f)) *out.chain += listed.at(f);
+  return out;
+}
+
+}  // namespace
+
+OutputBytes output_bytes(const nlohmann::json& manifest) {
+  std::map<std::string, std::uintmax_t> listed;
+  each_listed(manifest, [&](const std::string& name, std::uintmax_t bytes) { listed[name] = bytes; });
+  return output_bytes_of(manifest, listed);
+}
+
+OutputBytes output_bytes(const nlohmann::json& manifest, const std::vector<OutputFile>& files) {
+  std::map<std::string, std::uintmax_t> listed;
+  for (const OutputFile& f : files) listed[f.name] = f.bytes.size();
+  return output_bytes_of(manifest, listed);
 }
 
 void write_asset(OutputFolder& out, const std::vector<OutputFile>& files, nlohmann::json manifest, const nlohmann::json& report,

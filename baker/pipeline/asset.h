@@ -141,6 +141,18 @@ nlohmann::json read_asset_manifest(const std::string& folder);
 std::vector<std::string> listed_files(const nlohmann::json& manifest);
 bool listed_files_present(const std::string& folder, const nlohmann::json& manifest);
 
+// What a bake's files weigh, from its manifest.json: `written`, every file its "files" lists (all
+// but the reports); `chain`, the files its recommended chain ships (each once; the input itself,
+// which the chain starts at, and STEM_lods.glb, the same files combined, aside). A point impostor or
+// a mesh LOD no band takes is written and not shipped. No chain (not measured, --no-chain): absent.
+struct OutputBytes {
+  std::uintmax_t written = 0;
+  std::optional<std::uintmax_t> chain;
+};
+OutputBytes output_bytes(const nlohmann::json& manifest);
+// The same of a bake not yet written: its `files` in place of the manifest's list.
+OutputBytes output_bytes(const nlohmann::json& manifest, const std::vector<OutputFile>& files);
+
 // Writes `files`, `report` (report.json, when not null), `page` (report.html, when not empty) and
 // `manifest` (manifest.json, given a "files" list: name and size of every file above but the
 // reports) as the new content of `out`, replacing the folder whole (core/output_folder.h): at every

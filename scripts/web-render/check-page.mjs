@@ -124,7 +124,8 @@ async function checkBatch(page) {
   const r = readJson(jsonPath);
   const rows = await page.$$eval('#assets tbody tr', (trs) => trs.map((tr) => ({
     ...tr.dataset, seconds: tr.cells[3].dataset.value, link: tr.querySelector('a') ? tr.querySelector('a').getAttribute('href') : null,
-    thumb: !!tr.querySelector('img'), error: tr.querySelector('td.error').textContent })));
+    thumb: !!tr.querySelector('img'), error: tr.querySelector('td.error').textContent,
+    bytes: tr.querySelector('td.bytes').dataset.value, chainBytes: tr.querySelector('td.chain-bytes').dataset.value })));
   check(rows.length === r.assets.length, `${rows.length} rows, report ${r.assets.length} assets`);
   for (const a of r.assets) {
     const x = rows.find((y) => y.name === a.name);
@@ -132,12 +133,15 @@ async function checkBatch(page) {
     check(x.status === a.status, `${a.name}: status ${x.status}, report ${a.status}`);
     check(num(x.seconds) === (a.seconds ?? null), `${a.name}: seconds ${x.seconds}, report ${a.seconds}`);
     if (a.error) check(x.error.includes(a.error.message), `${a.name}: error message not shown`);
+    // What the asset wrote and what its chain ships: the page reads the folder, the report the bake.
+    check(num(x.bytes) === (a.bytes ?? null), `${a.name}: bytes ${x.bytes}, report ${a.bytes}`);
+    check(num(x.chainBytes) === (a.chain_bytes ?? null), `${a.name}: chain bytes ${x.chainBytes}, report ${a.chain_bytes}`);
     if (a.status === 'baked') {
       check(x.link && fs.existsSync(path.join(path.dirname(pagePath), x.link)), `${a.name}: no link to an existing report.html (${x.link})`);
       check(x.thumb, `${a.name}: no thumbnail`);
     }
   }
-  for (const [id, key] of [['baked', 'baked'], ['failed', 'failed'], ['up-to-date', 'up to date']])
+  for (const [id, key] of [['baked', 'baked'], ['failed', 'failed'], ['up-to-date', 'up to date'], ['bytes', 'bytes'], ['chain-bytes', 'chain_bytes']])
     check(num(await page.$eval(`#total-${id}`, (e) => e.dataset.value)) === r.totals[key], `total ${key} differs`);
 }
 
