@@ -13,6 +13,7 @@
 #include <ostream>
 
 #include "cli/commands.h"
+#include "cli/program.h"
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/output_folder.h"
@@ -140,6 +141,7 @@ WebpOptions read_webp_setting(const OptionValues& args, const std::string& name,
 
 AssetOptions read_asset_options(const OptionValues& args) {
   AssetOptions a;
+  a.tool_version = version();
   BakeOptions& o = a.bake;
   o.analysis = read_analysis_options(args);
   o.domains.tau = args.get_double("tau", o.domains.tau, 0.0, 1.0);

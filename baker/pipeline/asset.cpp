@@ -156,6 +156,8 @@ nlohmann::json asset_report(AssetBake& a, const AssetOptions& o, const std::stri
     if (!a.sampled.fallback.empty()) r.warnings.push_back(a.sampled.fallback);
   }
   return {{"input", input_name},
+          {"tool_version", o.tool_version},
+          {"gl", a.gl},
           {"format", a.read.format},
           {"points", r.points},
           {"dropped_nonfinite", a.read.dropped_nonfinite},
@@ -329,6 +331,21 @@ std::size_t asset_bytes(const std::string& path) {
   return bytes;
 }
 
+// 1a. What the input is (manifest "source"), so that the saving can be read off beside the
+// outputs' bytes: its format, its bytes with every file it reads, and what it holds: a mesh's
+// triangles, materials and textures, a point set's points (`points`: as read, before any dropped).
+nlohmann::json source_entry(const std::string& path, const ReadReport& read, const Model* model, std::size_t points) {
+  nlohmann::json s{{"format", read.format}, {"bytes", asset_bytes(path)}, {"files", 1 + input_dependencies(path).size()}};
+  if (model && model->is_mesh) {
+    s["triangles"] = model->mesh.triangles.size() + read.dropped_triangles;
+    s["materials"] = model->mesh.materials.size();
+    s["textures"] = model->mesh.textures.size();
+  } else {
+    s["points"] = points;
+  }
+  return s;
+}
+
 // What drawing a chain's file costs an engine besides its bytes: triangles (a quad is two), and the
 // GPU memory of its textures with their mip levels where the manifest gives it; the input's
 // triangles where it is a mesh.
@@ -361,6 +378,7 @@ void measure_outputs(AssetBake& a, const AssetOptions& o, const std::string& pat
   }
   m.asset.file = input_name;
   m.asset.bytes = asset_bytes(path);
+  if (!m.gl_renderer.empty()) a.gl = {{"renderer", m.gl_renderer}, {"version", m.gl_version}};
   apply_screen_sizes(a, m, o.chain_rule.bar);
   a.manifest["measuring"] = measuring_entry(m, o.chain_rule.bar);
   if (o.chain) {
@@ -440,13 +458,16 @@ AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::
   TriangleMesh mesh;
   MeshSurface surface;  // a mesh input's quads draw the mesh itself
   PointSet points;
+  nlohmann::json source;  // the input's facts, once read
   if (!streamed) {
     const auto read_start = std::chrono::steady_clock::now();
     progress::step("reading " + path);
     Model model = read_model(path, o.read, &a.read);
+    source = source_entry(path, a.read, &model, model.points.size() + a.read.dropped_nonfinite);
     if (const std::string why = cheap_already(model, o.cheap_triangles); !why.empty()) {
       a.result.times.push_back({"read", seconds_since(read_start), 0, 0});
       cheap_asset(a, o, path, input_name, model.mesh, why);
+      a.manifest["source"] = source;
       a.report = asset_report(a, o, input_name, a.manifest["levels"]);
       if (o.report_page) a.page = o.report_page(a, path);
       return a;
@@ -503,6 +524,9 @@ AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::
                                 " to mesh inputs only; this input is a point set: ignored");
   }
   a.manifest = impostor_outputs(a.result, stem, input_name, a.files);
+  // A streamed set was never whole in memory: its points are those baked and those dropped.
+  a.manifest["source"] = streamed ? source_entry(path, a.read, nullptr, a.result.points + a.read.dropped_nonfinite + a.read.dropped_outliers)
+                                  : source;
   if (is_mesh) a.manifest["input_triangles"] = mesh.triangles.size();
   if (is_mesh && o.point_impostor) {
     progress::step("point impostor");

@@ -76,6 +76,10 @@ struct AssetOptions {
   // The options given that only a mesh input uses ("--ldi", ...): a point-set input warns that
   // they were ignored, rather than ignoring them without a word.
   std::vector<std::string> mesh_only_given;
+  // The program's version, for report.json (tool_version) and the page; not in the manifest, whose
+  // bytes qf-diff compares between a baseline and a new bake (a version change alone is no change
+  // of the outputs). Empty: not said.
+  std::string tool_version;
 };
 
 struct AssetBake {
@@ -86,6 +90,10 @@ struct AssetBake {
   BakeResult result;              // the bake's figures (level .glb bytes moved into `files`)
   SampleStats sampled;            // backend empty for point-set inputs
   ReadReport read;
+  // The GL driver the outputs were measured with, {renderer, version} (GL_RENDERER, GL_VERSION;
+  // null when not measured): in report.json and on the page, never in the manifest, which is
+  // byte-identical for the same input and settings on any machine while the driver's name is not.
+  nlohmann::json gl;
 };
 
 // Reads `path` as a point set; a mesh is sampled by depth peeling (its figures in `sampled`, the

@@ -116,6 +116,24 @@ async function checkBake(page) {
   const warnings = await page.$$eval('#warnings li.warning', (li) => li.map((x) => x.textContent));
   check(JSON.stringify(warnings) === JSON.stringify(r.warnings), `warnings shown ${JSON.stringify(warnings)}, report.json ${JSON.stringify(r.warnings)}`);
   check(num(await page.$eval('#points', (e) => e.dataset.value)) === r.points, 'points differ from report.json');
+  // The input's facts (manifest source), what the bake wrote and what its chain ships, the
+  // version and the measuring's GL driver (report.json).
+  const source = await page.$eval('#source', (e) => ({ ...e.dataset }));
+  for (const k of ['bytes', 'files', 'triangles', 'points', 'materials', 'textures'])
+    check(num(source[k]) === (m.source[k] ?? null), `source ${k}: shown ${source[k]}, manifest ${m.source[k]}`);
+  check(source.format === m.source.format, `source format: shown ${source.format}, manifest ${m.source.format}`);
+  const written = m.files.reduce((n, f) => n + f.bytes, 0);
+  check(num(await page.$eval('#bytes-written', (e) => e.dataset.value)) === written, `bytes written differ from the manifest's ${written}`);
+  if (m.recommended_chain) {
+    const shipped = [...new Set(m.recommended_chain.chain.filter((e) => e.kind !== 'asset').map((e) => e.file))];
+    const chainBytes = shipped.reduce((n, f) => n + m.files.find((x) => x.name === f).bytes, 0);
+    check(num(await page.$eval('#chain-bytes', (e) => e.dataset.value)) === chainBytes, `chain bytes differ from the manifest's ${chainBytes}`);
+  }
+  check((await page.$eval('#generator', (e) => e.dataset.version)) === r.tool_version, 'version differs from report.json');
+  if (r.gl) {
+    const gl = await page.$eval('#gl', (e) => ({ ...e.dataset }));
+    check(gl.renderer === r.gl.renderer && gl.version === r.gl.version, `GL driver shown ${JSON.stringify(gl)}, report.json ${JSON.stringify(r.gl)}`);
+  }
 }
 
 // The batch's page against its report: one row per asset with its status, time and error; the

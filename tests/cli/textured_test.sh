@@ -33,6 +33,22 @@ echo "cube_mask finest level: IoU $mask against the asset, $whole against the un
 cmp -s "$work/tree.glb" "$work/tree2.glb" && ok || bad "generate tree is not deterministic"
 node "$validator/validate.js" "$work/tree.glb" >"$work/v" 2>&1 && ok || bad "tree.glb does not validate: $(tail -2 "$work/v")"
 "$bake" bake "$work/tree.glb" -o "$work/treeb" --ldi 192 --no-cache --mesh-lods none -q || bad "tree.glb did not bake"
+# The bake states its input's facts in the manifest (deterministic: no version, no driver), the
+# version and the measuring's GL driver in report.json and on report.html.
+python3 - "$work/treeb" "$work/tree.glb" "$("$bake" --version)" <<'PY' 2>"$work/err" && ok || bad "tree: the input's facts: $(tail -1 "$work/err")"
+import json, os, sys
+d, tree, version = sys.argv[1], sys.argv[2], sys.argv[3].split()[-1]
+m, r = json.load(open(os.path.join(d, "manifest.json"))), json.load(open(os.path.join(d, "report.json")))
+assert m["source"] == {"format": "glb", "bytes": os.path.getsize(tree), "files": 1, "triangles": m["input_triangles"],
+                       "materials": 2, "textures": 2}, m["source"]
+assert r["tool_version"] == version, r["tool_version"]
+gl = r["gl"]
+assert gl["renderer"] and gl["version"], gl
+text = open(os.path.join(d, "manifest.json")).read()
+assert gl["renderer"] not in text and version not in text, "the manifest carries the driver or the version"
+page = open(os.path.join(d, "report.html")).read()
+assert f"quasiflat {version}" in page and gl["renderer"] in page and gl["version"] in page, "report.html lacks the version or the driver"
+PY
 coarsest=$(ls "$work"/treeb/tree_L*.glb | sort -V | tail -1)
 quads=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["levels"][-1]["primitives"])' "$work/treeb/manifest.json")
 "$bake" simplify "$work/tree.glb" -o "$work/simp" --triangles $((2 * quads)) -q || bad "simplify of tree.glb failed"
