@@ -127,10 +127,12 @@ std::vector<std::size_t> default_simplify_budgets(const TriangleMesh& mesh);
 // entries (file, target and kept triangles, vertices, bytes, error and the largest on-screen size of
 // the object at which that error stays under half a pixel, as the impostor levels give it),
 // "skipped": [{target_triangles, skipped: why}] and "stopped": why, where there are any}. Shared by
-// the bake and `qf-bake simplify`. UsageError for a budget that leaves no triangle.
+// the bake and `qf-bake simplify`. UsageError for a budget that leaves no triangle. A textured
+// LOD's textures are PNG, or KTX2 where `gltf` asks for it (--textures ktx2: the impostor levels'
+// encoder and codecs), their entry then with texture_bytes and gpu_bytes as a level's.
 nlohmann::json simplify_level_files(const TriangleMesh& mesh, const std::vector<std::size_t>& budgets, const std::string& stem,
                                     std::vector<OutputFile>& files, bool smooth = true,
-                                    SimplifyMethod method = SimplifyMethod::kCollapse);
+                                    SimplifyMethod method = SimplifyMethod::kCollapse, const GltfOptions& gltf = {});
 
 // The cluster LODs' switching rule (seed 002): a level serves while its cell is at most this many
 // pixels wide on screen, so an object of diagonal D gets max_screen_pixels = kClusterCellPixels x

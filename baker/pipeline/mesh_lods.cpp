@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdio>
+#include <omp.h>
 #include <stdexcept>
 
 #include "core/error.h"
@@ -43,7 +44,7 @@ bool same_mesh(const TriangleMesh& a, const TriangleMesh& b) {
 
 // One LOD's file and manifest entry (`s` is finished for writing: normals, textures, sidedness).
 nlohmann::json simplify_level_file(SimplifiedMesh& s, std::size_t budget, double diagonal, bool collapsed, const std::string& name,
-                                   std::vector<OutputFile>& files, bool smooth) {
+                                   std::vector<OutputFile>& files, bool smooth, const GltfOptions& gltf) {
   // A mesh with materials (textured glTF, OBJ + MTL) keeps them, its textures sized for the
   // level's screen: at most 2 x max_screen_pixels texels a side (the spider's 768-px texture in
   // its 3-px level cost 1.4 MB; at its 342-triangle level, drawn at its 43 px, sides of 4x, 2x
@@ -59,14 +60,19 @@ nlohmann::json simplify_level_file(SimplifiedMesh& s, std::size_t budget, double
   // stays (2CylinderEngine's copy, double-sided, showed the backs of its open parts: 56.4 dB).
   if (collapsed)
     for (SurfaceMaterial& m : s.mesh.materials) m.double_sided = true;
-  files.push_back({name, own_materials ? encode_textured_mesh_glb(s.mesh) : encode_mesh_glb(s.mesh, smooth)});
-  return {{"file", name},
-          {"target_triangles", budget},
-          {"triangles", s.mesh.triangles.size()},
-          {"vertices", s.mesh.positions.size()},
-          {"bytes", files.back().bytes.size()},
-          {"error", canonical_double(static_cast<float>(s.error))},
-          {"max_screen_pixels", static_cast<long long>(max_screen_pixels)}};
+  // Its textures in the bake's format where that is KTX2 (PNG else): what they cost is said beside
+  // the bytes, as the impostor levels' (the GPU memory KTX2 saves).
+  TextureCost cost;
+  files.push_back({name, own_materials ? encode_textured_mesh_glb(s.mesh, gltf, &cost) : encode_mesh_glb(s.mesh, smooth)});
+  nlohmann::json entry{{"file", name},
+                       {"target_triangles", budget},
+                       {"triangles", s.mesh.triangles.size()},
+                       {"vertices", s.mesh.positions.size()},
+                       {"bytes", files.back().bytes.size()},
+                       {"error", canonical_double(static_cast<float>(s.error))},
+                       {"max_screen_pixels", static_cast<long long>(max_screen_pixels)}};
+  if (cost.texels > 0) entry["texture_bytes"] = cost.file_bytes, entry["gpu_bytes"] = cost.gpu_bytes;
+  return entry;
 }
 
 // Why the LODs stop above their budgets, in this mesh's own figures: where the simplifier stalled,
@@ -85,7 +91,7 @@ std::string stall_message(const char* simplifier, std::size_t stalled_at, std::s
 }  // namespace
 
 nlohmann::json simplify_level_files(const TriangleMesh& mesh, const std::vector<std::size_t>& budgets, const std::string& stem,
-                                    std::vector<OutputFile>& files, bool smooth, SimplifyMethod method) {
+                                    std::vector<OutputFile>& files, bool smooth, SimplifyMethod method, const GltfOptions& gltf) {
   const double diagonal = mesh.bounds().diagonal();
   const char* simplifier = method == SimplifyMethod::kSloppy ? "simplifySloppy" : "simplify";
   nlohmann::json levels = nlohmann::json::array(), skipped = nlohmann::json::array();
@@ -120,7 +126,7 @@ nlohmann::json simplify_level_files(const TriangleMesh& mesh, const std::vector<
     previous = s.mesh;
     previous_name = stem + "_S" + std::to_string(levels.size());
     const bool collapsed = s.mesh.triangles.size() < mesh.triangles.size();
-    levels.push_back(simplify_level_file(s, budgets[i], diagonal, collapsed, previous_name + ".glb", files, smooth));
+    levels.push_back(simplify_level_file(s, budgets[i], diagonal, collapsed, previous_name + ".glb", files, smooth, gltf));
   }
   nlohmann::json out{{"levels", levels}};
   if (!skipped.empty()) out["skipped"] = skipped;
@@ -171,7 +177,11 @@ nlohmann::json mesh_lod_outputs(const TriangleMesh& mesh, const AssetOptions& o,
                          "thick line width = _THICKNESS / R pixels"}};
   }
   if (o.mesh_lods == AssetOptions::MeshLods::kSimplify && !default_simplify_budgets(mesh).empty()) {
-    nlohmann::json lods = simplify_level_files(mesh, default_simplify_budgets(mesh), stem, files, smooth);
+    // The textures in the impostor levels' format where it is KTX2 (--textures ktx2), with every
+    // thread the encoder's (its bytes do not depend on it).
+    GltfOptions gltf = o.bake.gltf;
+    gltf.threads = omp_get_max_threads();
+    nlohmann::json lods = simplify_level_files(mesh, default_simplify_budgets(mesh), stem, files, smooth, SimplifyMethod::kCollapse, gltf);
     lods["method"] = "simplify";
     lods["lod_rule"] = "coarsest level whose max_screen_pixels >= the object's on-screen size (bounding-box diagonal, pixels)";
     return lods;
