@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -106,7 +107,9 @@ int own_side(const PageFile& f, int near) {
 // 2. Every file and the input from one view (the input framed, as the measuring frames it): the
 // engine method over the measuring's grey; each file loaded once (its texels counted then).
 // Returns the input's images by side; empty (with `why`) when there is no GL driver.
-std::map<int, Image> draw_all(std::vector<PageFile>& files, const std::string& input_path, const BakePageOptions& o, std::string& why) {
+// `driver`: the GL driver that drew them, "renderer (version)".
+std::map<int, Image> draw_all(std::vector<PageFile>& files, const std::string& input_path, const BakePageOptions& o, std::string& why,
+                              std::string& driver) {
   std::map<int, Image> input;
   std::unique_ptr<HeadlessContext> context;
   try {
@@ -115,6 +118,7 @@ std::map<int, Image> draw_all(std::vector<PageFile>& files, const std::string& i
     why = e.what();
     return input;
   }
+  driver = context->renderer() + " (" + context->version() + ")";
   DrawSettings settings;
   settings.method = Method::kEngine;
   settings.background = {128, 128, 128};
@@ -145,7 +149,52 @@ std::map<int, Image> draw_all(std::vector<PageFile>& files, const std::string& i
 
 // --- the bake page's parts ---------------------------------------------------------------------
 
-std::string header(const AssetBake& a) {
+// "12.3%": `part` of `whole` bytes, "-" without a whole.
+std::string share_text(double part, double whole) {
+  if (!(whole > 0)) return "-";
+  char text[32];
+  std::snprintf(text, sizeof text, part < 0.1 * whole ? "%.2f%%" : "%.1f%%", 100 * part / whole);
+  return text;
+}
+
+// The input's facts (manifest "source") and what the bake makes of its bytes: all it wrote, and
+// what the recommended chain ships; the version that baked and the GL driver that measured. The
+// figures as data-* attributes, as the JSON has them.
+std::string source_line(const AssetBake& a, const std::string& driver) {
+  const Json& s = a.manifest.value("source", Json::object());
+  const double input = s.value("bytes", 0.0);
+  std::ostringstream h;
+  h << "<p class=\"meta\" id=\"source\" data-format=\"" << html::attr(s.value("format", Json())) << "\" data-bytes=\"" << html::attr(s.value("bytes", Json()))
+    << "\" data-files=\"" << html::attr(s.value("files", Json())) << "\" data-triangles=\"" << html::attr(s.value("triangles", Json()))
+    << "\" data-points=\"" << html::attr(s.value("points", Json())) << "\" data-materials=\"" << html::attr(s.value("materials", Json()))
+    << "\" data-textures=\"" << html::attr(s.value("textures", Json())) << "\">The input: " << html::escape(s.value("format", std::string("?"))) << ", "
+    << html::bytes_text(input) << " in " << s.value("files", 1) << " file(s), ";
+  if (s.contains("triangles"))
+    h << s["triangles"].dump() << " triangles, " << s.value("materials", Json(0)).dump() << " material(s), " << s.value("textures", Json(0)).dump() << " texture(s).";
+  else
+    h << s.value("points", Json(0)).dump() << " points.";
+  const OutputBytes out = output_bytes(a.manifest, a.files);
+  h << " The bake wrote <span id=\"bytes-written\" data-value=\"" << out.written << "\">" << html::bytes_text(double(out.written)) << "</span> ("
+    << share_text(double(out.written), input) << " of the input)";
+  if (out.chain)
+    h << "; its recommended chain ships <span id=\"chain-bytes\" data-value=\"" << *out.chain << "\">" << html::bytes_text(double(*out.chain)) << "</span> ("
+      << share_text(double(*out.chain), input) << ")";
+  h << ".</p>\n<p class=\"meta\" id=\"generator\" data-version=\"" << html::attr(a.report.value("tool_version", Json())) << "\">quasiflat "
+    << html::escape(a.report.value("tool_version", std::string("(version not given)")));
+  // The measuring's driver decides the figures; without measuring, the driver that drew this page.
+  if (a.gl.is_object())
+    h << "; measured with the GL driver <span id=\"gl\" data-renderer=\"" << html::attr(a.gl["renderer"]) << "\" data-version=\""
+      << html::attr(a.gl["version"]) << "\">" << html::escape(a.gl["renderer"].get<std::string>()) << ", OpenGL "
+      << html::escape(a.gl["version"].get<std::string>()) << "</span> (another driver draws a little differently: the figures are this one's)";
+  else if (!driver.empty())
+    h << "; not measured; drawn with the GL driver " << html::escape(driver);  // "renderer (version)"
+  else
+    h << "; not measured";
+  h << ".</p>\n";
+  return h.str();
+}
+
+std::string header(const AssetBake& a, const std::string& driver) {
   const Json& r = a.report;
   std::ostringstream h;
   h << "<h1>" << html::escape(fs::path(r.value("input", std::string())).filename().string()) << "</h1>\n<p class=\"meta\">input <code>"
@@ -155,7 +204,7 @@ std::string header(const AssetBake& a) {
   h << "), hierarchy of " << r.value("hierarchy_levels", Json()).dump() << " levels; settings:";
   const Json settings = r.value("settings", Json::object());
   for (const auto& [k, v] : settings.items()) h << " " << html::escape(k) << "=" << html::escape(v.dump());
-  h << "</p>\n";
+  h << "</p>\n" << source_line(a, driver);
   return h.str();
 }
 
@@ -174,19 +223,21 @@ std::string warnings_section(const AssetBake& a) {
 std::string files_table(const AssetBake& a, const std::vector<PageFile>& files) {
   const Json& m = a.manifest;
   const Json sizes = m.contains("measuring") ? m["measuring"].value("sizes", Json::array()) : Json::array();
+  const double input_bytes = m.contains("source") ? m["source"].value("bytes", 0.0) : 0.0;
   std::ostringstream h;
   h << "<h2>Files</h2>\n<p class=\"meta\">Each file drawn by the engine method at each measured size against the truth: footprint PSNR "
        "(dB) / coverage (its summed coverage over the truth's); marked where it holds, as good as the input itself as drawn there "
        "(manifest measuring.hold). made for: the largest size at which it holds.</p>\n"
-       "<table id=\"files\" class=\"sortable\"><thead><tr><th>file</th><th class=\"text\">kind</th><th class=\"text\">holds</th><th>bytes</th><th>texels</th>"
+       "<table id=\"files\" class=\"sortable\"><thead><tr><th>file</th><th class=\"text\">kind</th><th class=\"text\">holds</th><th>bytes</th>"
+       "<th title=\"its bytes over the input's, with every file the input reads\">of input</th><th>texels</th>"
        "<th>GPU bytes</th><th>made for &le; px</th>";
   for (const Json& s : sizes) h << "<th>at " << s.dump() << " px<br>PSNR dB / coverage</th>";
   h << "</tr></thead><tbody>\n";
   // The input itself as an engine draws it, what every file is judged beside.
   if (m.contains("measuring") && m["measuring"].contains("asset")) {
-    const std::size_t input_bytes = m.contains("recommended_chain") ? m["recommended_chain"]["asset"].value("bytes", std::size_t{0}) : 0;
     h << "<tr data-file=\"\" data-kind=\"asset\"><td>the input, as drawn</td><td class=\"text\">asset</td><td class=\"text\"></td><td data-sort=\""
-      << input_bytes << "\">" << (input_bytes ? html::bytes_text(double(input_bytes)) : "-") << "</td><td>-</td><td>-</td><td>-</td>";
+      << input_bytes << "\">" << (input_bytes ? html::bytes_text(input_bytes) : "-") << "</td><td>" << share_text(input_bytes, input_bytes)
+      << "</td><td>-</td><td>-</td><td>-</td>";
     for (const Json& s : sizes)
       for (const Json& x : m["measuring"]["asset"])
         if (x.value("pixels", Json()) == s) measured_cell(h, s, x);
@@ -203,7 +254,8 @@ std::string files_table(const AssetBake& a, const std::vector<PageFile>& files) 
     h << "<tr data-file=\"" << html::attr(f.file) << "\" data-kind=\"" << f.kind << "\" data-bytes=\"" << f.bytes->size() << "\"";
     if (drawn) h << " data-texels=\"" << f.texels << "\" data-gpu-bytes=\"" << html::attr(std::llround(gpu_bytes(f))) << "\" data-own-pixels=\"" << html::attr(e.value("max_screen_pixels", Json())) << "\"";
     h << "><td><a href=\"#" << html::attr(f.file) << "\">" << html::escape(f.file) << "</a></td><td class=\"text\">" << f.kind << "</td><td class=\"text\">" << holds
-      << "</td><td data-sort=\"" << f.bytes->size() << "\">" << html::bytes_text(double(f.bytes->size())) << "</td>";
+      << "</td><td data-sort=\"" << f.bytes->size() << "\">" << html::bytes_text(double(f.bytes->size())) << "</td><td data-sort=\""
+      << f.bytes->size() << "\">" << share_text(double(f.bytes->size()), input_bytes) << "</td>";
     if (drawn)
       h << "<td>" << f.texels << "</td><td data-sort=\"" << std::llround(gpu_bytes(f)) << "\">" << html::bytes_text(gpu_bytes(f)) << "</td><td>"
         << (f.own_pixels > 0 ? std::to_string(std::llround(f.own_pixels)) : "-") << "</td>";
@@ -365,15 +417,26 @@ std::string thumbnail_src(const std::string& page_path) {
 
 std::string bake_page(const AssetBake& a, const std::string& input_path, const BakePageOptions& o) {
   std::vector<PageFile> files = page_files(a);
-  std::string why;
-  const std::map<int, Image> input = draw_all(files, input_path, o, why);
+  std::string why, driver;
+  const std::map<int, Image> input = draw_all(files, input_path, o, why, driver);
   // Without GL the files were not loaded to be drawn: their texels are counted here.
   if (input.empty())
     for (PageFile& f : files)
       if (f.kind != "lod_file") f.texels = texels_of(load_scene(*f.bytes, f.file));
   const std::string title = fs::path(a.report.value("input", std::string("bake"))).filename().string() + " - quasiflat bake";
-  return html::page(title, header(a) + warnings_section(a) + files_table(a, files) + chain_section(a, files) + gallery(files, input, o, why), kBakeStyle);
+  return html::page(title, header(a, driver) + warnings_section(a) + files_table(a, files) + chain_section(a, files) + gallery(files, input, o, why), kBakeStyle);
 }
+
+namespace {
+
+// A cell of bytes in a sortable column (class `what`), "-" where there is no figure.
+std::string bytes_cell(const char* what, std::optional<std::uintmax_t> bytes) {
+  if (!bytes) return std::string("<td class=\"") + what + "\">-</td>";
+  const std::string n = std::to_string(*bytes);
+  return std::string("<td class=\"") + what + "\" data-sort=\"" + n + "\" data-value=\"" + n + "\">" + html::bytes_text(double(*bytes)) + "</td>";
+}
+
+}  // namespace
 
 std::string batch_page(const Json& report, const std::string& page_dir) {
   const std::string root = report.value("output", std::string("."));
@@ -383,20 +446,26 @@ std::string batch_page(const Json& report, const std::string& page_dir) {
     << html::escape(report.value("manifest", std::string())) << "</code>, output <code>" << html::escape(root) << "</code>, " << report["assets"].size()
     << " asset(s): ";
   for (const char* s : {"baked", "up to date", "failed", "skipped"}) h << "<span id=\"total-" << (s == std::string("up to date") ? "up-to-date" : s) << "\" data-value=\"" << html::attr(t.value(s, Json(0))) << "\">" << t.value(s, Json(0)).dump() << " " << s << "</span>, ";
+  // The folder's weight beside what ships: the chains' files (a report from before these totals has neither).
+  if (t.contains("bytes") && t.contains("chain_bytes"))
+    h << "<span id=\"total-bytes\" data-value=\"" << html::attr(t["bytes"]) << "\">" << html::bytes_text(t["bytes"].get<double>())
+      << " written</span>, of which the recommended chains ship <span id=\"total-chain-bytes\" data-value=\"" << html::attr(t["chain_bytes"])
+      << "\">" << html::bytes_text(t["chain_bytes"].get<double>()) << "</span>, ";
   h << "in " << html::fixed(report.value("seconds", Json()), 2) << " s. Click a column to sort.</p>\n";
   h << "<table id=\"assets\" class=\"sortable\"><thead><tr><th>asset</th><th>image</th><th>status</th><th>seconds</th><th>peak MB</th><th>points</th>"
-       "<th>levels</th><th>primitives</th><th>texels</th><th>bytes</th><th>warnings</th><th class=\"text\">error</th></tr></thead><tbody>\n";
+       "<th>levels</th><th>primitives</th><th>texels</th><th title=\"the files the recommended chain ships\">chain bytes</th>"
+       "<th title=\"every file written, the reports aside\">bytes written</th><th>warnings</th><th class=\"text\">error</th></tr></thead><tbody>\n";
   for (const Json& e : report["assets"]) {
     const std::string name = e.value("name", std::string());
     const std::string status = e.value("status", std::string());
     const fs::path folder = fs::path(root) / name;
     const Json manifest = read_asset_manifest(folder.string());
     // The asset's own figures from its folder (up-to-date assets were not baked in this run).
-    std::size_t levels = 0, primitives = 0, texels = 0, bytes = 0;
-    if (manifest.is_object()) {
+    std::size_t levels = 0, primitives = 0, texels = 0;
+    if (manifest.is_object())
       for (const Json& l : manifest.value("levels", Json::array())) ++levels, primitives += l.value("primitives", std::size_t{0}), texels += l.value("texels", std::size_t{0});
-      for (const Json& f : manifest.value("files", Json::array())) bytes += f.value("bytes", std::size_t{0});
-    }
+    // Both weights: a point impostor or a mesh LOD that no band of the chain takes is written, not shipped.
+    const OutputBytes bytes = output_bytes(manifest);
     const fs::path page = folder / "report.html";
     std::error_code ec;
     const bool has_page = manifest.is_object() && fs::is_regular_file(page, ec);
@@ -411,9 +480,9 @@ std::string batch_page(const Json& report, const std::string& page_dir) {
       << "</td><td>" << (e.contains("points") ? e["points"].dump() : manifest.is_object() ? manifest.value("points", Json()).dump() : "-") << "</td>";
     if (manifest.is_object())
       h << "<td>" << levels << "</td><td data-value=\"" << primitives << "\">" << primitives << "</td><td data-value=\"" << texels << "\">" << texels
-        << "</td><td data-sort=\"" << bytes << "\" data-value=\"" << bytes << "\">" << html::bytes_text(double(bytes)) << "</td>";
+        << "</td>" << bytes_cell("chain-bytes", bytes.chain) << bytes_cell("bytes", bytes.written);
     else
-      h << "<td>-</td><td>-</td><td>-</td><td>-</td>";
+      h << "<td>-</td><td>-</td><td>-</td><td class=\"chain-bytes\">-</td><td class=\"bytes\">-</td>";
     h << "<td>" << (e.contains("warnings") ? std::to_string(e["warnings"].size()) : "-") << "</td><td class=\"fail error\">" << html::escape(message)
       << "</td></tr>\n";
   }

@@ -13,6 +13,7 @@
 #include <ostream>
 
 #include "cli/commands.h"
+#include "cli/program.h"
 #include "core/error.h"
 #include "core/file_io.h"
 #include "core/output_folder.h"
@@ -55,7 +56,8 @@ CommandSpec bake_spec() {
                                                           "by box filtering), ktx2 (Basis Universal, KHR_texture_basisu, required: ~1/4 of the\n"
                                                           "GPU memory, coverage-preserving mip levels in the file; three.js needs its KTX2Loader)\n"
                                                           "or webp (EXT_texture_webp, required: fewer file bytes, the GPU memory and mip levels\n"
-                                                          "of png; three.js and Babylon.js load it, Blender 3.4 does not)"},
+                                                          "of png; three.js and Babylon.js load it, Blender 3.4 does not). ktx2 also makes a\n"
+                                                          "textured mesh LOD's textures KTX2; with webp they stay png"},
                     {"ktx2-color", 0, "etc1s|uastc", "etc1s", "--textures ktx2: the Basis codec of colour (+ alpha) and emission textures"},
                     {"ktx2-normal", 0, "etc1s|uastc", "uastc", "--textures ktx2: the Basis codec of normal maps and occlusion/roughness/metallic"},
                     {"ktx2-quality", 0, "Q", "128", "--textures ktx2: ETC1S quality, 1..255 (codebook sizes; more is larger and sharper)"},
@@ -140,6 +142,7 @@ WebpOptions read_webp_setting(const OptionValues& args, const std::string& name,
 
 AssetOptions read_asset_options(const OptionValues& args) {
   AssetOptions a;
+  a.tool_version = version();
   BakeOptions& o = a.bake;
   o.analysis = read_analysis_options(args);
   o.domains.tau = args.get_double("tau", o.domains.tau, 0.0, 1.0);

@@ -1,5 +1,6 @@
 #include "core/progress.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
@@ -18,9 +19,15 @@ struct State {
   bool stop = false;
   std::string step;
   std::size_t total = 0;
+  std::chrono::steady_clock::time_point step_start;  // when `step` began: its time left is of its own pace
 } state;
 
 constexpr int kBarWidth = 24;
+// No estimate before the step has run this long and done this share of its count: a level's first
+// textures or the first rows of a sampling say little of the rest, and an estimate that jumps from
+// 2 s to 3 min in the first second is worse than none.
+constexpr double kEstimateAfterSeconds = 1;
+constexpr double kEstimateAfterShare = 0.03;
 
 }  // namespace
 
@@ -29,6 +36,7 @@ void step(const std::string& what, std::size_t total) {
   std::lock_guard<std::mutex> lock(state.mutex);
   state.step = what;
   state.total = total;
+  state.step_start = std::chrono::steady_clock::now();
   state.done.store(0, std::memory_order_relaxed);
 }
 
@@ -36,8 +44,21 @@ void advance(std::size_t items) {
   if (state.shown.load(std::memory_order_relaxed)) state.done.fetch_add(items, std::memory_order_relaxed);
 }
 
+std::string time_left(double step_seconds, std::size_t done, std::size_t total) {
+  if (total == 0 || done == 0 || done >= total || step_seconds < kEstimateAfterSeconds) return "";
+  const double share = double(done) / double(total);
+  if (share < kEstimateAfterShare) return "";
+  const double left = step_seconds * (1 - share) / share;
+  char text[32];
+  if (left < 99.5)
+    std::snprintf(text, sizeof text, "ETA %.0f s", left);
+  else
+    std::snprintf(text, sizeof text, "ETA %.0f min", std::max(2.0, left / 60));
+  return text;
+}
+
 std::string progress_line(const std::string& command, double seconds, const std::string& step, std::size_t done,
-                          std::size_t total, bool bar) {
+                          std::size_t total, bool bar, double step_seconds) {
   char head[64];
   std::snprintf(head, sizeof head, ": %.0f s", seconds);
   std::string line = command + head;
@@ -48,7 +69,9 @@ std::string progress_line(const std::string& command, double seconds, const std:
     const int filled = static_cast<int>(kBarWidth * done / total);
     line += " [" + std::string(filled, '#') + std::string(kBarWidth - filled, '.') + "]";
   }
-  return line + " " + std::to_string(done) + "/" + std::to_string(total);
+  line += " " + std::to_string(done) + "/" + std::to_string(total);
+  if (const std::string eta = bar ? time_left(step_seconds, done, total) : ""; !eta.empty()) line += ", " + eta;
+  return line;
 }
 
 ProgressDisplay::ProgressDisplay(std::FILE* out, bool terminal, bool enabled, const std::string& command, double every_seconds) {
@@ -58,6 +81,7 @@ ProgressDisplay::ProgressDisplay(std::FILE* out, bool terminal, bool enabled, co
     state.stop = false;
     state.step.clear();
     state.total = 0;
+    state.step_start = std::chrono::steady_clock::now();
   }
   const auto start = std::chrono::steady_clock::now();
   // A terminal is redrawn often (it costs nothing there); a log gets a line every few seconds.
@@ -66,9 +90,11 @@ ProgressDisplay::ProgressDisplay(std::FILE* out, bool terminal, bool enabled, co
   thread_ = std::thread([out, terminal, command, start, interval] {
     std::unique_lock<std::mutex> lock(state.mutex);
     while (!state.stop_signal.wait_for(lock, interval, [] { return state.stop; })) {
-      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      const std::string line =
-          progress_line(command, seconds, state.step, state.done.load(std::memory_order_relaxed), state.total, terminal);
+      const auto now = std::chrono::steady_clock::now();
+      const double seconds = std::chrono::duration<double>(now - start).count();
+      const double step_seconds = std::chrono::duration<double>(now - state.step_start).count();
+      const std::string line = progress_line(command, seconds, state.step, state.done.load(std::memory_order_relaxed), state.total,
+                                             terminal, step_seconds);
       if (terminal)
         std::fprintf(out, "\r\033[K%s", line.c_str());
       else

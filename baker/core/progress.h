@@ -21,7 +21,8 @@ void advance(std::size_t items = 1);
 
 // Shows the steps on `out` while it lives, from a thread of its own:
 // - on a terminal, one line rewritten four times a second: elapsed time, step, a bar and the count
-//   when the step counts; the line is cleared when the display ends;
+//   when the step counts, with the step's time left once it can be told (time_left); the line is
+//   cleared when the display ends;
 // - otherwise (a log, CI) a plain line every `every_seconds` while the command runs, so a short
 //   command prints nothing and a long one shows it is alive and where.
 // Only one display at a time; `enabled` false (-q) shows nothing.
@@ -36,9 +37,17 @@ class ProgressDisplay {
   std::thread thread_;
 };
 
+// The estimate of a counting step's time left, "ETA 12 s" (past 99 s in minutes, "ETA 4 min"),
+// from the seconds the step has run and its count done of total, as if the items left take as long
+// as those done; empty while it cannot be told: before 1 s and 3% of the count (the first items
+// say little of the rest), without a count, or once done.
+std::string time_left(double step_seconds, std::size_t done, std::size_t total);
+
 // One line of the display, as it is printed (without the terminal's control characters): exposed
-// for its unit test.
+// for its unit test. With `bar` (a terminal) the count is followed by time_left(step_seconds, ...)
+// where there is one; a log's line never has it (a line every few seconds is read afterwards, when
+// the time left is past).
 std::string progress_line(const std::string& command, double seconds, const std::string& step, std::size_t done,
-                          std::size_t total, bool bar);
+                          std::size_t total, bool bar, double step_seconds = 0);
 
 }  // namespace qf::progress

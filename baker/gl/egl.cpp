@@ -92,5 +92,6 @@ HeadlessContext::~HeadlessContext() {
 }
 
 std::string HeadlessContext::renderer() const { return reinterpret_cast<const char*>(glGetString(GL_RENDERER)); }
+std::string HeadlessContext::version() const { return reinterpret_cast<const char*>(glGetString(GL_VERSION)); }
 
 }  // namespace qf

@@ -18,6 +18,7 @@ class HeadlessContext {
   HeadlessContext(const HeadlessContext&) = delete;
   HeadlessContext& operator=(const HeadlessContext&) = delete;
   std::string renderer() const;  // GL_RENDERER, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
+  std::string version() const;   // GL_VERSION, e.g. "4.5 (Compatibility Profile) Mesa 22.3.6"
 
  private:
   struct Impl;

@@ -711,11 +711,18 @@ std::vector<std::uint8_t> encode_mesh_glb(const TriangleMesh& mesh, bool smooth_
 namespace {
 
 // A mesh texture with a sampler of its own (its wraps); returns the texture's index, -1 for none.
-int add_mesh_texture(tinygltf::Model& m, const TriangleMesh& mesh, const TextureRef& r, const std::string& name) {
+// PNG, RGBA as the reader took it whatever `cls` (the bytes of every earlier bake); KTX2 when the
+// options ask for it, through the impostor levels' route (its codec by class, the mip levels
+// written in; a MASK material's colour keeps its coverage at the material's own cutoff). WebP is
+// the impostor levels' alone: a mesh LOD stays PNG.
+int add_mesh_texture(tinygltf::Model& m, const TriangleMesh& mesh, const TextureRef& r, const std::string& name, TextureClass cls,
+                     const GltfOptions& options, TextureCost* cost) {
   if (r.image < 0) return -1;
   const TextureImage& t = mesh.textures[static_cast<std::size_t>(r.image)];
-  // An input asset, PNG as its reader took it (GltfOptions::textures is for impostor levels).
-  const int texture = add_texture(m, t.rgba, t.width, t.height, name, TextureClass::kColor, GltfOptions{}, nullptr);
+  const bool ktx2 = options.textures == GltfOptions::Textures::kKtx2;
+  GltfOptions o = options;
+  if (!ktx2) o.textures = GltfOptions::Textures::kPng, cls = TextureClass::kColor;
+  const int texture = add_texture(m, t.rgba, t.width, t.height, name, cls, o, cost);
   const auto code = [](TextureWrap w) {
     return w == TextureWrap::kClampToEdge ? TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE
            : w == TextureWrap::kMirroredRepeat ? TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT : TINYGLTF_TEXTURE_WRAP_REPEAT;
@@ -726,7 +733,10 @@ int add_mesh_texture(tinygltf::Model& m, const TriangleMesh& mesh, const Texture
   return texture;
 }
 
-int add_surface_material(tinygltf::Model& m, const TriangleMesh& mesh, const SurfaceMaterial& s) {
+int add_surface_material(tinygltf::Model& m, const TriangleMesh& mesh, const SurfaceMaterial& s, GltfOptions options, TextureCost* cost) {
+  // The material's own alpha test, not the impostor levels', decides how its colour's mips keep coverage.
+  options.alpha_mode = s.alpha_mode == AlphaMode::kMask ? "MASK" : "OPAQUE";
+  options.alpha_cutoff = s.alpha_cutoff;
   tinygltf::Material mat;
   mat.name = s.name;
   mat.pbrMetallicRoughness.baseColorFactor.assign(s.base_color.begin(), s.base_color.end());
@@ -736,17 +746,19 @@ int add_surface_material(tinygltf::Model& m, const TriangleMesh& mesh, const Sur
   mat.alphaMode = s.alpha_mode == AlphaMode::kMask ? "MASK" : s.alpha_mode == AlphaMode::kBlend ? "BLEND" : "OPAQUE";
   if (s.alpha_mode == AlphaMode::kMask) mat.alphaCutoff = s.alpha_cutoff;
   mat.doubleSided = s.double_sided;
-  mat.pbrMetallicRoughness.baseColorTexture.index = add_mesh_texture(m, mesh, {s.texture, s.wrap_s, s.wrap_t}, s.name);
-  mat.pbrMetallicRoughness.metallicRoughnessTexture.index = add_mesh_texture(m, mesh, s.metallic_roughness, s.name + "_mr");
-  mat.emissiveTexture.index = add_mesh_texture(m, mesh, s.emissive_texture, s.name + "_emissive");
-  mat.occlusionTexture.index = add_mesh_texture(m, mesh, s.occlusion, s.name + "_occlusion");
+  mat.pbrMetallicRoughness.baseColorTexture.index =
+      add_mesh_texture(m, mesh, {s.texture, s.wrap_s, s.wrap_t}, s.name, TextureClass::kColor, options, cost);
+  mat.pbrMetallicRoughness.metallicRoughnessTexture.index =
+      add_mesh_texture(m, mesh, s.metallic_roughness, s.name + "_mr", TextureClass::kData, options, cost);
+  mat.emissiveTexture.index = add_mesh_texture(m, mesh, s.emissive_texture, s.name + "_emissive", TextureClass::kEmissive, options, cost);
+  mat.occlusionTexture.index = add_mesh_texture(m, mesh, s.occlusion, s.name + "_occlusion", TextureClass::kData, options, cost);
   if (mat.occlusionTexture.index >= 0) mat.occlusionTexture.strength = s.occlusion_strength;
   m.materials.push_back(mat);
   return static_cast<int>(m.materials.size() - 1);
 }
 }  // namespace
 
-std::vector<std::uint8_t> encode_textured_mesh_glb(const TriangleMesh& mesh, const GltfOptions& options) {
+std::vector<std::uint8_t> encode_textured_mesh_glb(const TriangleMesh& mesh, const GltfOptions& options, TextureCost* cost) {
   if (mesh.triangles.empty()) throw std::invalid_argument("encode_textured_mesh_glb: a mesh without triangles");
   tinygltf::Model m = new_model(options);
   m.samplers.clear();
@@ -778,13 +790,17 @@ std::vector<std::uint8_t> encode_textured_mesh_glb(const TriangleMesh& mesh, con
     // 2. The primitive and its material.
     tinygltf::Primitive prim;
     prim.mode = TINYGLTF_MODE_TRIANGLES;
-    prim.material = mesh.materials.empty() ? -1 : add_surface_material(m, mesh, mesh.materials[mi]);
+    prim.material = mesh.materials.empty() ? -1 : add_surface_material(m, mesh, mesh.materials[mi], options, cost);
     prim.attributes["POSITION"] = add_floats(m, pos, 3, TINYGLTF_TYPE_VEC3, true);
     if (!nrm.empty()) prim.attributes["NORMAL"] = add_floats(m, nrm, 3, TINYGLTF_TYPE_VEC3, false);
     if (!uv.empty()) prim.attributes["TEXCOORD_0"] = add_floats(m, uv, 2, TINYGLTF_TYPE_VEC2, false);
     if (!col.empty()) prim.attributes["COLOR_0"] = add_colors(m, col);
     prim.indices = add_indices(m, idx);
     gm.primitives.push_back(prim);
+  }
+  if (options.textures == GltfOptions::Textures::kKtx2 && !m.images.empty()) {  // no PNG fallback, as the levels
+    m.extensionsUsed.push_back(kBasisuExtension);
+    m.extensionsRequired.push_back(kBasisuExtension);
   }
   add_single_node_scene(m, gm);
   return write_glb(m);

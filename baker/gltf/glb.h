@@ -133,10 +133,12 @@ std::vector<std::uint8_t> encode_cluster_glb(const LodMesh& lod, const GltfOptio
 // triangle flat), COLOR_0 (16-bit linear) where the mesh has colours.
 std::vector<std::uint8_t> encode_mesh_glb(const TriangleMesh& mesh, bool smooth_normals, const GltfOptions& options = {});
 
-// A mesh with its materials as a game asset (qf-bake generate tree): one primitive per material,
-// with its base colour factor, texture (PNG), sampler wraps, alpha mode, sidedness and its
-// metallic, roughness, emissive and occlusion factors and textures (sharing the base colour's uvs); corners
-// that share a position and texture coordinate share a vertex. Same mesh, same bytes.
-std::vector<std::uint8_t> encode_textured_mesh_glb(const TriangleMesh& mesh, const GltfOptions& options = {});
+// A mesh with its materials as a game asset (qf-bake generate tree, a textured mesh LOD): one
+// primitive per material, with its base colour factor, texture, sampler wraps, alpha mode,
+// sidedness and its metallic, roughness, emissive and occlusion factors and textures (sharing the
+// base colour's uvs); corners that share a position and texture coordinate share a vertex. Textures
+// PNG, or KTX2 with options.textures kKtx2 (the levels' codecs and mip levels; KHR_texture_basisu
+// then required); `cost` (when given) adds their bytes, texels and GPU memory. Same mesh, same bytes.
+std::vector<std::uint8_t> encode_textured_mesh_glb(const TriangleMesh& mesh, const GltfOptions& options = {}, TextureCost* cost = nullptr);
 
 }  // namespace qf

@@ -99,7 +99,7 @@ int truth_side(const std::vector<int>& sizes, int truth) {
 }
 
 Measurements measure_files(const std::string& input_path, const std::vector<Candidate>& candidates, const HoldBar& bar, const MeasureOptions& o) {
-  Measurements m{o.sizes, o.views, o.truth, {}, {}};
+  Measurements m{o.sizes, o.views, o.truth, {}, {}, {}, {}};
   if (o.sizes.empty() || o.views < 1) return m;
   std::unique_ptr<HeadlessContext> context;
   try {
@@ -107,6 +107,8 @@ Measurements measure_files(const std::string& input_path, const std::vector<Cand
   } catch (const std::runtime_error& e) {
     throw UsageError(std::string("measuring the outputs draws them, which needs an EGL/OpenGL driver (or --no-measure): ") + e.what());
   }
+  m.gl_renderer = context->renderer();
+  m.gl_version = context->version();
   progress::step("measuring: drawing the input's reference views");
   const AnyScene input = measured_input(input_path, o.read);
   const Sphere sphere = bounding_sphere(input.bounds());

@@ -40,6 +40,9 @@ struct Measurements {
   int truth = 0;                 // the truth: the input drawn at truth x the size, box-filtered
   FileScores asset;              // the input drawn at each size as an engine draws it (file, bytes: the caller's)
   std::vector<FileScores> files; // in the order asked for
+  // The GL driver that drew them (GL_RENDERER, GL_VERSION): another driver rasterises and filters
+  // a little differently, so the figures hold for it (empty when nothing was drawn).
+  std::string gl_renderer, gl_version;
 };
 
 // A file to measure: its name, kind and bytes (which outlive the call).

@@ -11,6 +11,8 @@
 #include <ostream>
 #include <functional>
 #include <limits>
+#include <map>
+#include <set>
 
 #include "analysis/neighborhoods.h"
 #include "core/error.h"
@@ -18,8 +20,7 @@
 #include "core/memory.h"
 #include "core/progress.h"
 #include "gltf/glb.h"
-#include "reconstruct/reconstruct.h"
-#include "simplify/simplify.h"
+#include "pipeline/mesh_lods.h"
 
 namespace qf {
 
@@ -50,140 +51,6 @@ PointSet points_of(Model model, const std::string& path, const ReadOptions& read
   return std::move(model.points);
 }
 
-std::vector<double> default_cluster_cells(const TriangleMesh& mesh) {
-  std::vector<double> cells;
-  for (double f : {128.0, 64.0, 32.0, 16.0, 8.0}) cells.push_back(mesh.bounds().diagonal() / f);
-  return cells;
-}
-
-std::vector<std::size_t> default_simplify_budgets(const TriangleMesh& mesh) {
-  std::vector<std::size_t> budgets;
-  for (std::size_t d = 4; d <= 1024; d *= 4)
-    if (mesh.triangles.size() / d >= 16) budgets.push_back(mesh.triangles.size() / d);
-  return budgets;
-}
-
-namespace {
-
-// Whether two LODs are the same mesh: the same vertices, triangles and surface.
-bool same_mesh(const TriangleMesh& a, const TriangleMesh& b) {
-  const auto same_uvs = [](const std::array<Vec2f, 3>& x, const std::array<Vec2f, 3>& y) {
-    for (std::size_t k = 0; k < 3; ++k)
-      if (x[k].x != y[k].x || x[k].y != y[k].y) return false;
-    return true;
-  };
-  return a.triangles == b.triangles && a.triangle_materials == b.triangle_materials && a.positions == b.positions &&
-         a.normals == b.normals && a.colors == b.colors && a.corner_uvs.size() == b.corner_uvs.size() &&
-         std::equal(a.corner_uvs.begin(), a.corner_uvs.end(), b.corner_uvs.begin(), same_uvs);
-}
-
-// One LOD's file and manifest entry (`s` is finished for writing: normals, textures, sidedness).
-nlohmann::json simplify_level_file(SimplifiedMesh& s, std::size_t budget, double diagonal, bool collapsed, const std::string& name,
-                                   std::vector<OutputFile>& files, bool smooth) {
-  // A mesh with materials (textured glTF, OBJ + MTL) keeps them, its textures sized for the
-  // level's screen: at most 2 x max_screen_pixels texels a side (the spider's 768-px texture in
-  // its 3-px level cost 1.4 MB; at its 342-triangle level, drawn at its 43 px, sides of 4x, 2x
-  // and 1x scored 16.25, 16.24 and 16.12 dB in 100, 39 and 22 KB); others get the LOD material.
-  const double max_screen_pixels = s.error > 0 ? std::min(0.5 * diagonal / s.error, 1e9) : 1e9;
-  const bool own_materials = !s.mesh.materials.empty();
-  // Normals as the input's reference is drawn: its own where it has them (carried through the
-  // simplifier), else smooth or none (flat).
-  if (own_materials && smooth && s.mesh.normals.empty()) s.mesh.normals = s.mesh.smooth_normals();
-  if (own_materials) fit_textures(s.mesh, static_cast<int>(std::min(2 * max_screen_pixels, 2.0 * kLargestMeasuredPixels)));
-  // Double-sided, as the LOD material and the impostor levels are, where triangles were collapsed:
-  // a collapsed thin part (a leg, a leaf) may show its back faces. All kept, the input's sidedness
-  // stays (2CylinderEngine's copy, double-sided, showed the backs of its open parts: 56.4 dB).
-  if (collapsed)
-    for (SurfaceMaterial& m : s.mesh.materials) m.double_sided = true;
-  files.push_back({name, own_materials ? encode_textured_mesh_glb(s.mesh) : encode_mesh_glb(s.mesh, smooth)});
-  return {{"file", name},
-          {"target_triangles", budget},
-          {"triangles", s.mesh.triangles.size()},
-          {"vertices", s.mesh.positions.size()},
-          {"bytes", files.back().bytes.size()},
-          {"error", canonical_double(static_cast<float>(s.error))},
-          {"max_screen_pixels", static_cast<long long>(max_screen_pixels)}};
-}
-
-}  // namespace
-
-nlohmann::json simplify_level_files(const TriangleMesh& mesh, const std::vector<std::size_t>& budgets, const std::string& stem,
-                                    std::vector<OutputFile>& files, bool smooth, SimplifyMethod method) {
-  const double diagonal = mesh.bounds().diagonal();
-  const char* simplifier = method == SimplifyMethod::kSloppy ? "simplifySloppy" : "simplify";
-  nlohmann::json levels = nlohmann::json::array(), skipped = nlohmann::json::array(), stopped;
-  TriangleMesh previous;  // the last written LOD's mesh, as simplified
-  std::string previous_name;
-  for (std::size_t i = 0; i < budgets.size(); ++i) {
-    if (!stopped.is_null()) {
-      skipped.push_back({{"target_triangles", budgets[i]}, {"skipped", std::string("not tried: ") + simplifier + " stalled above a larger budget (see stopped)"}});
-      continue;
-    }
-    SimplifiedMesh s = simplify_mesh(mesh, budgets[i], method);
-    // Edge collapse may take a thin mesh away whole below some budget (permissive collapse: the
-    // generated lattice below 16 triangles): the smaller budgets are not tried, the bake goes on.
-    if (s.mesh.triangles.empty() && method == SimplifyMethod::kCollapse) {
-      stopped = "simplify collapsed the whole mesh at a budget of " + std::to_string(budgets[i]) + " triangles: the smaller budgets are not tried";
-      skipped.push_back({{"target_triangles", budgets[i]}, {"skipped", "simplify collapsed the whole mesh"}});
-      continue;
-    }
-    // simplifySloppy may cluster a small budget's mesh away entirely (2CylinderEngine at 52).
-    if (s.mesh.triangles.empty())
-      throw UsageError("a budget of " + std::to_string(budgets[i]) + " triangles leaves nothing of this mesh (" + simplifier +
-                       " collapsed it whole); give a larger one");
-    // 1. Above its budget, the simplifier has stalled: no collapse is left that keeps the topology
-    //    (thin beams, many parts, vertices split at creases and seams), and every smaller budget
-    //    would give this mesh again. simplifySloppy as the fallback was measured and not taken
-    //    (engine method, 8 views, 128 px, against the input): 2CylinderEngine's stalled 33,008
-    //    triangles score 25.8 dB, IoU 0.996; sloppy at 6,182 and 1,307 triangles 12.9 dB, 0.976 and
-    //    11.9 dB, 0.915; the lattice's stalled 224 triangles IoU 0.24, sloppy at 54 IoU 0.10.
-    if (s.mesh.triangles.size() > budgets[i])
-      stopped = std::string(simplifier) + " stalled at " + std::to_string(s.mesh.triangles.size()) + " triangles (budget " +
-                std::to_string(budgets[i]) + "): no collapse left keeps the topology (thin parts, separate pieces, creases), so the " +
-                "smaller budgets give the same mesh; simplifySloppy is no fallback: it breaks thin parts and merges pieces " +
-                "(2CylinderEngine at 6182 triangles: 12.9 dB, IoU 0.976 against the input, where the stalled mesh scores 25.8 dB, 0.996)";
-    // 2. The same mesh as the last LOD is not written again.
-    if (!levels.empty() && same_mesh(s.mesh, previous)) {
-      skipped.push_back({{"target_triangles", budgets[i]}, {"skipped", "same mesh as " + previous_name + ".glb"}});
-      continue;
-    }
-    previous = s.mesh;
-    previous_name = stem + "_S" + std::to_string(levels.size());
-    const bool collapsed = s.mesh.triangles.size() < mesh.triangles.size();
-    levels.push_back(simplify_level_file(s, budgets[i], diagonal, collapsed, previous_name + ".glb", files, smooth));
-  }
-  nlohmann::json out{{"levels", levels}};
-  if (!skipped.empty()) out["skipped"] = skipped;
-  if (!stopped.is_null()) out["stopped"] = stopped;
-  return out;
-}
-
-nlohmann::json cluster_level_files(const std::vector<LodMesh>& lods, const std::string& stem, bool draco,
-                                   std::vector<OutputFile>& files, double diagonal) {
-  nlohmann::json levels = nlohmann::json::array();
-  for (std::size_t i = 0; i < lods.size(); ++i) {
-    const LodMesh& l = lods[i];
-    const std::string name = stem + "_C" + std::to_string(i) + ".glb";
-    files.push_back({name, encode_cluster_glb(l)});
-    levels.push_back({{"file", name},
-                      {"cell_width", canonical_double(l.cell)},
-                      {"max_screen_pixels", static_cast<long long>(kClusterCellPixels * diagonal / l.cell)},
-                      {"vertices", l.positions.size()},
-                      {"triangles", l.triangles.size()},
-                      {"edges", l.edges.size()},
-                      {"points", l.points.size()}});
-    if (draco) {
-      const std::string dname = stem + "_C" + std::to_string(i) + ".draco.glb";
-      const std::size_t plain = files.back().bytes.size();
-      files.push_back({dname, encode_cluster_glb(l, {}, true)});
-      levels.back()["draco_file"] = dname;
-      levels.back()["bytes"] = plain;
-      levels.back()["draco_bytes"] = files.back().bytes.size();
-    }
-  }
-  return levels;
-}
-
 namespace {
 
 nlohmann::json level_entry(const BakedLevel& l, const std::string& file) {
@@ -210,57 +77,6 @@ nlohmann::json stage_entry(const StageTime& t) {
           {"seconds", canonical_double(static_cast<float>(t.seconds))},
           {"resident_mb", canonical_double(static_cast<float>(t.resident_bytes / 1048576.0))},
           {"peak_mb", canonical_double(static_cast<float>(t.peak_bytes / 1048576.0))}};
-}
-
-// 2. Mesh inputs: mesh LODs for near and middle distances beside the impostors (their manifest
-// entry; null when none), their files appended to `files`.
-// `smooth`: a mesh without normals of its own is drawn smooth (else flat, as glTF draws it).
-nlohmann::json mesh_lod_outputs(const TriangleMesh& mesh, const AssetOptions& o, const std::string& stem,
-                                std::vector<OutputFile>& files, bool smooth) {
-  if (o.mesh_lods == AssetOptions::MeshLods::kClustering) {
-    const VertexGrading grading = grade_vertices(mesh);
-    ClusterOptions co;
-    std::vector<LodMesh> lods;
-    for (double c : default_cluster_cells(mesh)) {
-      co.cell = static_cast<float>(c);
-      lods.push_back(cluster_mesh(mesh, grading, co));
-    }
-    return {{"method", "clustering"},
-            {"levels", cluster_level_files(lods, stem, false, files, mesh.bounds().diagonal())},
-            {"lod_rule", "largest cell_width <= X * R, R = 2 D tan(fov/2) / window height, X = 5 (max_screen_pixels = X D / cell_width); "
-                         "thick line width = _THICKNESS / R pixels"}};
-  }
-  if (o.mesh_lods == AssetOptions::MeshLods::kSimplify && !default_simplify_budgets(mesh).empty()) {
-    nlohmann::json lods = simplify_level_files(mesh, default_simplify_budgets(mesh), stem, files, smooth);
-    lods["method"] = "simplify";
-    lods["lod_rule"] = "coarsest level whose max_screen_pixels >= the object's on-screen size (bounding-box diagonal, pixels)";
-    return lods;
-  }
-  return nullptr;
-}
-
-// 2'. Point-set inputs: the peer a scan user would pick, the surface reconstructed
-// (reconstruct/reconstruct.h) and simplified as a mesh input's LODs are (their manifest entry, with
-// the reconstruction's figures; null with other mesh LODs than simplify, or no surface: `warnings`
-// says why).
-nlohmann::json reconstructed_lod_outputs(const PointSet& points, const AssetOptions& o, const std::string& stem,
-                                         std::vector<OutputFile>& files, std::vector<std::string>& warnings) {
-  if (o.mesh_lods != AssetOptions::MeshLods::kSimplify) return nullptr;
-  Reconstruction rec;
-  try {
-    rec = reconstruct_surface(points);
-  } catch (const std::invalid_argument& e) {
-    warnings.push_back(std::string("no mesh LODs: the points could not be reconstructed into a surface (") + e.what() + ")");
-    return nullptr;
-  }
-  if (default_simplify_budgets(rec.mesh).empty()) return nullptr;
-  nlohmann::json lods = simplify_level_files(rec.mesh, default_simplify_budgets(rec.mesh), stem, files, true);
-  lods["method"] = "simplify";
-  lods["lod_rule"] = "coarsest level whose max_screen_pixels >= the object's on-screen size (bounding-box diagonal, pixels)";
-  lods["reconstruction"] = {{"method", "advancing front (CGAL)"},
-                            {"points_used", rec.points_used},
-                            {"triangles", rec.mesh.triangles.size()}};
-  return lods;
 }
 
 // 3. The impostor levels' files (their .glb bytes moved out of `r`) and the manifest around them.
@@ -340,6 +156,8 @@ nlohmann::json asset_report(AssetBake& a, const AssetOptions& o, const std::stri
     if (!a.sampled.fallback.empty()) r.warnings.push_back(a.sampled.fallback);
   }
   return {{"input", input_name},
+          {"tool_version", o.tool_version},
+          {"gl", a.gl},
           {"format", a.read.format},
           {"points", r.points},
           {"dropped_nonfinite", a.read.dropped_nonfinite},
@@ -513,6 +331,21 @@ std::size_t asset_bytes(const std::string& path) {
   return bytes;
 }
 
+// 1a. What the input is (manifest "source"), so that the saving can be read off beside the
+// outputs' bytes: its format, its bytes with every file it reads, and what it holds: a mesh's
+// triangles, materials and textures, a point set's points (`points`: as read, before any dropped).
+nlohmann::json source_entry(const std::string& path, const ReadReport& read, const Model* model, std::size_t points) {
+  nlohmann::json s{{"format", read.format}, {"bytes", asset_bytes(path)}, {"files", 1 + input_dependencies(path).size()}};
+  if (model && model->is_mesh) {
+    s["triangles"] = model->mesh.triangles.size() + read.dropped_triangles;
+    s["materials"] = model->mesh.materials.size();
+    s["textures"] = model->mesh.textures.size();
+  } else {
+    s["points"] = points;
+  }
+  return s;
+}
+
 // What drawing a chain's file costs an engine besides its bytes: triangles (a quad is two), and the
 // GPU memory of its textures with their mip levels where the manifest gives it; the input's
 // triangles where it is a mesh.
@@ -545,6 +378,7 @@ void measure_outputs(AssetBake& a, const AssetOptions& o, const std::string& pat
   }
   m.asset.file = input_name;
   m.asset.bytes = asset_bytes(path);
+  if (!m.gl_renderer.empty()) a.gl = {{"renderer", m.gl_renderer}, {"version", m.gl_version}};
   apply_screen_sizes(a, m, o.chain_rule.bar);
   a.manifest["measuring"] = measuring_entry(m, o.chain_rule.bar);
   if (o.chain) {
@@ -624,13 +458,16 @@ AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::
   TriangleMesh mesh;
   MeshSurface surface;  // a mesh input's quads draw the mesh itself
   PointSet points;
+  nlohmann::json source;  // the input's facts, once read
   if (!streamed) {
     const auto read_start = std::chrono::steady_clock::now();
     progress::step("reading " + path);
     Model model = read_model(path, o.read, &a.read);
+    source = source_entry(path, a.read, &model, model.points.size() + a.read.dropped_nonfinite);
     if (const std::string why = cheap_already(model, o.cheap_triangles); !why.empty()) {
       a.result.times.push_back({"read", seconds_since(read_start), 0, 0});
       cheap_asset(a, o, path, input_name, model.mesh, why);
+      a.manifest["source"] = source;
       a.report = asset_report(a, o, input_name, a.manifest["levels"]);
       if (o.report_page) a.page = o.report_page(a, path);
       return a;
@@ -687,6 +524,9 @@ AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::
                                 " to mesh inputs only; this input is a point set: ignored");
   }
   a.manifest = impostor_outputs(a.result, stem, input_name, a.files);
+  // A streamed set was never whole in memory: its points are those baked and those dropped.
+  a.manifest["source"] = streamed ? source_entry(path, a.read, nullptr, a.result.points + a.read.dropped_nonfinite + a.read.dropped_outliers)
+                                  : source;
   if (is_mesh) a.manifest["input_triangles"] = mesh.triangles.size();
   if (is_mesh && o.point_impostor) {
     progress::step("point impostor");
@@ -694,7 +534,6 @@ AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::
   }
   a.result.warnings.insert(a.result.warnings.end(), lod_warnings.begin(), lod_warnings.end());
   if (!mesh_lods.is_null()) {
-    if (mesh_lods.contains("stopped")) a.result.warnings.push_back("mesh LODs: " + mesh_lods["stopped"].get<std::string>());
     a.manifest["mesh_lods"] = std::move(mesh_lods);
     a.result.times.push_back({"mesh lods", lods_seconds, 0, 0});
   }
@@ -711,6 +550,8 @@ AssetBake bake_asset(const std::string& path, const AssetOptions& o, const std::
     measure_outputs(a, o, path, input_name);
     a.result.times.push_back({"measure", seconds_since(measure_start), 0, 0});
   }
+  // Where the mesh LODs stop above their budgets, said once the LODs are measured (with its figures).
+  if (const std::string stalled = stalled_lods_warning(a.manifest); !stalled.empty()) a.result.warnings.push_back(stalled);
   // 6. All of them in one file.
   if (o.lod_file) {
     const auto lod_start = std::chrono::steady_clock::now();
@@ -767,6 +608,36 @@ bool listed_files_present(const std::string& folder, const nlohmann::json& manif
     all = all && !ec && size == bytes;
   });
   return listed && all;
+}
+
+namespace {
+
+// output_bytes of the files `listed` (name: bytes).
+OutputBytes output_bytes_of(const nlohmann::json& manifest, const std::map<std::string, std::uintmax_t>& listed) {
+  OutputBytes out;
+  for (const auto& [name, bytes] : listed) out.written += bytes;
+  if (!manifest.is_object() || !manifest.contains("recommended_chain")) return out;
+  std::set<std::string> shipped;
+  for (const nlohmann::json& e : manifest["recommended_chain"].value("chain", nlohmann::json::array()))
+    if (e.value("kind", std::string()) != "asset" && e.contains("file")) shipped.insert(e["file"].get<std::string>());
+  out.chain = 0;
+  for (const std::string& f : shipped)
+    if (listed.count(f)) *out.chain += listed.at(f);
+  return out;
+}
+
+}  // namespace
+
+OutputBytes output_bytes(const nlohmann::json& manifest) {
+  std::map<std::string, std::uintmax_t> listed;
+  each_listed(manifest, [&](const std::string& name, std::uintmax_t bytes) { listed[name] = bytes; });
+  return output_bytes_of(manifest, listed);
+}
+
+OutputBytes output_bytes(const nlohmann::json& manifest, const std::vector<OutputFile>& files) {
+  std::map<std::string, std::uintmax_t> listed;
+  for (const OutputFile& f : files) listed[f.name] = f.bytes.size();
+  return output_bytes_of(manifest, listed);
 }
 
 void write_asset(OutputFolder& out, const std::vector<OutputFile>& files, nlohmann::json manifest, const nlohmann::json& report,

@@ -76,6 +76,10 @@ struct AssetOptions {
   // The options given that only a mesh input uses ("--ldi", ...): a point-set input warns that
   // they were ignored, rather than ignoring them without a word.
   std::vector<std::string> mesh_only_given;
+  // The program's version, for report.json (tool_version) and the page; not in the manifest, whose
+  // bytes qf-diff compares between a baseline and a new bake (a version change alone is no change
+  // of the outputs). Empty: not said.
+  std::string tool_version;
 };
 
 struct AssetBake {
@@ -86,6 +90,10 @@ struct AssetBake {
   BakeResult result;              // the bake's figures (level .glb bytes moved into `files`)
   SampleStats sampled;            // backend empty for point-set inputs
   ReadReport read;
+  // The GL driver the outputs were measured with, {renderer, version} (GL_RENDERER, GL_VERSION;
+  // null when not measured): in report.json and on the page, never in the manifest, which is
+  // byte-identical for the same input and settings on any machine while the driver's name is not.
+  nlohmann::json gl;
 };
 
 // Reads `path` as a point set; a mesh is sampled by depth peeling (its figures in `sampled`, the
@@ -119,10 +127,12 @@ std::vector<std::size_t> default_simplify_budgets(const TriangleMesh& mesh);
 // entries (file, target and kept triangles, vertices, bytes, error and the largest on-screen size of
 // the object at which that error stays under half a pixel, as the impostor levels give it),
 // "skipped": [{target_triangles, skipped: why}] and "stopped": why, where there are any}. Shared by
-// the bake and `qf-bake simplify`. UsageError for a budget that leaves no triangle.
+// the bake and `qf-bake simplify`. UsageError for a budget that leaves no triangle. A textured
+// LOD's textures are PNG, or KTX2 where `gltf` asks for it (--textures ktx2: the impostor levels'
+// encoder and codecs), their entry then with texture_bytes and gpu_bytes as a level's.
 nlohmann::json simplify_level_files(const TriangleMesh& mesh, const std::vector<std::size_t>& budgets, const std::string& stem,
                                     std::vector<OutputFile>& files, bool smooth = true,
-                                    SimplifyMethod method = SimplifyMethod::kCollapse);
+                                    SimplifyMethod method = SimplifyMethod::kCollapse, const GltfOptions& gltf = {});
 
 // The cluster LODs' switching rule (seed 002): a level serves while its cell is at most this many
 // pixels wide on screen, so an object of diagonal D gets max_screen_pixels = kClusterCellPixels x
@@ -140,6 +150,18 @@ nlohmann::json cluster_level_files(const std::vector<LodMesh>& lods, const std::
 nlohmann::json read_asset_manifest(const std::string& folder);
 std::vector<std::string> listed_files(const nlohmann::json& manifest);
 bool listed_files_present(const std::string& folder, const nlohmann::json& manifest);
+
+// What a bake's files weigh, from its manifest.json: `written`, every file its "files" lists (all
+// but the reports); `chain`, the files its recommended chain ships (each once; the input itself,
+// which the chain starts at, and STEM_lods.glb, the same files combined, aside). A point impostor or
+// a mesh LOD no band takes is written and not shipped. No chain (not measured, --no-chain): absent.
+struct OutputBytes {
+  std::uintmax_t written = 0;
+  std::optional<std::uintmax_t> chain;
+};
+OutputBytes output_bytes(const nlohmann::json& manifest);
+// The same of a bake not yet written: its `files` in place of the manifest's list.
+OutputBytes output_bytes(const nlohmann::json& manifest, const std::vector<OutputFile>& files);
 
 // Writes `files`, `report` (report.json, when not null), `page` (report.html, when not empty) and
 // `manifest` (manifest.json, given a "files" list: name and size of every file above but the

@@ -161,6 +161,10 @@ std::deque<std::size_t> check_assets(const BatchManifest& m, const std::vector<s
       } catch (const std::exception&) {
       }
       state.entries[i]["seconds"] = round_to(since(t), 6);
+      // Its bytes as a baked asset's, so that the totals weigh the whole output folder.
+      const OutputBytes bytes = output_bytes(read_asset_manifest(o.output + "/" + a.name));
+      state.entries[i]["bytes"] = bytes.written;
+      if (bytes.chain) state.entries[i]["chain_bytes"] = *bytes.chain;
       state.settle(i, AssetStatus::kUpToDate, progress);
     } else if (o.dry_run) {
       state.settle(i, AssetStatus::kWouldBake, progress);
@@ -182,11 +186,14 @@ int bake_in_child(const BatchAsset& a, const std::string& key, const BatchOption
     AssetBake b = bake_asset(a.path, a.options, a.input);
     b.manifest["batch_key"] = key;
     write_asset(out, b.files, b.manifest, b.report, b.page);
+    const OutputBytes bytes = output_bytes(read_asset_manifest(folder));  // as written, with its "files"
     result = {{"points", b.result.points},
               {"cache", b.result.cache},
               {"levels", b.manifest["levels"]},
               {"files", b.files.size() + 2},
-              {"warnings", b.result.warnings}};
+              {"warnings", b.result.warnings},
+              {"bytes", bytes.written}};
+    if (bytes.chain) result["chain_bytes"] = *bytes.chain;
     if (!b.sampled.backend.empty()) result["sampler"] = b.sampled.backend;
     if (o.eval) result["eval"] = evaluate_levels(a, folder, b.manifest["levels"], o);
     return 0;

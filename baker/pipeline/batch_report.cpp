@@ -14,18 +14,23 @@ using batch::Json;
 
 constexpr const char* kStatusNames[kAssetStatusCount] = {"pending", "baked", "up to date", "failed", "skipped", "would bake"};
 
-// Counts, primitives, texels and the summed asset time of report entries (which carry "status").
+// Counts, primitives, texels, bytes and the summed asset time of report entries (which carry
+// "status"). bytes: all the assets wrote; chain_bytes: what the recommended chains ship, of the
+// assets that have one.
 Json totals_of(const Json& assets) {
   std::array<std::size_t, kAssetStatusCount> counts{};
-  std::size_t primitives = 0, texels = 0;
+  std::size_t primitives = 0, texels = 0, bytes = 0, chain_bytes = 0;
   double seconds = 0;
   for (const Json& e : assets) {
     ++counts[static_cast<std::size_t>(asset_status_from_name(e.value("status", std::string())))];
     if (e.contains("primitives")) primitives += e["primitives"].get<std::size_t>();
     if (e.contains("texels")) texels += e["texels"].get<std::size_t>();
+    if (e.contains("bytes")) bytes += e["bytes"].get<std::size_t>();
+    if (e.contains("chain_bytes")) chain_bytes += e["chain_bytes"].get<std::size_t>();
     if (e.contains("seconds")) seconds += e["seconds"].get<double>();
   }
-  Json t{{"assets", assets.size()}, {"primitives", primitives}, {"texels", texels}, {"asset_seconds", round_to(seconds, 3)}};
+  Json t{{"assets", assets.size()}, {"primitives", primitives}, {"texels", texels}, {"bytes", bytes},
+         {"chain_bytes", chain_bytes}, {"asset_seconds", round_to(seconds, 3)}};
   for (AssetStatus s : {AssetStatus::kBaked, AssetStatus::kUpToDate, AssetStatus::kFailed, AssetStatus::kSkipped, AssetStatus::kWouldBake})
     t[asset_status_name(s)] = counts[static_cast<std::size_t>(s)];
   return t;

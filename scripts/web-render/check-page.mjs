@@ -116,6 +116,24 @@ async function checkBake(page) {
   const warnings = await page.$$eval('#warnings li.warning', (li) => li.map((x) => x.textContent));
   check(JSON.stringify(warnings) === JSON.stringify(r.warnings), `warnings shown ${JSON.stringify(warnings)}, report.json ${JSON.stringify(r.warnings)}`);
   check(num(await page.$eval('#points', (e) => e.dataset.value)) === r.points, 'points differ from report.json');
+  // The input's facts (manifest source), what the bake wrote and what its chain ships, the
+  // version and the measuring's GL driver (report.json).
+  const source = await page.$eval('#source', (e) => ({ ...e.dataset }));
+  for (const k of ['bytes', 'files', 'triangles', 'points', 'materials', 'textures'])
+    check(num(source[k]) === (m.source[k] ?? null), `source ${k}: shown ${source[k]}, manifest ${m.source[k]}`);
+  check(source.format === m.source.format, `source format: shown ${source.format}, manifest ${m.source.format}`);
+  const written = m.files.reduce((n, f) => n + f.bytes, 0);
+  check(num(await page.$eval('#bytes-written', (e) => e.dataset.value)) === written, `bytes written differ from the manifest's ${written}`);
+  if (m.recommended_chain) {
+    const shipped = [...new Set(m.recommended_chain.chain.filter((e) => e.kind !== 'asset').map((e) => e.file))];
+    const chainBytes = shipped.reduce((n, f) => n + m.files.find((x) => x.name === f).bytes, 0);
+    check(num(await page.$eval('#chain-bytes', (e) => e.dataset.value)) === chainBytes, `chain bytes differ from the manifest's ${chainBytes}`);
+  }
+  check((await page.$eval('#generator', (e) => e.dataset.version)) === r.tool_version, 'version differs from report.json');
+  if (r.gl) {
+    const gl = await page.$eval('#gl', (e) => ({ ...e.dataset }));
+    check(gl.renderer === r.gl.renderer && gl.version === r.gl.version, `GL driver shown ${JSON.stringify(gl)}, report.json ${JSON.stringify(r.gl)}`);
+  }
 }
 
 // The batch's page against its report: one row per asset with its status, time and error; the
@@ -124,7 +142,8 @@ async function checkBatch(page) {
   const r = readJson(jsonPath);
   const rows = await page.$$eval('#assets tbody tr', (trs) => trs.map((tr) => ({
     ...tr.dataset, seconds: tr.cells[3].dataset.value, link: tr.querySelector('a') ? tr.querySelector('a').getAttribute('href') : null,
-    thumb: !!tr.querySelector('img'), error: tr.querySelector('td.error').textContent })));
+    thumb: !!tr.querySelector('img'), error: tr.querySelector('td.error').textContent,
+    bytes: tr.querySelector('td.bytes').dataset.value, chainBytes: tr.querySelector('td.chain-bytes').dataset.value })));
   check(rows.length === r.assets.length, `${rows.length} rows, report ${r.assets.length} assets`);
   for (const a of r.assets) {
     const x = rows.find((y) => y.name === a.name);
@@ -132,12 +151,15 @@ async function checkBatch(page) {
     check(x.status === a.status, `${a.name}: status ${x.status}, report ${a.status}`);
     check(num(x.seconds) === (a.seconds ?? null), `${a.name}: seconds ${x.seconds}, report ${a.seconds}`);
     if (a.error) check(x.error.includes(a.error.message), `${a.name}: error message not shown`);
+    // What the asset wrote and what its chain ships: the page reads the folder, the report the bake.
+    check(num(x.bytes) === (a.bytes ?? null), `${a.name}: bytes ${x.bytes}, report ${a.bytes}`);
+    check(num(x.chainBytes) === (a.chain_bytes ?? null), `${a.name}: chain bytes ${x.chainBytes}, report ${a.chain_bytes}`);
     if (a.status === 'baked') {
       check(x.link && fs.existsSync(path.join(path.dirname(pagePath), x.link)), `${a.name}: no link to an existing report.html (${x.link})`);
       check(x.thumb, `${a.name}: no thumbnail`);
     }
   }
-  for (const [id, key] of [['baked', 'baked'], ['failed', 'failed'], ['up-to-date', 'up to date']])
+  for (const [id, key] of [['baked', 'baked'], ['failed', 'failed'], ['up-to-date', 'up to date'], ['bytes', 'bytes'], ['chain-bytes', 'chain_bytes']])
     check(num(await page.$eval(`#total-${id}`, (e) => e.dataset.value)) === r.totals[key], `total ${key} differs`);
 }
 

@@ -37,11 +37,32 @@ validate "$work/out/batch-report.json" "$schemas/batch-report.schema.json"
   bad "per-asset settings and names apply (box-mesh without points, globe with: --points)"
 [[ $(field "$work/out/batch-report.json" 'min(a["primitives"] for a in r["assets"])') -gt 0 ]] && ok || bad "every asset has primitives"
 [[ $(field "$work/out/batch-report.json" 'all(a["peak_mb"] > 10 for a in r["assets"])') == True ]] && ok || bad "peak memory per asset"
+# bytes: every file an asset wrote; chain_bytes: the files its recommended chain ships (globe's
+# point impostor is written, never shipped); the totals add them up.
+python3 - "$work/out" <<'PY' 2>"$work/err" && ok || bad "bytes shipped and written: $(tail -3 "$work/err")"
+import json, os, sys
+out = sys.argv[1]
+r = json.load(open(os.path.join(out, "batch-report.json")))
+for a in r["assets"]:
+    m = json.load(open(os.path.join(out, a["name"], "manifest.json")))
+    listed = {f["name"]: f["bytes"] for f in m["files"]}
+    assert a["bytes"] == sum(listed.values()) == sum(os.path.getsize(os.path.join(out, a["name"], f)) for f in listed), a["name"]
+    shipped = {e["file"] for e in m["recommended_chain"]["chain"] if e["kind"] != "asset"}
+    assert a["chain_bytes"] == sum(listed[f] for f in shipped), (a["name"], a["chain_bytes"], shipped)
+    assert a["chain_bytes"] <= a["bytes"], a["name"]
+globe = next(a for a in r["assets"] if a["name"] == "globe")
+points = os.path.getsize(os.path.join(out, "globe", "globe_points.glb"))
+assert globe["chain_bytes"] <= globe["bytes"] - points, (globe["chain_bytes"], globe["bytes"], points)
+assert r["totals"]["bytes"] == sum(a["bytes"] for a in r["assets"]) and r["totals"]["chain_bytes"] == sum(a["chain_bytes"] for a in r["assets"])
+PY
 listing "$work/out" >"$work/full.sums"
+totals=$(field "$work/out/batch-report.json" '[r["totals"]["bytes"], r["totals"]["chain_bytes"]]')
 
 # --- 2. a second run does no work ---
 "$bake" batch "$work/batch.json" -j 2 2>"$work/err2"; rc=$?
 [[ $rc -eq 0 && $(field "$work/out/batch-report.json" 'r["totals"]["up to date"]') == 6 ]] && ok || bad "second batch: all up to date (exit $rc)"
+[[ $(field "$work/out/batch-report.json" '[r["totals"]["bytes"], r["totals"]["chain_bytes"]]') == "$totals" ]] && ok ||
+  bad "up-to-date assets weigh what they weighed baked: $(field "$work/out/batch-report.json" 'r["totals"]') vs $totals"
 listing "$work/out" | cmp -s - "$work/full.sums" && ok || bad "second batch leaves the files as they were"
 
 # --- 3. content decides, not timestamps ---

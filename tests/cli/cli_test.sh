@@ -202,6 +202,11 @@ for l in m["levels"]:
     assert os.path.getsize(os.path.join(os.path.dirname(sys.argv[1]), l["file"])) > 1000
     assert l["primitives"] > 0 and l["texels"] > 0 and l["error"] > 0 and l["max_screen_pixels"] > 0
 assert m["levels"][0]["primitives"] > m["levels"][1]["primitives"]
+# the input's facts: a point set's format, bytes and points as read
+s = m["source"]
+assert s["format"].startswith("ply") and s["points"] == 16000 and s["files"] == 1, s
+assert s["bytes"] == os.path.getsize(os.path.join(os.path.dirname(sys.argv[1]), "..", "oct.ply")), s
+assert "triangles" not in s and "tool_version" not in m and "gl" not in m, m.keys()
 PY
 # KTX2 textures (issue 32): every texture a KHR_texture_basisu KTX2 image, the extension required;
 # the manifest's GPU bytes a quarter of the PNG levels' (1 byte a texel instead of 4), texture bytes

@@ -5,7 +5,8 @@
 # - `generate tree` is deterministic, validates, and its coarsest impostor level keeps the crown
 #   where meshoptimizer's simplify at twice its quads in triangles has collapsed the leaves away
 #   (silhouette IoU against the tree, 256^2, 4 views);
-# - mesh LODs of a textured asset are textured (materials, UVs, textures sized for their screen).
+# - mesh LODs of a textured asset are textured (materials, UVs, textures sized for their screen),
+#   in KTX2 with --textures ktx2.
 # usage: textured_test.sh QF_BAKE QF_RENDER VALIDATOR_DIR DATA_DIR
 set -u
 bake=$1 render=$2 validator=$3 data=$4
@@ -33,6 +34,22 @@ echo "cube_mask finest level: IoU $mask against the asset, $whole against the un
 cmp -s "$work/tree.glb" "$work/tree2.glb" && ok || bad "generate tree is not deterministic"
 node "$validator/validate.js" "$work/tree.glb" >"$work/v" 2>&1 && ok || bad "tree.glb does not validate: $(tail -2 "$work/v")"
 "$bake" bake "$work/tree.glb" -o "$work/treeb" --ldi 192 --no-cache --mesh-lods none -q || bad "tree.glb did not bake"
+# The bake states its input's facts in the manifest (deterministic: no version, no driver), the
+# version and the measuring's GL driver in report.json and on report.html.
+python3 - "$work/treeb" "$work/tree.glb" "$("$bake" --version)" <<'PY' 2>"$work/err" && ok || bad "tree: the input's facts: $(tail -1 "$work/err")"
+import json, os, sys
+d, tree, version = sys.argv[1], sys.argv[2], sys.argv[3].split()[-1]
+m, r = json.load(open(os.path.join(d, "manifest.json"))), json.load(open(os.path.join(d, "report.json")))
+assert m["source"] == {"format": "glb", "bytes": os.path.getsize(tree), "files": 1, "triangles": m["input_triangles"],
+                       "materials": 2, "textures": 2}, m["source"]
+assert r["tool_version"] == version, r["tool_version"]
+gl = r["gl"]
+assert gl["renderer"] and gl["version"], gl
+text = open(os.path.join(d, "manifest.json")).read()
+assert gl["renderer"] not in text and version not in text, "the manifest carries the driver or the version"
+page = open(os.path.join(d, "report.html")).read()
+assert f"quasiflat {version}" in page and gl["renderer"] in page and gl["version"] in page, "report.html lacks the version or the driver"
+PY
 coarsest=$(ls "$work"/treeb/tree_L*.glb | sort -V | tail -1)
 quads=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["levels"][-1]["primitives"])' "$work/treeb/manifest.json")
 "$bake" simplify "$work/tree.glb" -o "$work/simp" --triangles $((2 * quads)) -q || bad "simplify of tree.glb failed"
@@ -65,6 +82,29 @@ node "$validator/validate.js" "$simp" >"$work/v" 2>&1 && ok || bad "the textured
 psnr=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["mean"]["engine"]["psnr"])' "$work/eval.json")
 at_least "$psnr" 11.5 && ok || bad "tree simplified to $((2 * quads)) triangles: PSNR $psnr against the tree (want >= 11.5: textured)"
 echo "tree: simplify at $((2 * quads)) triangles, textured: PSNR $psnr"
+
+# 3'. --textures ktx2 makes the mesh LODs' textures KTX2 too (KHR_texture_basisu required, the
+#    levels' route), each valid, with less GPU memory than the PNG bake's same LOD; PNG stays PNG.
+for t in png ktx2; do
+  "$bake" bake "$work/tree.glb" -o "$work/tree_$t" --textures $t --primitives 30 --ldi 96 --no-measure --no-cache -q || bad "tree --textures $t did not bake"
+done
+python3 - "$work/tree_png" "$work/tree_ktx2" <<'PY' 2>"$work/err" && ok || bad "KTX2 mesh LODs: $(tail -1 "$work/err")"
+import json, os, struct, sys
+def doc(path):
+    b = open(path, "rb").read()
+    return json.loads(b[20:20 + struct.unpack("<I", b[12:16])[0]])
+png, ktx2 = (json.load(open(os.path.join(d, "manifest.json")))["mesh_lods"]["levels"] for d in sys.argv[1:3])
+assert [l["file"] for l in png] == [l["file"] for l in ktx2] and png, (png, ktx2)
+for p, k in zip(png, ktx2):
+    gp, gk = doc(os.path.join(sys.argv[1], p["file"])), doc(os.path.join(sys.argv[2], k["file"]))
+    assert gp["images"] and all(i["mimeType"] == "image/png" for i in gp["images"]) and "KHR_texture_basisu" not in gp.get("extensionsUsed", []), p["file"]
+    assert gk["images"] and all(i["mimeType"] == "image/ktx2" for i in gk["images"]), k["file"]
+    assert "KHR_texture_basisu" in gk["extensionsRequired"] and all("KHR_texture_basisu" in t["extensions"] for t in gk["textures"]), k["file"]
+    assert k["gpu_bytes"] < p["gpu_bytes"], (k["file"], k["gpu_bytes"], p["gpu_bytes"])
+PY
+for f in "$work"/tree_ktx2/tree_S*.glb; do
+  node "$validator/validate.js" "$f" >"$work/v" 2>&1 && ok || bad "$(basename "$f") (KTX2) does not validate: $(tail -2 "$work/v")"
+done
 
 # 4. Foliage keeps its coverage through its band (issue 49): the bush's ~400-quad level drawn at
 #    half its size with the PNG's mips an engine builds covers at least 0.8 of what the truth

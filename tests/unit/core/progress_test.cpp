@@ -28,6 +28,31 @@ TEST(Progress, LineNamesTheStepTimeAndCount) {
   EXPECT_EQ(progress_line("q", 0, "t", 500, 120, true), "q: 0 s, t [########################] 120/120");
 }
 
+TEST(Progress, TimeLeftFollowsThePaceOfTheItemsDone) {
+  // A quarter done in 4 s: three quarters left at that pace.
+  EXPECT_EQ(time_left(4, 25, 100), "ETA 12 s");
+  EXPECT_EQ(time_left(10, 1, 2), "ETA 10 s");
+  // Past 99 s in minutes.
+  EXPECT_EQ(time_left(60, 10, 100), "ETA 9 min");
+  EXPECT_EQ(time_left(100, 50, 100), "ETA 2 min");
+}
+
+TEST(Progress, NoTimeLeftUntilItCanBeTold) {
+  EXPECT_EQ(time_left(0.9, 50, 100), "") << "before a second";
+  EXPECT_EQ(time_left(30, 2, 100), "") << "before 3% of the count";
+  EXPECT_EQ(time_left(5, 0, 100), "") << "nothing done";
+  EXPECT_EQ(time_left(5, 100, 100), "") << "done";
+  EXPECT_EQ(time_left(5, 3, 0), "") << "no count";
+  EXPECT_EQ(time_left(1, 3, 100), "ETA 32 s") << "both bars passed";
+}
+
+TEST(Progress, TerminalLineEndsWithTheTimeLeftAndALogsLineDoesNot) {
+  EXPECT_EQ(progress_line("q", 8, "t", 40, 120, true, 4), "q: 8 s, t [########................] 40/120, ETA 8 s");
+  EXPECT_EQ(progress_line("q", 8, "t", 40, 120, false, 4), "q: 8 s, t 40/120");
+  EXPECT_EQ(progress_line("q", 8, "t", 40, 120, true, 0.5), "q: 8 s, t [########................] 40/120") << "too early";
+  EXPECT_EQ(progress_line("q", 8, "analysis", 0, 0, true, 4), "q: 8 s, analysis") << "a step without a count";
+}
+
 TEST(Progress, LogGetsPlainLinesWithTheCurrentStep) {
   std::FILE* log = std::tmpfile();
   ASSERT_NE(log, nullptr);
