@@ -275,23 +275,43 @@ EngineScene engine_scene(const tinygltf::Model& m, const std::string& path, cons
   EngineScene s;
   for (const tinygltf::Image& img : m.images) s.images.push_back(to_image(img, path));
   AccessorReader read{m, path};
-  std::vector<int> depth(m.nodes.size(), -1);  // on the current path: a cycle guard
+  // Depth first (a node's primitives, then its children's in order) with a stack of our own: the
+  // file's depth must not decide the call stack's. The nodes must form a tree (glTF 2.0, 3.5.3),
+  // as the bake's reader requires: a node among its own ancestors is a cycle, and a node reached
+  // twice is refused too, as it multiplies the primitives below it (nodes each naming the next
+  // twice: 2^23 copies of a mesh from 2.5 KB, found by fuzz_glb, issue 50).
+  std::vector<char> on_path(m.nodes.size(), 0), reached(m.nodes.size(), 0);
   const Mat4d identity{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-  auto visit = [&](auto&& self, int node, const Mat4d& parent, int level) -> void {
+  struct Step {
+    int node;
+    Mat4d parent;
+    bool leave;  // the walk leaves `node`: no longer an ancestor
+  };
+  std::vector<Step> stack;
+  for (auto r = roots.rbegin(); r != roots.rend(); ++r) stack.push_back({*r, identity, false});
+  while (!stack.empty()) {
+    const Step step = stack.back();
+    stack.pop_back();
+    const int node = step.node;
+    if (step.leave) {
+      on_path[static_cast<std::size_t>(node)] = 0;
+      continue;
+    }
     if (node < 0 || node >= static_cast<int>(m.nodes.size())) fail(path, "nodes", "node " + std::to_string(node) + " does not exist");
-    if (depth[static_cast<std::size_t>(node)] >= 0) fail(path, "nodes", "nodes[" + std::to_string(node) + "] is its own ancestor (a cycle)");
-    depth[static_cast<std::size_t>(node)] = level;
+    if (on_path[static_cast<std::size_t>(node)]) fail(path, "nodes", "nodes[" + std::to_string(node) + "] is its own ancestor (a cycle)");
+    if (reached[static_cast<std::size_t>(node)])
+      fail(path, "nodes", "nodes[" + std::to_string(node) + "] is reached twice (a child of two nodes, or listed twice); glTF nodes form a tree");
+    on_path[static_cast<std::size_t>(node)] = reached[static_cast<std::size_t>(node)] = 1;
     const tinygltf::Node& n = m.nodes[static_cast<std::size_t>(node)];
-    const Mat4d world = multiply(parent, local_transform(n));
+    const Mat4d world = multiply(step.parent, local_transform(n));
     if (n.mesh >= 0 && n.mesh < static_cast<int>(m.meshes.size()))
       for (const tinygltf::Primitive& prim : m.meshes[static_cast<std::size_t>(n.mesh)].primitives)
         if (prim.mode == TINYGLTF_MODE_TRIANGLES || prim.mode == TINYGLTF_MODE_TRIANGLE_STRIP ||
             prim.mode == TINYGLTF_MODE_TRIANGLE_FAN || prim.mode == TINYGLTF_MODE_LINE || prim.mode == TINYGLTF_MODE_POINTS)
           s.primitives.push_back(engine_primitive(read, prim, world));
-    for (int child : n.children) self(self, child, world, level + 1);
-    depth[static_cast<std::size_t>(node)] = -1;
-  };
-  for (int r : roots) visit(visit, r, identity, 0);
+    stack.push_back({node, identity, true});
+    for (auto c = n.children.rbegin(); c != n.children.rend(); ++c) stack.push_back({*c, world, false});
+  }
   for (const EnginePrimitive& p : s.primitives) {
     for (std::size_t v = 0; v + 2 < p.positions.size(); v += 3) s.bounds.add({p.positions[v], p.positions[v + 1], p.positions[v + 2]});
     for (int t : {p.material.base_texture, p.material.normal_texture, p.material.metal_rough_texture, p.material.occlusion_texture,

@@ -186,6 +186,7 @@ tinygltf::Model parse_gltf(const std::string& path, const std::vector<std::uint8
   // The JSON's depth before any parser (tinygltf's recurses per level: ~14,500 levels in 30 KB
   // overflowed the stack): a .gltf's whole text, a .glb's JSON chunk.
   check_gltf_json_depth(raw.data(), raw.size(), path, "render.gltf");
+  check_glb_chunks(raw.data(), raw.size(), path, "render.gltf.parse");
   const std::vector<std::uint8_t> prepared = gltf_input::prepared_for_tinygltf(raw, {path, "render.gltf", 0});
   const std::vector<std::uint8_t>& bytes = prepared.empty() ? raw : prepared;
   tinygltf::Model m;

@@ -65,6 +65,7 @@ void check_glb(ByteView b, const std::string& path) {
   if (b.size() < 4 || std::memcmp(b.data(), "glTF", 4) != 0)
     throw InputError("diff.glb", path, "byte 0", "not a binary glTF file (no 'glTF' magic)");
   check_gltf_json_depth(b.data(), b.size(), path, "diff");  // before tinygltf's recursive parser
+  check_glb_chunks(b.data(), b.size(), path, "diff.glb");
   const std::vector<std::uint8_t> prepared = gltf_input::prepared_for_tinygltf(b, {path, "diff", 0});
   if (!prepared.empty()) b = ByteView(prepared);
   tinygltf::TinyGLTF gltf;

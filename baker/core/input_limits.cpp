@@ -169,4 +169,18 @@ void check_memory_need(std::uint64_t need, std::size_t limit, const std::string&
                        source + "); nothing was allocated");
 }
 
+void check_glb_chunks(const std::uint8_t* bytes, std::size_t size, const std::string& path, const std::string& code) {
+  if (size < 20 || std::memcmp(bytes, "glTF", 4) != 0) return;
+  // glTF 2.0, 4.4.3: header (magic, version, total length), the JSON chunk (length, type, text),
+  // then the BIN chunk (length, type, data). The parser refuses a JSON chunk past the end.
+  const std::uint64_t total = le(bytes + 8, 4), bin_at = 20 + le(bytes + 12, 4);
+  const std::uint64_t end = std::min<std::uint64_t>(total, size);
+  if (bin_at + 8 > end) return;  // no BIN chunk (or no room for its header: the parser says so)
+  const std::uint64_t bin_end = bin_at + 8 + le(bytes + bin_at, 4);
+  if (bin_end > end)
+    throw InputError(code, path, "byte " + std::to_string(bin_at),
+                     "the BIN chunk's " + std::to_string(bin_end - bin_at - 8) + " bytes end at byte " + std::to_string(bin_end) +
+                         ", past the file's " + std::to_string(end));
+}
+
 }  // namespace qf

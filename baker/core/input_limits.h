@@ -23,6 +23,13 @@ std::size_t json_nesting_depth(const char* text, std::size_t size);
 // any JSON parser sees the bytes.
 void check_gltf_json_depth(const std::uint8_t* bytes, std::size_t size, const std::string& path, const std::string& prefix);
 
+// Throws InputError(code, path) when a .glb (`bytes` starting "glTF") has a BIN chunk whose
+// declared length reaches past the file or past the header's total length. tinygltf 2.x checks the
+// chunk's length without its 8-byte chunk header and then copies a buffer of that length from
+// 8 bytes past where its check ended: a file whose BIN chunk and buffer claim those 8 bytes was
+// read past its end (found by fuzz_gltf, issue 50). Anything else is left to the parser.
+void check_glb_chunks(const std::uint8_t* bytes, std::size_t size, const std::string& path, const std::string& code);
+
 // An image's size as its header declares it: PNG (IHDR), JPEG (the first SOF segment), KTX2
 // (pixelWidth, pixelHeight, levelCount), WebP (VP8, VP8L, VP8X), BMP and TGA (a TGA header is
 // recognised by its fields' legal values: it has no magic number). nullopt for other formats or

@@ -148,6 +148,7 @@ void check_references(const nlohmann::json& j, const std::string& path, const st
 tinygltf::Model parse(ByteView bytes, const std::string& path, const ReadOptions& options) {
   // Before any JSON parser: tinygltf's recursion is as deep as the file nests.
   check_gltf_json_depth(bytes.data(), bytes.size(), path, "gltf");
+  check_glb_chunks(bytes.data(), bytes.size(), path, "gltf.parse");
   std::vector<std::uint8_t> rewritten;
   const nlohmann::json j = io::gltf_json(bytes);
   const std::filesystem::path root = io::asset_root(path, options.asset_root);

@@ -2,6 +2,7 @@
 // qf-diff use it, then the scene's invariants (vertex arrays, items within them, neighbours in range).
 // The loader reads only from a path (tinygltf's LoadBinaryFromFile, chosen by the ".glb" name), so each
 // input is written to a file in a private folder under /dev/shm (memory, not disk) first.
+// Mutations: gltf_mutator.h (structural changes to the JSON chunk, its lengths rewritten).
 #include <unistd.h>
 
 #include <cstdlib>
@@ -9,6 +10,7 @@
 #include <fstream>
 
 #include "fuzz_common.h"
+#include "gltf_mutator.h"
 #include "runtime_gl/loader.h"
 
 namespace {
@@ -79,4 +81,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     QF_FUZZ_CHECK(e.file() == path);
   }
   return 0;
+}
+
+extern "C" std::size_t LLVMFuzzerCustomMutator(std::uint8_t* data, std::size_t size, std::size_t max_size, unsigned int seed) {
+  return qf::fuzz::mutate_gltf(data, size, max_size, seed);
 }

@@ -4,12 +4,18 @@
 // read from memory; the path puts the model in an empty folder of its own ($QF_FUZZ_SCRATCH from
 // scripts/fuzz.sh, else one under /dev/shm), so external buffer and image URIs name files that
 // are not there (the "missing file" answers), not whatever lies in the working folder.
+// Mutations: gltf_mutator.h (structural, one time in four). Built with QF_FUZZ_CANARY (the target
+// fuzz_gltf_canary, test-only) it also replays 0.8.0's two stack overflows (gltf_canary.h).
 #include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
 
 #include "fuzz_common.h"
+#include "gltf_mutator.h"
+#ifdef QF_FUZZ_CANARY
+#include "gltf_canary.h"
+#endif
 
 namespace {
 
@@ -43,25 +49,40 @@ void check_materials(const qf::TriangleMesh& m) {
     QF_FUZZ_CHECK(t.width > 0 && t.height > 0 && t.rgba.size() == std::size_t(t.width) * std::size_t(t.height) * 4);
 }
 
-}  // namespace
-
-extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  static const std::string folder = model_folder(), glb = folder + "/fuzz.glb", gltf = folder + "/fuzz.gltf";
-  const std::string& path = size > 0 && data[0] == 'g' ? glb : gltf;
+// Reads the bytes as a .glb or .gltf and checks the mesh; a file with non-finite positions is
+// read again dropping them, as --drop-nonfinite does. Returns the reader's error code, "" when it
+// read the file. InputError is the expected answer to a bad file; anything else escapes.
+std::string read_and_check(const std::uint8_t* data, std::size_t size, const std::string& path) {
   qf::ReadOptions options;
   for (int attempt = 0; attempt < 2; ++attempt) {
     try {
       const qf::TriangleMesh m = qf::decode_gltf(qf::fuzz::view(data, size), path, options);
       qf::fuzz::check_mesh(m);
       check_materials(m);
-      return 0;
+      return "";
     } catch (const qf::InputError& e) {
       QF_FUZZ_CHECK(!e.code().empty() && e.file() == path);
-      // Non-finite positions: read again dropping them, as --drop-nonfinite does.
-      if (e.code() != "gltf.nonfinite") return 0;
+      if (e.code() != "gltf.nonfinite") return e.code();
       options.drop_nonfinite = true;
     }
   }
   QF_FUZZ_CHECK(!"a file read with drop_nonfinite still reports a non-finite coordinate");
+  return "";
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  static const std::string folder = model_folder(), glb = folder + "/fuzz.glb", gltf = folder + "/fuzz.gltf";
+  const std::string code = read_and_check(data, size, size > 0 && data[0] == 'g' ? glb : gltf);
+#ifdef QF_FUZZ_CANARY
+  qf::fuzz::canary::check(data, size, code);
+#else
+  (void)code;
+#endif
   return 0;
+}
+
+extern "C" std::size_t LLVMFuzzerCustomMutator(std::uint8_t* data, std::size_t size, std::size_t max_size, unsigned int seed) {
+  return qf::fuzz::mutate_gltf(data, size, max_size, seed);
 }

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -81,6 +82,34 @@ TEST(Hostile, DeepJsonIsRefusedBeforeParsing) {
   // As deep as allowed still reads.
   const std::string fine = R"("extras":)" + std::string(kMaxJsonDepth - 1, '[') + std::string(kMaxJsonDepth - 1, ']') + ",";
   EXPECT_EQ(error_of(dir.write("fine.gltf", gltf(R"([{"mesh":0}])", fine))), "no error");
+}
+
+// The one-triangle asset as a .glb, its buffer in the BIN chunk (42 bytes padded to 44); the BIN
+// chunk's length and the buffer's byteLength both claim `claimed` bytes.
+std::string glb_triangle(std::uint32_t claimed) {
+  std::string json = gltf();
+  const std::string uri_buffer = std::string(R"("byteLength":42,"uri":")") + kTriangleData + "\"";
+  json.replace(json.find(uri_buffer), uri_buffer.size(), "\"byteLength\":" + std::to_string(claimed));
+  json.resize((json.size() + 3) / 4 * 4, ' ');
+  std::string bin(44, '\0');
+  const float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  const std::uint16_t indices[3] = {0, 1, 2};
+  std::memcpy(&bin[0], positions, sizeof positions);
+  std::memcpy(&bin[36], indices, sizeof indices);
+  const auto u32 = [](std::uint32_t v) { return std::string(reinterpret_cast<const char*>(&v), 4); };
+  const std::size_t total = 12 + 8 + json.size() + 8 + bin.size();
+  return "glTF" + u32(2) + u32(static_cast<std::uint32_t>(total)) + u32(static_cast<std::uint32_t>(json.size())) + "JSON" + json +
+         u32(claimed) + std::string("BIN\0", 4) + bin;
+}
+
+TEST(Hostile, GlbBinChunkPastTheEndIsRefusedBeforeParsing) {
+  test::TempDir dir;
+  EXPECT_EQ(error_of(dir.write("fine.glb", glb_triangle(44))), "no error");
+  // 8 bytes more than the file holds: tinygltf checks the length without the chunk's 8-byte
+  // header and copied the buffer from past the end (fuzz_gltf, issue 50).
+  const std::string e = error_of(dir.write("past.glb", glb_triangle(52)));
+  EXPECT_EQ(e.rfind("gltf.parse: ", 0), 0u) << e;
+  EXPECT_NE(e.find("the BIN chunk's 52 bytes end at byte"), std::string::npos) << e;
 }
 
 TEST(Hostile, NodeChainsAreWalkedWithoutRecursion) {

@@ -178,6 +178,7 @@ public:
     template<typename TEntropyModel>
     uint32_t decodeSymbol(TEntropyModel& m)
     {
+        m.ensure();  // quasiflat: models are allocated on first use (model.hpp)
         uint32_t n, sym, x, y = length;
 
         if (m.decoder_table)               // use table look-up for faster decoding

@@ -201,6 +201,7 @@ public:
     template <typename EntropyModel>
     void encodeSymbol(EntropyModel& m, uint32_t sym)
     {
+        m.ensure();  // quasiflat: models are allocated on first use (model.hpp)
         assert(sym <= m.last_symbol);
 
         uint32_t x, init_base = base;

@@ -41,9 +41,15 @@ namespace lazperf
 namespace models
 {
 		struct arithmetic {
+			// quasiflat: the arrays are allocated and filled on first use (ensure(), called by
+			// the coders), not here. A decoder builds every model of its point format up front
+			// (over 2,800 for a format 6-8 chunk) and most are never used by a chunk; building
+			// them eagerly was most of the time of a small LAZ file. The state at first use is
+			// the state this constructor gave before, so coding is unchanged.
 			arithmetic(uint32_t syms, bool com = false, uint32_t *initTable = nullptr) :
 				symbols(syms), compress(com),
-				distribution(nullptr), symbol_count(nullptr), decoder_table(nullptr) {
+				distribution(nullptr), symbol_count(nullptr), decoder_table(nullptr),
+				total_count(0), update_cycle(0), symbols_until_update(0) {
 				if ( (symbols < 2) || (symbols > (1 << 11)) ) {
 					throw std::runtime_error("Invalid number of symbols");
 				}
@@ -54,13 +60,23 @@ namespace models
 					while (symbols > (1U << (table_bits + 2))) ++table_bits;
 					table_size  = 1 << table_bits;
 					table_shift = DM__LengthShift - table_bits;
-					decoder_table = reinterpret_cast<uint32_t*>(utils::aligned_malloc(sizeof(uint32_t) * (table_size + 2)));
 				}
 				else { // small alphabet: no table needed
-					decoder_table = 0;
 					table_size = table_shift = 0;
 				}
+				if (initTable)
+					allocate(initTable);
+			}
 
+			// quasiflat: the arrays on first use, as the constructor made them before.
+			inline void ensure() {
+				if (!distribution)
+					allocate(nullptr);
+			}
+
+			void allocate(const uint32_t *initTable) {
+				if (table_size)
+					decoder_table = reinterpret_cast<uint32_t*>(utils::aligned_malloc(sizeof(uint32_t) * (table_size + 2)));
 				distribution = reinterpret_cast<uint32_t*>(utils::aligned_malloc(symbols * sizeof(uint32_t)));
 				symbol_count = reinterpret_cast<uint32_t*>(utils::aligned_malloc(symbols * sizeof(uint32_t)));
 
@@ -88,6 +104,12 @@ namespace models
 				  symbols_until_update(other.symbols_until_update), last_symbol(other.last_symbol),
 				  table_size(other.table_size), table_shift(other.table_shift)
             {
+                // quasiflat: a model not used yet has no arrays to copy.
+                if (!other.distribution)
+                {
+                    distribution = symbol_count = decoder_table = nullptr;
+                    return;
+                }
                 size_t size(symbols * sizeof(uint32_t));
                 distribution = reinterpret_cast<uint32_t*>(utils::aligned_malloc(size));
                 std::copy(other.distribution, other.distribution + symbols, distribution);
