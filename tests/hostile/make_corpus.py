@@ -258,14 +258,15 @@ def write(out, seed):
     c.case("json_depth_in_node", "a.gltf", json.dumps(triangle_gltf())[:-1] + ',"asset2":' + "[{\"x\":" * 8000 + "0" + "}]" * 8000 + "}")
     c.case("json_depth_unclosed", "a.gltf", '{"asset":' + "[" * 100000)
     for n in (10000, 100000):
-        c.case(f"node_chain_{n}", "a.gltf", triangle_gltf(nodes=chain(n)))
-    # --- Node graphs that are not trees: instances multiply ---
-    c.case("node_dag_2_40", "a.gltf", triangle_gltf(nodes=chain(41, twice=True)))
-    c.case("node_dag_wide", "a.gltf", triangle_gltf(nodes=[{"children": [1] * 4096}, {"children": [2] * 4096}, {"mesh": 0}]))
-    c.case("node_two_parents", "a.gltf", triangle_gltf(nodes=[{"children": [2]}, {"children": [2]}, {"mesh": 0}], scene_nodes=[0, 1]))
-    c.case("node_root_twice", "a.gltf", triangle_gltf(scene_nodes=[0] * 1000))
-    c.case("node_cycle", "a.gltf", triangle_gltf(nodes=[{"children": [1]}, {"children": [0], "mesh": 0}]))
-    c.case("node_self", "a.gltf", triangle_gltf(nodes=[{"children": [0], "mesh": 0}]))
+        c.case(f"node_chain_{n}", "a.gltf", triangle_gltf(nodes=chain(n)), programs="bake,render")
+    # --- Node graphs that are not trees: instances multiply (qf-render's loader too: it walked a
+    #     node once per parent, and 24 nodes each naming the next twice made 2^23 meshes) ---
+    c.case("node_dag_2_40", "a.gltf", triangle_gltf(nodes=chain(41, twice=True)), programs="bake,render")
+    c.case("node_dag_wide", "a.gltf", triangle_gltf(nodes=[{"children": [1] * 4096}, {"children": [2] * 4096}, {"mesh": 0}]), programs="bake,render")
+    c.case("node_two_parents", "a.gltf", triangle_gltf(nodes=[{"children": [2]}, {"children": [2]}, {"mesh": 0}], scene_nodes=[0, 1]), programs="bake,render")
+    c.case("node_root_twice", "a.gltf", triangle_gltf(scene_nodes=[0] * 1000), programs="bake,render")
+    c.case("node_cycle", "a.gltf", triangle_gltf(nodes=[{"children": [1]}, {"children": [0], "mesh": 0}]), programs="bake,render")
+    c.case("node_self", "a.gltf", triangle_gltf(nodes=[{"children": [0], "mesh": 0}]), programs="bake,render")
     c.case("node_index_huge", "a.gltf", triangle_gltf(nodes=[{"children": [2 ** 31 + 5]}, {"mesh": 0}]))
     c.case("node_no_scene_cycle", "a.gltf", {k: v for k, v in triangle_gltf(nodes=[{"children": [1]}, {"children": [0], "mesh": 0}]).items()
                                              if k not in ("scene", "scenes")})
