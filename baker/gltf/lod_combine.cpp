@@ -49,8 +49,9 @@ void shift(int& index, std::size_t base) {
   if (index >= 0) index += static_cast<int>(base);
 }
 
-// Appends part `p` to `m` (one buffer, every index shifted; its materials, images and textures
-// named PREFIX + their name, so that an importer keeps the parts' assets apart); returns the index
+// Appends part `p` to `m` (one buffer, every index shifted; its meshes, materials, images and
+// textures named PREFIX + their name, so that an importer keeps the parts' assets apart: two mesh
+// LODs both named mesh_lod arrived in Blender as mesh_lod and mesh_lod.001); returns the index
 // of its scene's root node in `m`. Only the accessors its meshes use and the bufferViews of those
 // and of its images are copied: a level's QF_impostor_level arrays, accessors that the extension
 // alone names, stay behind with it.
@@ -120,6 +121,7 @@ int append_part(tinygltf::Model& m, tinygltf::Model p, const std::string& prefix
       remap(prim.indices, accessor_of);
       shift(prim.material, materials);
     }
+    mesh.name = prefix + mesh.name;
     m.meshes.push_back(mesh);
   }
   for (tinygltf::Node& n : p.nodes) {

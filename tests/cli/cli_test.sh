@@ -237,7 +237,7 @@ expect 2 "--webp-color needs --textures webp" -- "$bake" "$work/oct.ply" -o "$wo
 expect 2 "--webp-normal takes lossless or 1..100" -- "$bake" "$work/oct.ply" -o "$work/ktx_x" --textures webp --webp-normal 101 -q
 [[ ! -e "$work/ktx_x" ]] && ok || bad "a refused --textures left $work/ktx_x"
 "$bake" bake --help >"$work/out"
-grep -A5 -- "--textures png|ktx2|webp" "$work/out" | grep -q "(default: png)" && ok || bad "bake --help gives --textures' default"
+grep -A8 -- "--textures png|ktx2|webp" "$work/out" | grep -q "(default: png)" && ok || bad "bake --help gives --textures' default"
 grep -A1 -- "--webp-normal Q|lossless" "$work/out" | grep -q "(default: " && ok || bad "bake --help gives --webp-normal's default"
 
 # Texels sized for the screen (--texel-density, default 1): each level's texel is at least one screen

@@ -1524,8 +1524,13 @@ namespace basisu
 	{
 		debug_printf("job_pool::~job_pool\n");
 		
-		// Notify all workers that they need to die right now.
-		m_kill_flag = true;
+		// Notify all workers that they need to die right now. The flag is set under the mutex the
+		// workers test it under: set outside it, a worker between its test and its wait missed the
+		// notification and waited forever, and the join below with it (quasiflat patch 0002).
+		{
+			std::lock_guard<std::mutex> lock(m_mutex);
+			m_kill_flag = true;
+		}
 		
 		m_has_work.notify_all();
 
