@@ -165,13 +165,7 @@ TriangleMesh generate_grass(const GrassOptions& options) {
   TriangleMesh mesh;
   // 1. One material: the blade atlas, cut out by alpha, seen from both sides.
   mesh.textures = {grass_atlas(random)};
-  SurfaceMaterial grass;
-  grass.name = "grass";
-  grass.texture = 0;
-  grass.wrap_s = grass.wrap_t = TextureWrap::kClampToEdge;
-  grass.alpha_mode = AlphaMode::kMask;
-  grass.double_sided = true;
-  mesh.materials = {grass};
+  mesh.materials = {card_material("grass", 0)};
   // 2. Blades from a disc, the outer ones shorter, leaning and curving further out (as a clump
   //    splays); most in greens, fewer straw-coloured (the column drawn skewed towards 0).
   constexpr double kRadius = 0.12;

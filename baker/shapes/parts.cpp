@@ -134,19 +134,23 @@ void add_leaf(TriangleMesh& mesh, Vec3f at, Vec3f n, Vec3f along, float length, 
   mesh.triangle_materials.insert(mesh.triangle_materials.end(), 2, 1u);
 }
 
+SurfaceMaterial card_material(const std::string& name, int texture) {
+  SurfaceMaterial m;
+  m.name = name;
+  m.texture = texture;
+  m.wrap_s = m.wrap_t = TextureWrap::kClampToEdge;
+  m.alpha_mode = AlphaMode::kMask;
+  m.double_sided = true;
+  return m;
+}
+
 // Bark (repeating) and leaves (cut out by alpha, seen from both sides): materials 0 and 1.
 void add_plant_materials(TriangleMesh& mesh, SplitMix64& random) {
   mesh.textures = {bark_texture(random), leaf_texture()};
   SurfaceMaterial bark;
   bark.name = "bark";
   bark.texture = 0;
-  SurfaceMaterial leaf;
-  leaf.name = "leaf";
-  leaf.texture = 1;
-  leaf.wrap_s = leaf.wrap_t = TextureWrap::kClampToEdge;
-  leaf.alpha_mode = AlphaMode::kMask;
-  leaf.double_sided = true;
-  mesh.materials = {bark, leaf};
+  mesh.materials = {bark, card_material("leaf", 1)};
 }
 
 }  // namespace qf::shape_parts

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <string>
 
 #include "core/random.h"
 #include "core/types.h"
@@ -47,6 +48,8 @@ void add_leaf(TriangleMesh& mesh, Vec3f at, Vec3f n, Vec3f along, float length, 
 // Bark (64 x 64, repeating; draws 4096 numbers) as material 0 and texture 0, and `leaf` (cut out by
 // alpha at 0.5, double-sided, clamped) as material 1 and texture 1.
 void add_plant_materials(TriangleMesh& mesh, SplitMix64& random);
+// A card material: texture `texture` clamped, cut out by alpha (MASK), seen from both sides.
+SurfaceMaterial card_material(const std::string& name, int texture);
 TextureImage bark_texture(SplitMix64& random);
 
 // A shape painted into a card texture: centred at (cx, cy) texels, its axis at `angle` radians
